@@ -1,0 +1,444 @@
+#include "config/param_block.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "config/param_block_yaml.h"
+#include "util/error.h"
+#include "util/strings.h"
+
+namespace attend {
+
+namespace {
+
+// Formats a number without trailing zeros ("0.5", "3", "1e+06").
+std::string FormatNumber(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+bool Range::Contains(double value) const {
+  if (std::isnan(value)) return false;
+  const bool above_min = min_open ? value > min : value >= min;
+  const bool below_max = max_open ? value < max : value <= max;
+  return above_min && below_max;
+}
+
+std::string Range::Describe() const {
+  const bool has_min = std::isfinite(min);
+  const bool has_max = std::isfinite(max);
+  if (has_min && has_max) {
+    return std::string("must be in ") + (min_open ? "(" : "[") + FormatNumber(min) + ", " +
+           FormatNumber(max) + (max_open ? ")" : "]");
+  }
+  if (has_min) return std::string("must be ") + (min_open ? "> " : ">= ") + FormatNumber(min);
+  if (has_max) return std::string("must be ") + (max_open ? "< " : "<= ") + FormatNumber(max);
+  return "must be a finite number";
+}
+
+// The document a block belongs to: its file name and the overrides applied to it.
+struct Document {
+  std::string source;
+  // Key path (indices for list elements) -> the override that set it.
+  std::map<std::string, std::string> overrides;
+  // Block path -> keys that getters asked for, in order. Kept per document so that every
+  // ParamBlock over the same map shares it.
+  std::map<std::string, std::vector<std::string>> known;
+};
+
+struct ParamBlock::State {
+  std::shared_ptr<Document> document;
+  YAML::Node node;
+  std::string path;
+  std::vector<std::string>& known() const { return document->known[path]; }
+};
+
+namespace {
+
+std::string JoinPath(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+// Rejects duplicate keys anywhere in the tree; yaml-cpp would silently keep the first.
+void CheckDuplicateKeys(const YAML::Node& node, const std::string& source) {
+  if (node.IsMap()) {
+    std::set<std::string> seen;
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      const std::string key = it->first.Scalar();
+      if (!seen.insert(key).second) {
+        throw ConfigError(source + ":" + std::to_string(it->first.Mark().line + 1) +
+                          ": duplicate key '" + key + "'");
+      }
+      CheckDuplicateKeys(it->second, source);
+    }
+  } else if (node.IsSequence()) {
+    for (const YAML::Node& element : node) CheckDuplicateKeys(element, source);
+  }
+}
+
+ParamBlock MakeRoot(const YAML::Node& root, const std::string& source) {
+  if (root.IsDefined() && !root.IsNull() && !root.IsMap()) {
+    throw ConfigError(source + ":" + std::to_string(root.Mark().line + 1) +
+                      ": the top level must be a map of keys");
+  }
+  CheckDuplicateKeys(root, source);
+  auto state = std::make_shared<ParamBlock::State>();
+  state->document = std::make_shared<Document>();
+  state->document->source = source;
+  state->node = (root.IsDefined() && !root.IsNull()) ? root : YAML::Node(YAML::NodeType::Map);
+  return ParamBlock(state);
+}
+
+std::string Describe(const YAML::Node& node) {
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsSequence()) return "a list";
+  if (node.IsMap()) return "a map";
+  return "nothing";
+}
+
+}  // namespace
+
+ParamBlock::ParamBlock() : ParamBlock(MakeRoot(YAML::Node(), "<defaults>")) {}
+
+ParamBlock::ParamBlock(std::shared_ptr<State> state) : state_(std::move(state)) {}
+
+ParamBlock ParamBlock::LoadFile(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw ConfigError(path + ": cannot read the file (missing or not readable)");
+  std::stringstream text;
+  text << file.rdbuf();
+  return Parse(text.str(), path);
+}
+
+ParamBlock ParamBlock::Parse(const std::string& text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(source + ":" + std::to_string(e.mark.line + 1) + ":" +
+                      std::to_string(e.mark.column + 1) + ": YAML syntax error: " + e.msg);
+  }
+  return MakeRoot(root, source);
+}
+
+void ParamBlock::Override(const std::string& assignment) {
+  ATTEND_CHECK(state_->path.empty()) << "overrides apply to the root block";
+  const size_t equals = assignment.find('=');
+  if (equals == std::string::npos || equals == 0) {
+    throw ConfigError("--set " + assignment + ": expected KEY.PATH=VALUE");
+  }
+  const std::string key_path = assignment.substr(0, equals);
+  const std::string value_text = assignment.substr(equals + 1);
+  YAML::Node value;
+  try {
+    value = YAML::Load(value_text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError("--set " + assignment + ": the value is not valid YAML: " + e.msg);
+  }
+  if (!value.IsDefined()) value = YAML::Node(YAML::NodeType::Null);
+
+  const std::vector<std::string> parts = Split(key_path, '.');
+  YAML::Node current;
+  current.reset(state_->node);
+  std::string resolved;  // the path with list elements as indices
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    if (part.empty()) throw ConfigError("--set " + assignment + ": empty key in '" + key_path + "'");
+    const bool last = i + 1 == parts.size();
+    YAML::Node next;
+    if (current.IsSequence()) {
+      int index = -1;
+      if (std::all_of(part.begin(), part.end(), ::isdigit)) {
+        index = std::stoi(part);
+        if (index >= static_cast<int>(current.size())) {
+          throw ConfigError("--set " + assignment + ": '" + JoinPath(resolved, part) +
+                            "': the list has " + std::to_string(current.size()) + " elements");
+        }
+      } else {
+        std::vector<std::string> names;
+        for (size_t k = 0; k < current.size(); ++k) {
+          const YAML::Node name = current[k].IsMap() ? current[k]["name"] : YAML::Node();
+          if (name.IsDefined() && name.IsScalar()) {
+            names.push_back(name.Scalar());
+            if (name.Scalar() == part && index < 0) index = static_cast<int>(k);
+          }
+        }
+        if (index < 0) {
+          throw ConfigError("--set " + assignment + ": '" + resolved + "' has no element named '" +
+                            part + "'" + DidYouMean(part, names));
+        }
+      }
+      resolved = JoinPath(resolved, std::to_string(index));
+      if (last) {
+        current[index] = value;
+        break;
+      }
+      next.reset(current[index]);
+    } else {
+      if (!current.IsMap()) {
+        throw ConfigError("--set " + assignment + ": '" + resolved + "' is not a map or a list");
+      }
+      resolved = JoinPath(resolved, part);
+      if (last) {
+        current[part] = value;
+        break;
+      }
+      if (!current[part].IsDefined() || current[part].IsNull()) {
+        current[part] = YAML::Node(YAML::NodeType::Map);
+      }
+      next.reset(current[part]);
+    }
+    current.reset(next);
+  }
+  state_->document->overrides[resolved] = assignment;
+}
+
+const std::string& ParamBlock::path() const { return state_->path; }
+
+const std::string& ParamBlock::source() const { return state_->document->source; }
+
+std::string ParamBlock::KeyPath(const std::string& key) const {
+  return key.empty() ? state_->path : JoinPath(state_->path, key);
+}
+
+std::string ParamBlock::Where(const std::string& key) const {
+  // An override of this key or of any block above it is where the value came from.
+  const std::string full = KeyPath(key);
+  for (const auto& [path, assignment] : state_->document->overrides) {
+    if (full == path || full.rfind(path + ".", 0) == 0) return "--set " + assignment;
+  }
+  YAML::Mark mark = state_->node.Mark();
+  if (!key.empty() && state_->node.IsMap()) {
+    for (auto it = state_->node.begin(); it != state_->node.end(); ++it) {
+      if (it->first.Scalar() == key) {
+        mark = it->first.Mark();
+        break;
+      }
+    }
+  }
+  if (mark.line < 0) return state_->document->source;
+  return state_->document->source + ":" + std::to_string(mark.line + 1);
+}
+
+bool ParamBlock::Has(const std::string& key) const {
+  const YAML::Node value = state_->node[key];
+  return value.IsDefined() && !value.IsNull();
+}
+
+std::vector<std::string> ParamBlock::Keys() const {
+  std::vector<std::string> keys;
+  for (auto it = state_->node.begin(); it != state_->node.end(); ++it) {
+    keys.push_back(it->first.Scalar());
+  }
+  return keys;
+}
+
+void ParamBlock::Fail(const std::string& key, const std::string& message) const {
+  const std::string path = KeyPath(key);
+  throw ConfigError(Where(key) + ": " + (path.empty() ? "" : path + ": ") + message);
+}
+
+namespace {
+
+// Records `key` as known and returns its node (undefined or null when absent).
+YAML::Node Lookup(const ParamBlock::State& state, const std::string& key) {
+  std::vector<std::string>& known = state.known();
+  if (std::find(known.begin(), known.end(), key) == known.end()) known.push_back(key);
+  if (!state.node.IsMap()) return YAML::Node();
+  return state.node[key];
+}
+
+bool Absent(const YAML::Node& node) { return !node.IsDefined() || node.IsNull(); }
+
+template <typename T>
+bool DecodeScalar(const YAML::Node& node, T* value) {
+  if (!node.IsScalar()) return false;
+  return YAML::convert<T>::decode(node, *value);
+}
+
+}  // namespace
+
+bool ParamBlock::GetBool(const std::string& key, bool default_value) const {
+  const YAML::Node node = Lookup(*state_, key);
+  if (Absent(node)) return default_value;
+  bool value = false;
+  if (!DecodeScalar(node, &value)) Fail(key, "expected true or false, got " + Describe(node));
+  return value;
+}
+
+int ParamBlock::GetInt(const std::string& key, int default_value, Range range) const {
+  const YAML::Node node = Lookup(*state_, key);
+  if (Absent(node)) return default_value;
+  int value = 0;
+  if (!DecodeScalar(node, &value)) Fail(key, "expected an integer, got " + Describe(node));
+  if (!range.Contains(value)) Fail(key, "value " + node.Scalar() + " out of range: " + range.Describe());
+  return value;
+}
+
+double ParamBlock::GetDouble(const std::string& key, double default_value, Range range) const {
+  const YAML::Node node = Lookup(*state_, key);
+  if (Absent(node)) return default_value;
+  double value = 0.0;
+  if (!DecodeScalar(node, &value)) Fail(key, "expected a number, got " + Describe(node));
+  if (!range.Contains(value)) Fail(key, "value " + node.Scalar() + " out of range: " + range.Describe());
+  return value;
+}
+
+std::string ParamBlock::GetString(const std::string& key, const std::string& default_value) const {
+  const YAML::Node node = Lookup(*state_, key);
+  if (Absent(node)) return default_value;
+  if (!node.IsScalar()) Fail(key, "expected a string, got " + Describe(node));
+  return node.Scalar();
+}
+
+std::string ParamBlock::GetChoice(const std::string& key, const std::string& default_value,
+                                  const std::vector<std::string>& choices) const {
+  const std::string value = GetString(key, default_value);
+  if (std::find(choices.begin(), choices.end(), value) == choices.end()) {
+    Fail(key, "'" + value + "' is not one of " + Join(choices, ", ") + DidYouMean(value, choices));
+  }
+  return value;
+}
+
+namespace {
+
+template <typename T>
+std::vector<T> GetList(const ParamBlock& block, const std::string& key,
+                       const std::vector<T>& default_value, const char* what, const Range* range,
+                       int size) {
+  const YAML::Node node = Lookup(*block.state(), key);
+  if (Absent(node)) return default_value;
+  if (!node.IsSequence()) {
+    block.Fail(key, std::string("expected a list of ") + what + ", got " + Describe(node));
+  }
+  std::vector<T> values;
+  for (size_t i = 0; i < node.size(); ++i) {
+    T value{};
+    if (!DecodeScalar(node[i], &value)) {
+      block.Fail(key, "element " + std::to_string(i) + ": expected " + what + ", got " +
+                          Describe(node[i]));
+    }
+    if constexpr (std::is_arithmetic_v<T>) {
+      if (range != nullptr && !range->Contains(static_cast<double>(value))) {
+        block.Fail(key, "element " + std::to_string(i) + " = " + node[i].Scalar() +
+                            " out of range: " + range->Describe());
+      }
+    }
+    values.push_back(value);
+  }
+  if (size >= 0 && static_cast<int>(values.size()) != size) {
+    block.Fail(key, "expected " + std::to_string(size) + " elements, got " +
+                        std::to_string(values.size()));
+  }
+  return values;
+}
+
+}  // namespace
+
+std::vector<double> ParamBlock::GetDoubles(const std::string& key,
+                                           const std::vector<double>& default_value, Range range,
+                                           int size) const {
+  return GetList(*this, key, default_value, "numbers", &range, size);
+}
+
+std::vector<int> ParamBlock::GetInts(const std::string& key, const std::vector<int>& default_value,
+                                     Range range, int size) const {
+  return GetList(*this, key, default_value, "integers", &range, size);
+}
+
+std::vector<std::string> ParamBlock::GetStrings(
+    const std::string& key, const std::vector<std::string>& default_value) const {
+  return GetList<std::string>(*this, key, default_value, "strings", nullptr, -1);
+}
+
+double ParamBlock::RequireDouble(const std::string& key, Range range) const {
+  if (!Has(key)) {
+    Lookup(*state_, key);
+    Fail(key, "required key is missing");
+  }
+  return GetDouble(key, 0.0, range);
+}
+
+int ParamBlock::RequireInt(const std::string& key, Range range) const {
+  if (!Has(key)) {
+    Lookup(*state_, key);
+    Fail(key, "required key is missing");
+  }
+  return GetInt(key, 0, range);
+}
+
+std::string ParamBlock::RequireString(const std::string& key) const {
+  if (!Has(key)) {
+    Lookup(*state_, key);
+    Fail(key, "required key is missing");
+  }
+  return GetString(key, "");
+}
+
+ParamBlock ParamBlock::Child(const std::string& key) const {
+  const YAML::Node node = Lookup(*state_, key);
+  auto child = std::make_shared<State>();
+  child->document = state_->document;
+  child->path = KeyPath(key);
+  if (Absent(node)) {
+    child->node = YAML::Node(YAML::NodeType::Map);
+  } else if (!node.IsMap()) {
+    Fail(key, "expected a map of keys, got " + Describe(node));
+  } else {
+    child->node = node;
+  }
+  return ParamBlock(child);
+}
+
+std::vector<ParamBlock> ParamBlock::Children(const std::string& key) const {
+  const YAML::Node node = Lookup(*state_, key);
+  std::vector<ParamBlock> children;
+  if (Absent(node)) return children;
+  if (!node.IsSequence()) Fail(key, "expected a list, got " + Describe(node));
+  for (size_t i = 0; i < node.size(); ++i) {
+    auto child = std::make_shared<State>();
+    child->document = state_->document;
+    child->path = KeyPath(key) + "." + std::to_string(i);
+    if (!node[i].IsMap()) {
+      ParamBlock element(child);
+      element.state_->node = node[i];
+      element.Fail("", "expected a map of keys, got " + Describe(node[i]));
+    }
+    child->node = node[i];
+    children.emplace_back(child);
+  }
+  return children;
+}
+
+void ParamBlock::CheckNoUnknownKeys() const {
+  const std::vector<std::string>& known = state_->known();
+  for (const std::string& key : Keys()) {
+    if (std::find(known.begin(), known.end(), key) == known.end()) {
+      const std::string where = state_->path.empty() ? "" : " in " + state_->path;
+      throw ConfigError(Where(key) + ": unknown key '" + key + "'" + where +
+                        DidYouMean(key, known));
+    }
+  }
+}
+
+std::vector<std::string> ParamBlock::KnownKeys() const { return state_->known(); }
+
+std::string ParamBlock::ToYaml(bool flow) const {
+  YAML::Emitter out;
+  if (flow) out << YAML::Flow;
+  out << state_->node;
+  return out.c_str();
+}
+
+YAML::Node NodeOf(const ParamBlock& block) { return block.state()->node; }
+
+}  // namespace attend

@@ -1,0 +1,106 @@
+// A typed, read-tracking accessor over one YAML map: the only way modules, plugins and scene
+// descriptions read YAML. Every getter records the key it was asked for, so that after a
+// reader has asked for everything it knows, CheckNoUnknownKeys() reports any key that is left
+// (a typo) with its file, line and the closest known key. Values out of range or of the wrong
+// type are reported the same way. All failures throw ConfigError (exit status 2).
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace attend {
+
+// An interval that a numeric value must lie in; open or closed at each end.
+struct Range {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_open = false;
+  bool max_open = false;
+
+  static Range Any() { return {}; }
+  static Range AtLeast(double min) { return {min}; }
+  static Range Above(double min) { return {min, std::numeric_limits<double>::infinity(), true}; }
+  static Range Closed(double min, double max) { return {min, max}; }
+  bool Contains(double value) const;
+  // "must be >= 0", "must be in [0, 1]", ...
+  std::string Describe() const;
+};
+
+class ParamBlock {
+ public:
+  // An empty block (no keys); getters return their defaults.
+  ParamBlock();
+
+  // Reads a YAML file whose top level is a map (or empty). Missing file, YAML syntax error,
+  // duplicate key or a top level that is not a map: ConfigError naming the file and line.
+  static ParamBlock LoadFile(const std::string& path);
+  // Same for text in memory; `source` names it in messages.
+  static ParamBlock Parse(const std::string& text, const std::string& source);
+
+  // Applies one "key.path=value" override; the value is parsed as YAML, so lists and maps
+  // work. List elements are addressed by index ("features.1.weight") or, for lists of maps
+  // with a `name` key, by name ("features.skin.weight"). Only valid on the root block.
+  void Override(const std::string& assignment);
+
+  // Dotted key path of this block from the root ("" for the root, "features.2").
+  const std::string& path() const;
+  // Dotted path of a key in this block.
+  std::string KeyPath(const std::string& key) const;
+  // Where a key (or, with "", this block) was written: "FILE:LINE" or "--set KEY=VALUE".
+  std::string Where(const std::string& key = "") const;
+  // The file this block was read from.
+  const std::string& source() const;
+
+  bool Has(const std::string& key) const;
+  // Keys present in this block, in file order.
+  std::vector<std::string> Keys() const;
+
+  bool GetBool(const std::string& key, bool default_value) const;
+  int GetInt(const std::string& key, int default_value, Range range = {}) const;
+  double GetDouble(const std::string& key, double default_value, Range range = {}) const;
+  std::string GetString(const std::string& key, const std::string& default_value) const;
+  // A string that must be one of `choices`.
+  std::string GetChoice(const std::string& key, const std::string& default_value,
+                        const std::vector<std::string>& choices) const;
+  // Lists; `size` >= 0 requires exactly that many elements.
+  std::vector<double> GetDoubles(const std::string& key, const std::vector<double>& default_value,
+                                 Range range = {}, int size = -1) const;
+  std::vector<int> GetInts(const std::string& key, const std::vector<int>& default_value,
+                           Range range = {}, int size = -1) const;
+  std::vector<std::string> GetStrings(const std::string& key,
+                                      const std::vector<std::string>& default_value) const;
+
+  // Like the getters above, but the key must be present.
+  double RequireDouble(const std::string& key, Range range = {}) const;
+  int RequireInt(const std::string& key, Range range = {}) const;
+  std::string RequireString(const std::string& key) const;
+
+  // A nested map (an empty block when the key is absent or null).
+  ParamBlock Child(const std::string& key) const;
+  // A list of maps (empty when the key is absent or null).
+  std::vector<ParamBlock> Children(const std::string& key) const;
+
+  // Throws ConfigError "WHERE: KEYPATH: message".
+  [[noreturn]] void Fail(const std::string& key, const std::string& message) const;
+
+  // Throws ConfigError for the first key present that no getter asked for, naming it, its
+  // line and the closest key that was asked for.
+  void CheckNoUnknownKeys() const;
+
+  // Keys that getters asked for, in the order asked (present or not).
+  std::vector<std::string> KnownKeys() const;
+
+  // The block as YAML text (flow style when `flow`).
+  std::string ToYaml(bool flow = false) const;
+
+  struct State;
+  explicit ParamBlock(std::shared_ptr<State> state);
+  const std::shared_ptr<State>& state() const { return state_; }
+
+ private:
+  std::shared_ptr<State> state_;
+};
+
+}  // namespace attend

@@ -1,0 +1,109 @@
+#include "io/ground_truth.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "util/error.h"
+#include "util/strings.h"
+
+namespace attend {
+
+namespace {
+
+double ParseNumber(const std::string& text, const std::string& path, int line, const char* field) {
+  try {
+    size_t used = 0;
+    const double value = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(value)) return value;
+  } catch (const std::exception&) {
+  }
+  throw InputError(path + ":" + std::to_string(line) + ": field '" + field + "' is not a number: '" +
+                   text + "'");
+}
+
+int ParseInteger(const std::string& text, const std::string& path, int line, const char* field) {
+  const double value = ParseNumber(text, path, line, field);
+  if (value != std::floor(value)) {
+    throw InputError(path + ":" + std::to_string(line) + ": field '" + field +
+                     "' is not an integer: '" + text + "'");
+  }
+  return static_cast<int>(value);
+}
+
+std::string Trim(const std::string& text) {
+  const size_t begin = text.find_first_not_of(" \t\r");
+  if (begin == std::string::npos) return "";
+  const size_t end = text.find_last_not_of(" \t\r");
+  return text.substr(begin, end - begin + 1);
+}
+
+}  // namespace
+
+std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot read the ground-truth file");
+  std::vector<GtObject> objects;
+  std::string text;
+  int line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    text = Trim(text);
+    if (text.empty()) continue;
+    if (line == 1 && text.rfind("frame", 0) == 0) continue;  // header
+    std::vector<std::string> fields = Split(text, ',');
+    if (fields.size() != 9) {
+      throw InputError(path + ":" + std::to_string(line) + ": expected 9 fields (" +
+                       kObjectsCsvHeader + "), got " + std::to_string(fields.size()));
+    }
+    for (std::string& field : fields) field = Trim(field);
+    GtObject object;
+    object.frame = ParseInteger(fields[0], path, line, "frame");
+    object.id = ParseInteger(fields[1], path, line, "id");
+    object.box.x = ParseNumber(fields[2], path, line, "x");
+    object.box.y = ParseNumber(fields[3], path, line, "y");
+    object.box.width = ParseNumber(fields[4], path, line, "w");
+    object.box.height = ParseNumber(fields[5], path, line, "h");
+    object.visible_fraction = ParseNumber(fields[6], path, line, "visible_fraction");
+    object.disparity = ParseNumber(fields[7], path, line, "disparity");
+    object.kind = fields[8];
+    if (object.frame < 0 || object.box.width < 0 || object.box.height < 0 ||
+        object.visible_fraction < 0 || object.visible_fraction > 1) {
+      throw InputError(path + ":" + std::to_string(line) +
+                       ": negative frame or size, or visible_fraction outside [0, 1]");
+    }
+    if (object.kind != "object" && object.kind != "skin") {
+      throw InputError(path + ":" + std::to_string(line) + ": kind must be object or skin, got '" +
+                       object.kind + "'");
+    }
+    objects.push_back(object);
+  }
+  return objects;
+}
+
+void WriteObjectsCsv(const std::string& path, const std::vector<GtObject>& objects) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path + ": cannot write the ground-truth file");
+  out << kObjectsCsvHeader << "\n";
+  out.precision(17);
+  for (const GtObject& o : objects) {
+    out << o.frame << "," << o.id << "," << o.box.x << "," << o.box.y << "," << o.box.width << ","
+        << o.box.height << "," << o.visible_fraction << "," << o.disparity << "," << o.kind << "\n";
+  }
+  if (!out) throw InputError(path + ": error while writing the ground-truth file");
+}
+
+std::string FrameStem(int index) {
+  char stem[16];
+  std::snprintf(stem, sizeof(stem), "%06d", index);
+  return stem;
+}
+
+std::string GtDisparityPath(const std::string& sequence_folder, int frame) {
+  return (std::filesystem::path(sequence_folder) / "gt" / "disparity" / (FrameStem(frame) + ".pfm"))
+      .string();
+}
+
+}  // namespace attend

@@ -1,0 +1,37 @@
+// Ground truth of a sequence (SPEC 3.1): gt/objects.csv and gt/disparity/NNNNNN.pfm.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace attend {
+
+// One row of gt/objects.csv: an object's visible box in the left view of one frame.
+struct GtObject {
+  int frame = 0;
+  int id = 0;
+  cv::Rect2d box;                 // visible part, pixels of the left image; empty when hidden
+  double visible_fraction = 0.0;  // visible pixels / pixels of the whole projected object
+  double disparity = 0.0;         // pixels, at the object's depth
+  std::string kind = "object";    // "object" or "skin"
+};
+
+// The header line of gt/objects.csv.
+inline constexpr const char* kObjectsCsvHeader =
+    "frame,id,x,y,w,h,visible_fraction,disparity,kind";
+
+// Reads gt/objects.csv. Throws InputError naming the file and line of a malformed row.
+std::vector<GtObject> ReadObjectsCsv(const std::string& path);
+
+// Writes gt/objects.csv with full float precision (round-trips exactly through ReadObjectsCsv).
+void WriteObjectsCsv(const std::string& path, const std::vector<GtObject>& objects);
+
+// "gt/disparity/000042.pfm" below a sequence folder.
+std::string GtDisparityPath(const std::string& sequence_folder, int frame);
+
+// The file name of frame `index` in the SPEC 3.1 layout: "000042".
+std::string FrameStem(int index);
+
+}  // namespace attend

@@ -1,0 +1,90 @@
+#include "io/pfm.h"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "util/error.h"
+
+namespace attend {
+
+namespace {
+
+// Reads the next whitespace-separated token of a PFM header.
+bool ReadToken(std::istream& in, std::string* token) {
+  token->clear();
+  int c = in.get();
+  while (c != EOF && std::isspace(c)) c = in.get();
+  while (c != EOF && !std::isspace(c)) {
+    token->push_back(static_cast<char>(c));
+    c = in.get();
+  }
+  // `c` is the single whitespace character that ends the header field.
+  return !token->empty();
+}
+
+uint32_t ByteSwap(uint32_t v) {
+  return (v >> 24) | ((v >> 8) & 0xff00u) | ((v << 8) & 0xff0000u) | (v << 24);
+}
+
+}  // namespace
+
+cv::Mat ReadPfm(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the PFM file");
+  std::string magic, width_text, height_text, scale_text;
+  if (!ReadToken(in, &magic) || (magic != "Pf" && magic != "PF")) {
+    throw InputError(path + ": not a PFM file (the header must start with Pf or PF)");
+  }
+  if (!ReadToken(in, &width_text) || !ReadToken(in, &height_text) || !ReadToken(in, &scale_text)) {
+    throw InputError(path + ": truncated PFM header");
+  }
+  int width = 0, height = 0;
+  double scale = 0.0;
+  try {
+    width = std::stoi(width_text);
+    height = std::stoi(height_text);
+    scale = std::stod(scale_text);
+  } catch (const std::exception&) {
+    throw InputError(path + ": malformed PFM header (width, height, scale)");
+  }
+  if (width <= 0 || height <= 0 || width > (1 << 16) || height > (1 << 16) || scale == 0.0) {
+    throw InputError(path + ": invalid PFM size " + width_text + "x" + height_text +
+                     " or scale " + scale_text);
+  }
+  const int channels = magic == "PF" ? 3 : 1;
+  const bool file_little_endian = scale < 0.0;
+  const bool host_little_endian = std::endian::native == std::endian::little;
+
+  cv::Mat map(height, width, channels == 3 ? CV_32FC3 : CV_32FC1);
+  const size_t row_bytes = static_cast<size_t>(width) * channels * sizeof(float);
+  for (int row = height - 1; row >= 0; --row) {
+    in.read(reinterpret_cast<char*>(map.ptr<float>(row)), static_cast<std::streamsize>(row_bytes));
+    if (!in) throw InputError(path + ": truncated PFM data (expected " + std::to_string(height) + " rows)");
+    if (file_little_endian != host_little_endian) {
+      auto* words = reinterpret_cast<uint32_t*>(map.ptr<float>(row));
+      for (size_t i = 0; i < static_cast<size_t>(width) * channels; ++i) words[i] = ByteSwap(words[i]);
+    }
+  }
+  return map;
+}
+
+void WritePfm(const std::string& path, const cv::Mat& map) {
+  ATTEND_CHECK(map.depth() == CV_32F && (map.channels() == 1 || map.channels() == 3))
+      << "WritePfm needs CV_32FC1 or CV_32FC3, got type " << map.type();
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw InputError(path + ": cannot write the PFM file");
+  const bool little = std::endian::native == std::endian::little;
+  out << (map.channels() == 3 ? "PF" : "Pf") << "\n"
+      << map.cols << " " << map.rows << "\n"
+      << (little ? "-1" : "1") << "\n";
+  const size_t row_bytes = static_cast<size_t>(map.cols) * map.channels() * sizeof(float);
+  for (int row = map.rows - 1; row >= 0; --row) {
+    out.write(reinterpret_cast<const char*>(map.ptr<float>(row)), static_cast<std::streamsize>(row_bytes));
+  }
+  if (!out) throw InputError(path + ": error while writing the PFM file");
+}
+
+}  // namespace attend

@@ -1,0 +1,78 @@
+// Reading stereo and monocular sequences (SPEC 3.1): a folder with left/ and right/ (or only
+// left/ for monocular), a pair of videos, one side-by-side video, or a monocular video.
+// Frames come out at the working size, as 8-bit BGR.
+#pragma once
+
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+
+namespace attend {
+
+struct SequenceOptions {
+  // Exactly one source must be set.
+  std::string folder;              // SEQ/left (and SEQ/right for stereo); monocular without right/
+  std::string left_video;          // with right_video: a pair of videos
+  std::string right_video;
+  std::string side_by_side_video;  // left half | right half
+  std::string video;               // a monocular video
+
+  // Frame range in source indices, inclusive; last_frame = -1 means to the end.
+  int first_frame = 0;
+  int last_frame = -1;
+  int stride = 1;  // take every stride-th frame from first_frame
+
+  // Working size. "fit": scale so the frame fits in width x height keeping its aspect ratio
+  // (640x480 -> 320x240, 1280x720 -> 320x180); "stretch": exactly width x height;
+  // "native": keep the source size.
+  int width = 320;
+  int height = 240;
+  std::string resize = "fit";
+
+  // Empty when valid; otherwise names the field and the broken constraint.
+  std::string Check() const;
+  // A short description of the source for messages: "folder SEQ", "videos A + B", ...
+  std::string Describe() const;
+};
+
+// What is known about an opened sequence.
+struct SequenceInfo {
+  std::string name;          // sequence.yaml name, or the folder/video stem
+  bool stereo = true;
+  double fps = 25.0;         // sequence.yaml or the video's; 25 when unknown
+  double focal_px = 0.0;     // sequence.yaml; 0 when unknown (at the native size)
+  double baseline_m = 0.0;   // sequence.yaml; 0 when unknown
+  cv::Size native_size;      // size of the source frames (one view)
+  cv::Size size;             // working size of the frames handed out
+  double scale_x = 1.0;      // size / native_size; disparities scale by scale_x
+  double scale_y = 1.0;
+  int frame_count = -1;      // frames this source will hand out (range and stride applied);
+                             // -1 when a video cannot tell
+  std::string folder;        // the sequence folder ("" for videos); gt/ lives below it
+};
+
+struct StereoFrame {
+  int index = 0;             // index in the source (before stride), the frame's number
+  cv::Mat left;              // CV_8UC3, BGR, working size
+  cv::Mat right;             // CV_8UC3, BGR, working size; empty when monocular
+  std::string left_path;     // the file, or "VIDEO#index" for videos
+  std::string right_path;
+};
+
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+
+  // Opens a source. A missing folder or file, no frames, left/right counts or sizes that
+  // differ: InputError (exit status 3) naming what is wrong. Invalid options: ConfigError.
+  static std::unique_ptr<FrameSource> Open(const SequenceOptions& options);
+
+  virtual const SequenceInfo& info() const = 0;
+
+  // The next frame of the range; false at the end. A frame that cannot be decoded or whose
+  // size differs from the first frame's throws InputError naming its index and path; frames
+  // handed out before stay valid.
+  virtual bool Next(StereoFrame* frame) = 0;
+};
+
+}  // namespace attend

@@ -1,0 +1,140 @@
+#include "config/param_block.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/support/temp_dir.h"
+#include "util/error.h"
+
+namespace attend {
+namespace {
+
+// Runs `body` and returns the ConfigError message it throws ("" if it throws none).
+template <typename Body>
+std::string ConfigErrorOf(Body body) {
+  try {
+    body();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ParamBlock, ReadsTypedValuesAndDefaults) {
+  const ParamBlock block = ParamBlock::Parse(
+      "a: 3\nb: 0.25\nc: text\nd: true\ne: [1, 2, 3]\nf: [x, y]\nnested: {k: 5}\n", "t.yaml");
+  EXPECT_EQ(block.GetInt("a", 0), 3);
+  EXPECT_DOUBLE_EQ(block.GetDouble("b", 0.0), 0.25);
+  EXPECT_EQ(block.GetString("c", ""), "text");
+  EXPECT_TRUE(block.GetBool("d", false));
+  EXPECT_EQ(block.GetInts("e", {}), (std::vector<int>{1, 2, 3}));
+  EXPECT_EQ(block.GetStrings("f", {}), (std::vector<std::string>{"x", "y"}));
+  EXPECT_EQ(block.Child("nested").GetInt("k", 0), 5);
+  EXPECT_EQ(block.GetInt("absent", 42), 42);
+  EXPECT_DOUBLE_EQ(block.GetDouble("a", 0.0), 3.0);  // an integer is a valid number
+  EXPECT_NO_THROW(block.CheckNoUnknownKeys());
+}
+
+TEST(ParamBlock, UnknownKeyNamesKeyLineAndClosestKnownKey) {
+  const ParamBlock block =
+      ParamBlock::Parse("select:\n  min_area: 20\n  min_salency: 0.5\n", "cfg.yaml");
+  const ParamBlock select = block.Child("select");
+  select.GetInt("min_area", 0);
+  select.GetDouble("min_saliency", 0.3);
+  const std::string message = ConfigErrorOf([&] { select.CheckNoUnknownKeys(); });
+  EXPECT_NE(message.find("cfg.yaml:3"), std::string::npos) << message;
+  EXPECT_NE(message.find("unknown key 'min_salency' in select"), std::string::npos) << message;
+  EXPECT_NE(message.find("did you mean 'min_saliency'"), std::string::npos) << message;
+}
+
+TEST(ParamBlock, WrongTypeAndOutOfRangeNameKeyAndLine) {
+  const ParamBlock block = ParamBlock::Parse("x: 1\ny: abc\nz: -2\nw: 2.5\n", "c.yaml");
+  std::string message = ConfigErrorOf([&] { block.GetDouble("y", 0.0); });
+  EXPECT_NE(message.find("c.yaml:2: y: expected a number, got 'abc'"), std::string::npos) << message;
+  message = ConfigErrorOf([&] { block.GetDouble("z", 0.0, Range::AtLeast(0)); });
+  EXPECT_NE(message.find("c.yaml:3: z: value -2 out of range: must be >= 0"), std::string::npos)
+      << message;
+  message = ConfigErrorOf([&] { block.GetInt("w", 0); });
+  EXPECT_NE(message.find("c.yaml:4: w: expected an integer"), std::string::npos) << message;
+  message = ConfigErrorOf([&] { block.GetChoice("y", "fit", {"fit", "stretch", "native"}); });
+  EXPECT_NE(message.find("'abc' is not one of fit, stretch, native"), std::string::npos) << message;
+  message = ConfigErrorOf([&] { block.GetInts("x", {}); });
+  EXPECT_NE(message.find("expected a list of integers"), std::string::npos) << message;
+}
+
+TEST(ParamBlock, SyntaxErrorDuplicateKeyAndMissingFile) {
+  std::string message = ConfigErrorOf([] { ParamBlock::Parse("a: [1, 2\nb: 3\n", "bad.yaml"); });
+  EXPECT_NE(message.find("bad.yaml:"), std::string::npos) << message;
+  EXPECT_NE(message.find("YAML syntax error"), std::string::npos) << message;
+  message = ConfigErrorOf([] { ParamBlock::Parse("a: 1\nb: 2\na: 3\n", "dup.yaml"); });
+  EXPECT_NE(message.find("dup.yaml:3: duplicate key 'a'"), std::string::npos) << message;
+  message = ConfigErrorOf([] { ParamBlock::LoadFile("/nonexistent/attend.yaml"); });
+  EXPECT_NE(message.find("/nonexistent/attend.yaml: cannot read"), std::string::npos) << message;
+  message = ConfigErrorOf([] { ParamBlock::Parse("- 1\n- 2\n", "list.yaml"); });
+  EXPECT_NE(message.find("list.yaml:1: the top level must be a map"), std::string::npos) << message;
+}
+
+TEST(ParamBlock, LoadFileReportsTheFilePath) {
+  testing::TempDir dir;
+  const std::string path = dir.Write("c.yaml", "k: 1\nq: nope\n");
+  const ParamBlock block = ParamBlock::LoadFile(path);
+  const std::string message = ConfigErrorOf([&] { block.GetBool("q", false); });
+  EXPECT_NE(message.find(path + ":2: q: expected true or false"), std::string::npos) << message;
+}
+
+TEST(ParamBlock, OverrideParsesValueAsYamlAndIsNamedInErrors) {
+  ParamBlock block = ParamBlock::Parse("output:\n  dump: []\n  every: 1\n", "c.yaml");
+  block.Override("output.dump=[features,saliency]");
+  block.Override("output.every=abc");
+  block.Override("select.max_new=3");  // creates keys that were absent
+  const ParamBlock output = block.Child("output");
+  EXPECT_EQ(output.GetStrings("dump", {}), (std::vector<std::string>{"features", "saliency"}));
+  const std::string message = ConfigErrorOf([&] { output.GetInt("every", 1); });
+  EXPECT_NE(message.find("--set output.every=abc: output.every: expected an integer"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(block.Child("select").GetInt("max_new", 0), 3);
+  // An override of a key that no reader knows is reported as unknown, at the --set.
+  block.Override("output.evry=2");
+  output.GetStrings("dump", {});
+  const std::string unknown = ConfigErrorOf([&] { block.Child("output").CheckNoUnknownKeys(); });
+  EXPECT_NE(unknown.find("--set output.evry=2: unknown key 'evry'"), std::string::npos) << unknown;
+}
+
+TEST(ParamBlock, OverrideAddressesListElementsByIndexOrName) {
+  ParamBlock block = ParamBlock::Parse(
+      "features:\n  - {name: colour_contrast, weight: 1.0}\n  - {name: skin, weight: 1.0}\n",
+      "c.yaml");
+  block.Override("features.skin.weight=0.5");
+  block.Override("features.0.weight=2");
+  const std::vector<ParamBlock> features = block.Children("features");
+  ASSERT_EQ(features.size(), 2u);
+  EXPECT_DOUBLE_EQ(features[0].GetDouble("weight", 0), 2.0);
+  EXPECT_DOUBLE_EQ(features[1].GetDouble("weight", 0), 0.5);
+  EXPECT_EQ(features[1].path(), "features.1");
+  std::string message = ConfigErrorOf([&] { block.Override("features.skn.weight=1"); });
+  EXPECT_NE(message.find("no element named 'skn' (did you mean 'skin'?)"), std::string::npos)
+      << message;
+  message = ConfigErrorOf([&] { block.Override("features.5.weight=1"); });
+  EXPECT_NE(message.find("the list has 2 elements"), std::string::npos) << message;
+  message = ConfigErrorOf([&] { block.Override("novalue"); });
+  EXPECT_NE(message.find("expected KEY.PATH=VALUE"), std::string::npos) << message;
+}
+
+TEST(ParamBlock, RequiredKeysAndListSizes) {
+  const ParamBlock block = ParamBlock::Parse("size: [320, 240, 3]\n", "s.yaml");
+  std::string message = ConfigErrorOf([&] { block.RequireDouble("focal_px"); });
+  EXPECT_NE(message.find("focal_px: required key is missing"), std::string::npos) << message;
+  message = ConfigErrorOf([&] { block.GetInts("size", {}, Range::Above(0), 2); });
+  EXPECT_NE(message.find("expected 2 elements, got 3"), std::string::npos) << message;
+}
+
+TEST(Range, DescribesAndContains) {
+  EXPECT_TRUE(Range::Closed(0, 1).Contains(1));
+  EXPECT_FALSE(Range::Above(0).Contains(0));
+  EXPECT_FALSE(Range::Any().Contains(std::numeric_limits<double>::quiet_NaN()));
+  EXPECT_EQ(Range::Closed(0, 1).Describe(), "must be in [0, 1]");
+  EXPECT_EQ(Range::Above(0).Describe(), "must be > 0");
+}
+
+}  // namespace
+}  // namespace attend

@@ -1,0 +1,29 @@
+// A fresh temporary folder per test, removed when the test ends.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace attend::testing {
+
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  // path() / name, as a string.
+  std::string File(const std::string& name) const;
+  // Writes `text` to path() / name and returns the full path.
+  std::string Write(const std::string& name, const std::string& text) const;
+
+ private:
+  std::filesystem::path path_;
+};
+
+// The project root (ATTEND_HOME, set by ctest), for bundled configs and scenes.
+std::string ProjectRoot();
+
+}  // namespace attend::testing

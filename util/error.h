@@ -1,0 +1,72 @@
+// Errors that reach the user, and the exit status each one maps to (SPEC 3.2).
+#pragma once
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace attend {
+
+// Exit statuses of the `attend` program (SPEC 3.2).
+enum class ExitStatus : int {
+  kOk = 0,
+  kInternal = 1,   // a bug: an internal invariant did not hold
+  kUsage = 2,      // bad command line or configuration
+  kBadInput = 3,   // bad input data: a missing, unreadable or inconsistent sequence or image
+};
+
+// Base of every error that is reported to the user. The message says what and where
+// (file, YAML key and line, frame index and path); it is printed as "attend: error: MESSAGE".
+class Error : public std::runtime_error {
+ public:
+  Error(ExitStatus status, const std::string& message)
+      : std::runtime_error(message), status_(status) {}
+  ExitStatus status() const { return status_; }
+
+ private:
+  ExitStatus status_;
+};
+
+// Bad command line or configuration (exit status 2).
+class ConfigError : public Error {
+ public:
+  explicit ConfigError(const std::string& message) : Error(ExitStatus::kUsage, message) {}
+};
+
+// Bad input data (exit status 3).
+class InputError : public Error {
+ public:
+  explicit InputError(const std::string& message) : Error(ExitStatus::kBadInput, message) {}
+};
+
+// A broken internal invariant (exit status 1).
+class InternalError : public Error {
+ public:
+  explicit InternalError(const std::string& message) : Error(ExitStatus::kInternal, message) {}
+};
+
+namespace internal {
+// Collects a message with operator<< and throws InternalError when destroyed.
+class CheckFailure {
+ public:
+  CheckFailure(const char* file, int line, const char* condition);
+  [[noreturn]] ~CheckFailure() noexcept(false);
+  template <typename T>
+  CheckFailure& operator<<(const T& value) {
+    stream_ << value;
+    return *this;
+  }
+
+ private:
+  std::ostringstream stream_;
+};
+}  // namespace internal
+
+}  // namespace attend
+
+// Internal invariant: stops the program with exit status 1 when it does not hold.
+// Usage: ATTEND_CHECK(a == b) << "context " << value;
+#define ATTEND_CHECK(condition) \
+  if (condition) {              \
+  } else                        \
+    ::attend::internal::CheckFailure(__FILE__, __LINE__, #condition)

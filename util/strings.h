@@ -1,0 +1,26 @@
+// Small string helpers shared by the configuration and command-line code.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace attend {
+
+// Levenshtein distance between two strings.
+int EditDistance(std::string_view a, std::string_view b);
+
+// The candidate closest to `word` by edit distance, or "" when none is close enough to be a
+// plausible typo (distance above max(2, |word| / 2)).
+std::string ClosestMatch(std::string_view word, const std::vector<std::string>& candidates);
+
+// " (did you mean 'x'?)" or "" when there is no close candidate.
+std::string DidYouMean(std::string_view word, const std::vector<std::string>& candidates);
+
+// Splits on a separator; empty fields are kept.
+std::vector<std::string> Split(std::string_view text, char separator);
+
+// Joins with a separator.
+std::string Join(const std::vector<std::string>& parts, std::string_view separator);
+
+}  // namespace attend
