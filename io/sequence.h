@@ -1,6 +1,7 @@
 // Reading stereo and monocular sequences (SPEC 3.1): a folder with left/ and right/ (or only
 // left/ for monocular), a pair of videos, one side-by-side video, or a monocular video.
-// Frames come out at the working size, as 8-bit BGR.
+// Frames come out at the working size, as 8-bit BGR: grey images get three equal channels and
+// 16-bit images keep their high byte. docs/SEQUENCES.md describes the layouts and rules.
 #pragma once
 
 #include <memory>
@@ -10,21 +11,23 @@
 namespace attend {
 
 struct SequenceOptions {
-  // Exactly one source must be set.
-  std::string folder;              // SEQ/left (and SEQ/right for stereo); monocular without right/
+  // At most one source may be set; FrameSource::Open needs exactly one.
+  std::string folder;              // SEQ: frames in SEQ/left and SEQ/right (monocular without
+                                   // right/), matched by sorted file name
   std::string left_video;          // with right_video: a pair of videos
   std::string right_video;
-  std::string side_by_side_video;  // left half | right half
+  std::string side_by_side_video;  // left half | right half; an odd width is bad input
   std::string video;               // a monocular video
 
-  // Frame range in source indices, inclusive; last_frame = -1 means to the end.
+  // Frame range in source indices, inclusive; last_frame = -1 means to the end, and a last_frame
+  // beyond the end stops at the end. A range that starts beyond the last frame is bad input.
   int first_frame = 0;
   int last_frame = -1;
   int stride = 1;  // take every stride-th frame from first_frame
 
-  // Working size. "fit": scale so the frame fits in width x height keeping its aspect ratio
-  // (640x480 -> 320x240, 1280x720 -> 320x180); "stretch": exactly width x height;
-  // "native": keep the source size.
+  // Working size. "fit": scale, up or down, to the largest size that fits in width x height
+  // keeping the aspect ratio (640x480 -> 320x240, 1280x720 -> 320x180, 160x120 -> 320x240);
+  // "stretch": exactly width x height; "native": keep the source size.
   int width = 320;
   int height = 240;
   std::string resize = "fit";
@@ -47,7 +50,8 @@ struct SequenceInfo {
   double scale_x = 1.0;      // size / native_size; disparities scale by scale_x
   double scale_y = 1.0;
   int frame_count = -1;      // frames this source will hand out (range and stride applied);
-                             // -1 when a video cannot tell
+                             // -1 when a video cannot tell. For videos it comes from the
+                             // container's header, which some containers only estimate.
   std::string folder;        // the sequence folder ("" for videos); gt/ lives below it
 };
 
@@ -56,7 +60,7 @@ struct StereoFrame {
   cv::Mat left;              // CV_8UC3, BGR, working size
   cv::Mat right;             // CV_8UC3, BGR, working size; empty when monocular
   std::string left_path;     // the file, or "VIDEO#index" for videos
-  std::string right_path;
+  std::string right_path;    // "" when monocular; the same video for side-by-side
 };
 
 class FrameSource {
@@ -71,7 +75,8 @@ class FrameSource {
 
   // The next frame of the range; false at the end. A frame that cannot be decoded or whose
   // size differs from the first frame's throws InputError naming its index and path; frames
-  // handed out before stay valid.
+  // handed out before stay valid (they never share buffers with later frames), and a further
+  // Next() goes on with the frame after the bad one.
   virtual bool Next(StereoFrame* frame) = 0;
 };
 

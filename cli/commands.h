@@ -1,0 +1,16 @@
+// The subcommands of `attend` (SPEC 3.2). Each Add* function declares its options on the
+// CLI11 app and sets `action` to the function that runs it after a successful parse.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace attend {
+
+using CommandAction = std::function<int()>;
+
+// `command_line` is the whole invocation, recorded in what a command writes.
+void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
+void AddSynthCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
+
+}  // namespace attend

@@ -1,0 +1,20 @@
+// Where `attend` finds its bundled files (configs/, sequences/): $ATTEND_HOME, or the source
+// tree it was built from.
+#pragma once
+
+#include <string>
+
+namespace attend {
+
+// The project folder holding configs/ and sequences/.
+std::string AttendHome();
+
+// configs/default.yaml below AttendHome().
+std::string DefaultConfigPath();
+
+// The bundled default sequence, rendered from sequences/lab.yaml on first use into
+// sequences/generated/lab (and rendered again when the scene file changes). Returns the
+// sequence folder. `quiet` silences the one-line notice printed while rendering.
+std::string EnsureBundledSequence(bool quiet);
+
+}  // namespace attend

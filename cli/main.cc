@@ -1,0 +1,44 @@
+// attend: visual attention on stereo image sequences. See README.md and SPEC 3.2.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "cli/commands.h"
+#include "util/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"attend: visual attention on stereo image sequences (Bounded Irregular Pyramid)"};
+  app.set_version_flag("--version", std::string("attend ") + ATTEND_VERSION);
+  app.require_subcommand(1);
+
+  std::string command_line = "attend";
+  for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
+  attend::CommandAction action;
+  attend::AddRunCommand(app, command_line, &action);
+  attend::AddSynthCommand(app, command_line, &action);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "attend: error: " << e.what() << "\n";
+    const CLI::App* failing = app.get_subcommands().empty() ? &app : app.get_subcommands().front();
+    std::cerr << "Run '" << (failing == &app ? std::string("attend") : "attend " + failing->get_name())
+              << " --help' for the options.\n";
+    return static_cast<int>(attend::ExitStatus::kUsage);
+  }
+
+  try {
+    return action();
+  } catch (const attend::Error& e) {
+    std::cerr << "attend: error: " << e.what() << "\n";
+    return static_cast<int>(e.status());
+  } catch (const std::exception& e) {
+    std::cerr << "attend: error: internal: " << e.what() << "\n";
+    return static_cast<int>(attend::ExitStatus::kInternal);
+  }
+}

@@ -1,0 +1,169 @@
+// attend run: the attention pipeline over a sequence (SPEC 3.2, 3.3).
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "cli/commands.h"
+#include "cli/home.h"
+#include "pipeline/options_io.h"
+#include "pipeline/run.h"
+#include "util/error.h"
+
+namespace attend {
+
+namespace {
+
+// Set by the first Ctrl-C; a signal handler can only reach global state.
+std::atomic<bool> g_stop_requested{false};
+
+extern "C" void OnInterrupt(int) {
+  g_stop_requested.store(true);
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C stops at once
+}
+
+struct RunArguments {
+  std::string config;
+  std::string sequence;
+  std::string left;
+  std::string right;
+  std::string side_by_side;
+  std::string video;
+  std::string out;
+  bool overwrite = false;
+  std::vector<std::string> sets;
+  std::string frames;
+  bool quiet = false;
+  std::string command_line;
+};
+
+// "FIRST:LAST", either side may be empty; LAST is inclusive.
+void ParseFrameRange(const std::string& text, SequenceOptions* sequence) {
+  const size_t colon = text.find(':');
+  auto parse = [&](const std::string& part, int* value) {
+    if (part.empty()) return;
+    try {
+      size_t used = 0;
+      *value = std::stoi(part, &used);
+      if (used != part.size() || *value < 0) throw std::invalid_argument(part);
+    } catch (const std::exception&) {
+      throw ConfigError("--frames " + text + ": expected FIRST:LAST with non-negative integers");
+    }
+  };
+  if (colon == std::string::npos) {
+    throw ConfigError("--frames " + text + ": expected FIRST:LAST (for example 10:50 or 10:)");
+  }
+  parse(text.substr(0, colon), &sequence->first_frame);
+  parse(text.substr(colon + 1), &sequence->last_frame);
+  if (sequence->last_frame >= 0 && sequence->last_frame < sequence->first_frame) {
+    throw ConfigError("--frames " + text + ": LAST is before FIRST");
+  }
+}
+
+std::string SequenceName(const SequenceOptions& s) {
+  std::string path = !s.folder.empty()         ? s.folder
+                     : !s.left_video.empty()   ? s.left_video
+                     : !s.side_by_side_video.empty() ? s.side_by_side_video
+                                                     : s.video;
+  while (path.size() > 1 && path.back() == '/') path.pop_back();
+  const std::filesystem::path p(path);
+  return p.has_extension() ? p.stem().string() : p.filename().string();
+}
+
+void PrintProgress(const RunProgress& progress) {
+  std::ostringstream line;
+  line << "\r[attend] frame " << progress.done;
+  if (progress.total > 0) line << "/" << progress.total;
+  line << std::fixed << std::setprecision(1) << "  " << progress.fps << " frames/s";
+  if (progress.total > 0 && progress.fps > 0) {
+    line << "  ETA " << std::setprecision(0) << (progress.total - progress.done) / progress.fps
+         << " s";
+  }
+  line << "   ";
+  std::cerr << line.str() << std::flush;
+}
+
+int Run(const RunArguments& args) {
+  const std::string config_path = args.config.empty() ? DefaultConfigPath() : args.config;
+  AttendOptions options = LoadOptions(config_path, args.sets);
+
+  SequenceOptions& sequence = options.sequence;
+  const bool source_on_command_line = !args.sequence.empty() || !args.left.empty() ||
+                                      !args.side_by_side.empty() || !args.video.empty();
+  if (source_on_command_line) {
+    sequence.folder = args.sequence;
+    sequence.left_video = args.left;
+    sequence.right_video = args.right;
+    sequence.side_by_side_video = args.side_by_side;
+    sequence.video = args.video;
+  }
+  if (!args.frames.empty()) ParseFrameRange(args.frames, &sequence);
+  const bool has_source = !sequence.folder.empty() || !sequence.left_video.empty() ||
+                          !sequence.side_by_side_video.empty() || !sequence.video.empty();
+  if (!has_source) sequence.folder = EnsureBundledSequence(args.quiet);
+
+  RunRequest request;
+  request.options = options;
+  request.overwrite = args.overwrite;
+  request.config_path = config_path;
+  request.command_line = args.command_line;
+  request.out_dir = !args.out.empty()            ? args.out
+                    : !options.output.dir.empty() ? options.output.dir
+                                                  : DefaultRunFolder("runs", config_path,
+                                                                     SequenceName(sequence));
+  request.stop = &g_stop_requested;
+  const bool show_progress = !args.quiet && isatty(STDERR_FILENO);
+  if (show_progress) request.on_progress = PrintProgress;
+
+  std::signal(SIGINT, OnInterrupt);
+  RunSummary summary;
+  try {
+    summary = RunSequence(request);
+  } catch (...) {
+    if (show_progress) std::cerr << "\n";
+    throw;
+  }
+  if (show_progress) std::cerr << "\n";
+  if (!args.quiet) std::cout << summary.BriefReport() << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction* action) {
+  auto args = std::make_shared<RunArguments>();
+  CLI::App* run = app.add_subcommand(
+      "run", "Run the attention pipeline over a sequence and write a run folder (SPEC 3.3). "
+             "With no source it runs on the bundled sequence.");
+  run->add_option("--config", args->config,
+                  "Configuration YAML (default: configs/default.yaml of the attend home)");
+  auto* seq = run->add_option("--sequence", args->sequence,
+                              "Sequence folder with left/ and right/ (or only left/)");
+  auto* left = run->add_option("--left", args->left, "Left video of a pair");
+  auto* right = run->add_option("--right", args->right, "Right video of a pair");
+  auto* sbs = run->add_option("--side-by-side", args->side_by_side, "Side-by-side stereo video");
+  auto* video = run->add_option("--video", args->video, "Monocular video");
+  left->needs(right);
+  right->needs(left);
+  seq->excludes(left, right, sbs, video);
+  left->excludes(sbs, video);
+  sbs->excludes(video);
+  run->add_option("--out", args->out, "Run folder (default: runs/<date>-<time>-<config>-<sequence>)");
+  run->add_flag("--overwrite", args->overwrite, "Replace a previous run in a non-empty --out");
+  run->add_option("--set", args->sets,
+                  "Override a configuration key, the value parsed as YAML: --set select.max_new=3, "
+                  "--set 'output.dump=[overlay]', --set features.skin.weight=0.5")
+      ->type_name("KEY=VALUE");
+  run->add_option("--frames", args->frames, "Frame range FIRST:LAST, inclusive (10:50, 10:, :99)");
+  run->add_flag("--quiet", args->quiet, "No progress line or report; errors only");
+  args->command_line = command_line;
+  run->callback([args, action] {
+    *action = [args] { return Run(*args); };
+  });
+}
+
+}  // namespace attend

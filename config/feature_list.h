@@ -1,0 +1,26 @@
+// The `features:` list of the configuration (SPEC 3.4): each entry names a feature plugin,
+// gives its weight in the saliency sum, and carries the plugin's own parameters. The list is
+// parsed here; each plugin reads its own block through the ParamBlock and then calls
+// CheckNoUnknownKeys(), so a mistyped plugin parameter is an error too.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "config/param_block.h"
+
+namespace attend {
+
+struct FeatureSpec {
+  std::string name;    // plugin name, unique within the list
+  double weight = 1.0; // weight in the saliency sum, >= 0
+  // The whole entry; `name` and `weight` are already marked as read, so a plugin reads its
+  // own keys and then calls params.CheckNoUnknownKeys().
+  ParamBlock params;
+};
+
+// Reads root[key] as a list of {name, weight, ...} maps. Missing name, negative weight,
+// duplicate names or an entry that is not a map: ConfigError naming the line.
+std::vector<FeatureSpec> ReadFeatureList(const ParamBlock& root, const std::string& key);
+
+}  // namespace attend

@@ -1,0 +1,517 @@
+#include "io/sequence.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "config/param_block.h"
+#include "util/error.h"
+#include "util/strings.h"
+
+namespace attend {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<std::string> ResizeModes() { return {"fit", "stretch", "native"}; }
+
+// Lower case; file extensions are compared case-insensitively.
+std::vector<std::string> ImageExtensions() { return {".png", ".jpg", ".jpeg", ".ppm", ".pgm"}; }
+
+std::string SizeText(cv::Size size) {
+  return std::to_string(size.width) + "x" + std::to_string(size.height);
+}
+
+std::string FrameWhere(int index, const std::string& path) {
+  return "frame " + std::to_string(index) + " (" + path + ")";
+}
+
+// One frame at the size it has in the source.
+struct NativeFrame {
+  cv::Mat left;
+  cv::Mat right;  // empty when monocular
+  std::string left_path;
+  std::string right_path;
+};
+
+// Reads the frames of one kind of source at their native size. Open-time facts (stereo, name,
+// fps, calibration, folder) go into `info` when the reader is made.
+class NativeReader {
+ public:
+  virtual ~NativeReader() = default;
+  // Frames in the source, or -1 when it cannot tell.
+  virtual int Count() const = 0;
+  // Reads frame `index` of the source; successive calls ask for increasing indices. False when
+  // the source has no such frame; InputError when the frame exists but cannot be used.
+  virtual bool Read(int index, NativeFrame* frame) = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Folders: SEQ/left/*, SEQ/right/*, SEQ/sequence.yaml.
+
+bool IsImageFile(const fs::directory_entry& entry) {
+  if (!entry.is_regular_file()) return false;
+  std::string extension = entry.path().extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::vector<std::string> extensions = ImageExtensions();
+  return std::find(extensions.begin(), extensions.end(), extension) != extensions.end();
+}
+
+// Image files of a folder sorted by file name: the position in this list is the frame index.
+std::vector<std::string> ListImages(const fs::path& folder) {
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    if (IsImageFile(entry)) files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
+    return a.filename().string() < b.filename().string();
+  });
+  std::vector<std::string> paths;
+  paths.reserve(files.size());
+  for (const fs::path& file : files) paths.push_back(file.string());
+  return paths;
+}
+
+// The last non-empty component of a path ("data/seq/" -> "seq").
+std::string FolderStem(const std::string& folder) {
+  fs::path path = fs::absolute(fs::path(folder)).lexically_normal();
+  if (path.filename().empty()) path = path.parent_path();
+  return path.filename().string();
+}
+
+// Asking for a key records it as known even when the value is not a scalar, so this accepts
+// any value; the keys it is used for are notes for people, never read by attend.
+void AcceptAnyValue(const ParamBlock& block, const std::string& key) {
+  try {
+    block.GetString(key, "");
+  } catch (const ConfigError&) {
+  }
+}
+
+// SEQ/sequence.yaml describes the data, so any problem in it is bad input (exit status 3),
+// reported with the file and line that ParamBlock gives.
+void ReadSequenceYaml(const std::string& path, SequenceInfo* info) {
+  try {
+    const ParamBlock block = ParamBlock::LoadFile(path);
+    info->name = block.GetString("name", info->name);
+    if (info->name.empty()) block.Fail("name", "must not be empty");
+    info->fps = block.GetDouble("fps", info->fps, Range::Above(0));
+    info->focal_px = block.GetDouble("focal_px", 0.0, Range::AtLeast(0));
+    info->baseline_m = block.GetDouble("baseline_m", 0.0, Range::AtLeast(0));
+    AcceptAnyValue(block, "generator");
+    AcceptAnyValue(block, "frames");
+    block.CheckNoUnknownKeys();
+  } catch (const ConfigError& e) {
+    throw InputError(e.what());
+  }
+}
+
+class FolderReader final : public NativeReader {
+ public:
+  FolderReader(const SequenceOptions& options, SequenceInfo* info) {
+    const fs::path folder(options.folder);
+    const std::string what = options.Describe();
+    std::error_code error;
+    if (!fs::exists(folder, error)) throw InputError(what + ": no such folder");
+    if (!fs::is_directory(folder, error)) throw InputError(what + ": not a folder");
+    const fs::path left = folder / "left";
+    const fs::path right = folder / "right";
+    if (!fs::is_directory(left, error)) {
+      throw InputError(what + ": no left/ folder (expected " + left.string() + "/000000.png ...)");
+    }
+    info->stereo = fs::is_directory(right, error);
+    try {
+      left_files_ = ListImages(left);
+      if (info->stereo) right_files_ = ListImages(right);
+    } catch (const fs::filesystem_error& e) {
+      throw InputError(what + ": cannot list the frames: " + e.what());
+    }
+    if (left_files_.empty()) {
+      throw InputError(what + ": no frames in " + left.string() + " (expected files ending in " +
+                       Join(ImageExtensions(), ", ") + ")");
+    }
+    if (info->stereo && right_files_.size() != left_files_.size()) {
+      throw InputError(what + ": left/ has " + std::to_string(left_files_.size()) +
+                       " frames but right/ has " + std::to_string(right_files_.size()));
+    }
+    info->name = FolderStem(options.folder);
+    info->folder = options.folder;
+    const fs::path yaml = folder / "sequence.yaml";
+    if (fs::exists(yaml, error)) ReadSequenceYaml(yaml.string(), info);
+  }
+
+  int Count() const override { return static_cast<int>(left_files_.size()); }
+
+  bool Read(int index, NativeFrame* frame) override {
+    if (index < 0 || index >= Count()) return false;
+    frame->left_path = left_files_[index];
+    frame->left = Decode(index, frame->left_path);
+    if (!right_files_.empty()) {
+      frame->right_path = right_files_[index];
+      frame->right = Decode(index, frame->right_path);
+    }
+    return true;
+  }
+
+ private:
+  // IMREAD_COLOR turns grey into three equal channels and 16-bit samples into 8-bit ones (the
+  // high byte), so every later stage sees CV_8UC3.
+  static cv::Mat Decode(int index, const std::string& path) {
+    cv::Mat image;
+    try {
+      image = cv::imread(path, cv::IMREAD_COLOR);
+    } catch (const cv::Exception& e) {
+      throw InputError(FrameWhere(index, path) + ": cannot be decoded: " + e.what());
+    }
+    if (image.empty()) {
+      throw InputError(FrameWhere(index, path) + ": cannot be read or decoded as an image");
+    }
+    return image;
+  }
+
+  std::vector<std::string> left_files_;
+  std::vector<std::string> right_files_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Videos: a pair, one side-by-side, or one monocular.
+
+// Video frames are normally 8-bit BGR already; other layouts are converted the way images are.
+cv::Mat ToBgr8(const cv::Mat& frame, int index, const std::string& path) {
+  if (frame.depth() != CV_8U) {
+    throw InputError(FrameWhere(index, path) + ": unsupported sample depth (expected 8 bits)");
+  }
+  if (frame.channels() == 3) return frame;
+  cv::Mat bgr;
+  if (frame.channels() == 1) {
+    cv::cvtColor(frame, bgr, cv::COLOR_GRAY2BGR);
+  } else if (frame.channels() == 4) {
+    cv::cvtColor(frame, bgr, cv::COLOR_BGRA2BGR);
+  } else {
+    throw InputError(FrameWhere(index, path) + ": unsupported number of channels " +
+                     std::to_string(frame.channels()));
+  }
+  return bgr;
+}
+
+class VideoReader final : public NativeReader {
+ public:
+  enum class Layout { kMono, kPair, kSideBySide };
+
+  VideoReader(const SequenceOptions& options, SequenceInfo* info) {
+    if (!options.video.empty()) {
+      layout_ = Layout::kMono;
+      paths_ = {options.video};
+    } else if (!options.side_by_side_video.empty()) {
+      layout_ = Layout::kSideBySide;
+      paths_ = {options.side_by_side_video};
+    } else {
+      layout_ = Layout::kPair;
+      paths_ = {options.left_video, options.right_video};
+    }
+    captures_.resize(paths_.size());
+    std::vector<int> counts;
+    for (size_t i = 0; i < paths_.size(); ++i) {
+      OpenCapture(paths_[i], &captures_[i]);
+      const double count = captures_[i].get(cv::CAP_PROP_FRAME_COUNT);
+      counts.push_back(count > 0 && std::isfinite(count) ? static_cast<int>(count) : -1);
+    }
+    count_ = counts[0];
+    if (layout_ == Layout::kPair) {
+      if (counts[0] > 0 && counts[1] > 0 && counts[0] != counts[1]) {
+        throw InputError(options.Describe() + ": the left video has " + std::to_string(counts[0]) +
+                         " frames but the right video has " + std::to_string(counts[1]));
+      }
+      if (counts[0] < 0 || counts[1] < 0) count_ = -1;
+    }
+    info->stereo = layout_ != Layout::kMono;
+    info->name = fs::path(paths_[0]).stem().string();
+    const double fps = captures_[0].get(cv::CAP_PROP_FPS);
+    if (fps > 0 && std::isfinite(fps)) info->fps = fps;
+  }
+
+  int Count() const override { return count_; }
+
+  bool Read(int index, NativeFrame* frame) override {
+    // Frames before `index` are grabbed but not decoded: that is how a stride or a first frame
+    // skips through a stream that cannot seek exactly.
+    while (position_ < index) {
+      if (!Advance(/*decode=*/false, nullptr)) return false;
+    }
+    std::vector<cv::Mat> images;
+    if (!Advance(/*decode=*/true, &images)) return false;
+    const int read_index = position_ - 1;
+    for (size_t i = 0; i < images.size(); ++i) {
+      images[i] = ToBgr8(images[i], read_index, FramePath(i, read_index));
+    }
+    frame->left_path = FramePath(0, read_index);
+    if (layout_ == Layout::kMono) {
+      frame->left = images[0];
+      frame->right = cv::Mat();
+      frame->right_path.clear();
+    } else if (layout_ == Layout::kPair) {
+      frame->left = images[0];
+      frame->right = images[1];
+      frame->right_path = FramePath(1, read_index);
+    } else {
+      const cv::Mat& both = images[0];
+      if (both.cols % 2 != 0) {
+        throw InputError(FrameWhere(read_index, frame->left_path) + ": width " +
+                         std::to_string(both.cols) +
+                         " is odd, so it cannot be split into equal left and right halves");
+      }
+      const int half = both.cols / 2;
+      // Copies, so that each view is continuous and independent of the other.
+      frame->left = both(cv::Rect(0, 0, half, both.rows)).clone();
+      frame->right = both(cv::Rect(half, 0, half, both.rows)).clone();
+      frame->right_path = frame->left_path;
+    }
+    return true;
+  }
+
+ private:
+  static void OpenCapture(const std::string& path, cv::VideoCapture* capture) {
+    // A missing file is reported before OpenCV tries every backend on it. Paths with '%' are
+    // image-sequence patterns ("frames/%06d.png") that only the video backend can resolve.
+    std::error_code error;
+    if (path.find('%') == std::string::npos && !fs::exists(path, error)) {
+      throw InputError("video " + path + ": no such file");
+    }
+    bool opened = false;
+    try {
+      opened = capture->open(path);
+    } catch (const cv::Exception& e) {
+      throw InputError("video " + path + ": cannot be opened: " + e.what());
+    }
+    if (!opened) {
+      throw InputError("video " + path + ": cannot be opened (not a video OpenCV can decode)");
+    }
+  }
+
+  std::string FramePath(size_t view, int index) const {
+    return paths_[view] + "#" + std::to_string(index);
+  }
+
+  // Moves every capture one frame on; false at the end of all of them. A pair whose videos end
+  // at different frames is inconsistent input.
+  bool Advance(bool decode, std::vector<cv::Mat>* images) {
+    std::vector<bool> ok(captures_.size());
+    for (size_t i = 0; i < captures_.size(); ++i) {
+      if (decode) {
+        // A fresh matrix per frame: frames handed out earlier must never share its buffer.
+        cv::Mat image;
+        ok[i] = captures_[i].read(image) && !image.empty();
+        images->push_back(image);
+      } else {
+        ok[i] = captures_[i].grab();
+      }
+    }
+    const int index = position_;
+    ++position_;
+    if (ok.size() == 2 && ok[0] != ok[1]) {
+      const size_t ended = ok[0] ? 1 : 0;
+      throw InputError(FrameWhere(index, FramePath(ended, index)) + ": the " +
+                       (ended == 0 ? "left" : "right") + " video ends here but the " +
+                       (ended == 0 ? "right" : "left") + " video goes on");
+    }
+    return ok[0];
+  }
+
+  Layout layout_ = Layout::kMono;
+  std::vector<std::string> paths_;
+  std::vector<cv::VideoCapture> captures_;
+  int count_ = -1;
+  int position_ = 0;  // index of the frame the next read or grab returns
+};
+
+// ---------------------------------------------------------------------------------------------
+// Range, stride, size checks and the working size, common to every source.
+
+cv::Size WorkingSize(const SequenceOptions& options, cv::Size native) {
+  if (options.resize == "native") return native;
+  if (options.resize == "stretch") return {options.width, options.height};
+  // fit: the side that limits gets the box's size exactly, the other keeps the aspect ratio.
+  const int64_t width_limited = static_cast<int64_t>(native.width) * options.height;
+  const int64_t height_limited = static_cast<int64_t>(native.height) * options.width;
+  if (width_limited >= height_limited) {
+    const double height = static_cast<double>(native.height) * options.width / native.width;
+    return {options.width, std::max(1, static_cast<int>(std::lround(height)))};
+  }
+  const double width = static_cast<double>(native.width) * options.height / native.height;
+  return {std::max(1, static_cast<int>(std::lround(width))), options.height};
+}
+
+// A continuous image of `size`: area averaging when shrinking (no aliasing), bilinear when any
+// side grows.
+cv::Mat ToWorkingSize(const cv::Mat& image, cv::Size size) {
+  if (image.size() == size) return image.isContinuous() ? image : image.clone();
+  const bool shrinking = size.width <= image.cols && size.height <= image.rows;
+  cv::Mat resized;
+  cv::resize(image, resized, size, 0, 0, shrinking ? cv::INTER_AREA : cv::INTER_LINEAR);
+  return resized;
+}
+
+class Sequence final : public FrameSource {
+ public:
+  Sequence(const SequenceOptions& options, std::unique_ptr<NativeReader> reader, SequenceInfo info)
+      : reader_(std::move(reader)),
+        info_(std::move(info)),
+        stride_(options.stride),
+        next_index_(options.first_frame),
+        last_index_(options.last_frame) {
+    const int count = reader_->Count();
+    const std::string what = options.Describe();
+    if (count >= 0 && options.first_frame >= count) {
+      throw InputError(what + ": the frame range starts at frame " +
+                       std::to_string(options.first_frame) + " but the source has " +
+                       std::to_string(count) + " frames (0.." + std::to_string(count - 1) + ")");
+    }
+    if (count >= 0) {
+      last_index_ = last_index_ < 0 ? count - 1 : std::min(last_index_, count - 1);
+      info_.frame_count = (last_index_ - options.first_frame) / stride_ + 1;
+    } else {
+      info_.frame_count = -1;
+    }
+
+    // The first frame fixes the native size; it is kept and handed out by the first Next().
+    NativeFrame first;
+    if (!reader_->Read(options.first_frame, &first)) {
+      throw InputError(what + ": there is no frame " + std::to_string(options.first_frame) +
+                       " (the source is empty or the frame range starts beyond its end)");
+    }
+    info_.native_size = first.left.size();
+    CheckSizes(options.first_frame, first);
+    info_.size = WorkingSize(options, info_.native_size);
+    info_.scale_x = static_cast<double>(info_.size.width) / info_.native_size.width;
+    info_.scale_y = static_cast<double>(info_.size.height) / info_.native_size.height;
+    first_ = std::move(first);
+  }
+
+  const SequenceInfo& info() const override { return info_; }
+
+  bool Next(StereoFrame* frame) override {
+    ATTEND_CHECK(frame != nullptr) << "Next needs a frame to fill";
+    if (finished_) return false;
+    const int index = next_index_;
+    if (last_index_ >= 0 && index > last_index_) {
+      finished_ = true;
+      return false;
+    }
+    // Moving on before reading lets a caller that catches a bad frame continue after it.
+    next_index_ += stride_;
+    NativeFrame native;
+    if (first_.has_value()) {
+      native = std::move(*first_);
+      first_.reset();
+    } else if (!reader_->Read(index, &native)) {
+      finished_ = true;
+      return false;
+    }
+    CheckSizes(index, native);
+    frame->index = index;
+    frame->left = ToWorkingSize(native.left, info_.size);
+    frame->right = native.right.empty() ? cv::Mat() : ToWorkingSize(native.right, info_.size);
+    frame->left_path = std::move(native.left_path);
+    frame->right_path = std::move(native.right_path);
+    return true;
+  }
+
+ private:
+  void CheckSizes(int index, const NativeFrame& frame) const {
+    if (frame.left.size() != info_.native_size) {
+      throw InputError(FrameWhere(index, frame.left_path) + ": size " +
+                       SizeText(frame.left.size()) + " differs from the first frame's " +
+                       SizeText(info_.native_size));
+    }
+    if (!frame.right.empty() && frame.right.size() != frame.left.size()) {
+      throw InputError(FrameWhere(index, frame.right_path) + ": size " +
+                       SizeText(frame.right.size()) + " differs from the left image's " +
+                       SizeText(frame.left.size()));
+    }
+  }
+
+  std::unique_ptr<NativeReader> reader_;
+  SequenceInfo info_;
+  int stride_;
+  int next_index_;
+  int last_index_;  // inclusive; -1 while the end is unknown
+  bool finished_ = false;
+  std::optional<NativeFrame> first_;
+};
+
+}  // namespace
+
+std::string SequenceOptions::Check() const {
+  const bool has_pair = !left_video.empty() || !right_video.empty();
+  const int sources = (folder.empty() ? 0 : 1) + (has_pair ? 1 : 0) +
+                      (side_by_side_video.empty() ? 0 : 1) + (video.empty() ? 0 : 1);
+  // No source is valid here: `attend run` then takes the bundled sequence. Open() needs one.
+  if (sources > 1) {
+    return "at most one source may be set (folder, left_video + right_video, "
+           "side_by_side_video or video), got " +
+           std::to_string(sources);
+  }
+  if (has_pair && (left_video.empty() || right_video.empty())) {
+    return left_video.empty() ? "left_video must be set together with right_video"
+                              : "right_video must be set together with left_video";
+  }
+  if (stride < 1) return "stride must be >= 1, got " + std::to_string(stride);
+  if (first_frame < 0) return "first_frame must be >= 0, got " + std::to_string(first_frame);
+  if (last_frame != -1 && last_frame < first_frame) {
+    return "last_frame must be -1 (to the end) or >= first_frame (" + std::to_string(first_frame) +
+           "), got " + std::to_string(last_frame);
+  }
+  const std::vector<std::string> modes = ResizeModes();
+  if (std::find(modes.begin(), modes.end(), resize) == modes.end()) {
+    return "resize must be one of " + Join(modes, ", ") + ", got '" + resize + "'" +
+           DidYouMean(resize, modes);
+  }
+  if (resize != "native") {
+    if (width <= 0) {
+      return "width must be > 0 unless resize is native, got " + std::to_string(width);
+    }
+    if (height <= 0) {
+      return "height must be > 0 unless resize is native, got " + std::to_string(height);
+    }
+  }
+  return "";
+}
+
+std::string SequenceOptions::Describe() const {
+  if (!folder.empty()) return "folder " + folder;
+  if (!left_video.empty() || !right_video.empty()) {
+    return "videos " + left_video + " + " + right_video;
+  }
+  if (!side_by_side_video.empty()) return "side-by-side video " + side_by_side_video;
+  if (!video.empty()) return "video " + video;
+  return "no source";
+}
+
+std::unique_ptr<FrameSource> FrameSource::Open(const SequenceOptions& options) {
+  if (options.Describe() == "no source") {
+    throw ConfigError("no sequence source is set (folder, left_video + right_video, "
+                      "side_by_side_video or video)");
+  }
+  const std::string problem = options.Check();
+  if (!problem.empty()) throw ConfigError("sequence options: " + problem);
+  SequenceInfo info;
+  std::unique_ptr<NativeReader> reader;
+  if (!options.folder.empty()) {
+    reader = std::make_unique<FolderReader>(options, &info);
+  } else {
+    reader = std::make_unique<VideoReader>(options, &info);
+  }
+  return std::make_unique<Sequence>(options, std::move(reader), std::move(info));
+}
+
+}  // namespace attend

@@ -1,0 +1,217 @@
+#include "pipeline/options_io.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <functional>
+
+#include "config/param_block_yaml.h"
+#include "util/error.h"
+#include "util/strings.h"
+
+namespace attend {
+
+namespace {
+
+// Visits every key of the configuration in file order. The visitor decides what a key means:
+// read it from YAML, write it, or list it. Keeping one list is what keeps reading, writing
+// and documentation in step.
+template <typename Visitor>
+void VisitOptions(AttendOptions* o, Visitor& v) {
+  v.BeginSection("sequence");
+  v.Field("folder", &o->sequence.folder);
+  v.Field("left_video", &o->sequence.left_video);
+  v.Field("right_video", &o->sequence.right_video);
+  v.Field("side_by_side_video", &o->sequence.side_by_side_video);
+  v.Field("video", &o->sequence.video);
+  v.Field("first_frame", &o->sequence.first_frame, Range::AtLeast(0));
+  v.Field("last_frame", &o->sequence.last_frame, Range::AtLeast(-1));
+  v.Field("stride", &o->sequence.stride, Range::AtLeast(1));
+  v.Field("width", &o->sequence.width, Range::Closed(1, 16384));
+  v.Field("height", &o->sequence.height, Range::Closed(1, 16384));
+  v.Choice("resize", &o->sequence.resize, {"fit", "stretch", "native"});
+  v.EndSection([o] { return o->sequence.Check(); });
+
+  v.BeginSection("output");
+  v.Field("dir", &o->output.dir);
+  v.ChoiceList("dump", &o->output.dump, OutputOptions::DumpKinds());
+  v.Field("video", &o->output.video);
+  v.EndSection([o] { return o->output.Check(); });
+
+  v.Features("features", &o->features);
+  v.Field("plugins", &o->plugins);
+}
+
+// Reads keys from a ParamBlock, starting from the values already in the struct.
+class Reader {
+ public:
+  explicit Reader(const ParamBlock& root) : blocks_{root} {}
+
+  void BeginSection(const std::string& key) { blocks_.push_back(top().Child(key)); }
+  void EndSection(const std::function<std::string()>& check) {
+    const ParamBlock section = top();
+    section.CheckNoUnknownKeys();
+    const std::string error = check();
+    if (!error.empty()) section.Fail("", error);
+    blocks_.pop_back();
+  }
+  void Field(const std::string& key, std::string* value) { *value = top().GetString(key, *value); }
+  void Field(const std::string& key, bool* value) { *value = top().GetBool(key, *value); }
+  void Field(const std::string& key, int* value, Range range = {}) {
+    *value = top().GetInt(key, *value, range);
+  }
+  void Field(const std::string& key, double* value, Range range = {}) {
+    *value = top().GetDouble(key, *value, range);
+  }
+  void Field(const std::string& key, std::vector<std::string>* value) {
+    *value = top().GetStrings(key, *value);
+  }
+  void Choice(const std::string& key, std::string* value, const std::vector<std::string>& choices) {
+    *value = top().GetChoice(key, *value, choices);
+  }
+  void ChoiceList(const std::string& key, std::vector<std::string>* values,
+                  const std::vector<std::string>& choices) {
+    *values = top().GetStrings(key, *values);
+    for (const std::string& value : *values) {
+      if (std::find(choices.begin(), choices.end(), value) == choices.end()) {
+        top().Fail(key, "'" + value + "' is not one of " + Join(choices, ", ") +
+                            DidYouMean(value, choices));
+      }
+    }
+  }
+  void Features(const std::string& key, std::vector<FeatureSpec>* specs) {
+    *specs = ReadFeatureList(top(), key);
+  }
+  void Finish() { top().CheckNoUnknownKeys(); }
+
+ private:
+  const ParamBlock& top() const { return blocks_.back(); }
+  std::vector<ParamBlock> blocks_;
+};
+
+// Writes every key with its current value.
+class Writer {
+ public:
+  Writer() { out_ << YAML::BeginMap; }
+  void BeginSection(const std::string& key) { out_ << YAML::Key << key << YAML::Value << YAML::BeginMap; }
+  void EndSection(const std::function<std::string()>&) { out_ << YAML::EndMap; }
+  template <typename T>
+  void Field(const std::string& key, T* value, Range = {}) {
+    out_ << YAML::Key << key << YAML::Value;
+    Emit(*value);
+  }
+  void Choice(const std::string& key, std::string* value, const std::vector<std::string>&) {
+    Field(key, value);
+  }
+  void ChoiceList(const std::string& key, std::vector<std::string>* values,
+                  const std::vector<std::string>&) {
+    Field(key, values);
+  }
+  void Features(const std::string& key, std::vector<FeatureSpec>* specs) {
+    out_ << YAML::Key << key << YAML::Value << YAML::BeginSeq;
+    for (const FeatureSpec& spec : *specs) {
+      // The plugin's own keys as given; name and weight first and with their parsed values.
+      out_ << YAML::Flow << YAML::BeginMap;
+      out_ << YAML::Key << "name" << YAML::Value << spec.name;
+      out_ << YAML::Key << "weight" << YAML::Value << spec.weight;
+      const YAML::Node node = NodeOf(spec.params);
+      for (auto it = node.begin(); it != node.end(); ++it) {
+        const std::string name = it->first.Scalar();
+        if (name == "name" || name == "weight") continue;
+        out_ << YAML::Key << name << YAML::Value << it->second;
+      }
+      out_ << YAML::EndMap;
+    }
+    out_ << YAML::EndSeq;
+  }
+  std::string Finish() {
+    out_ << YAML::EndMap;
+    return std::string(out_.c_str()) + "\n";
+  }
+
+ private:
+  void Emit(const std::string& value) { out_ << YAML::DoubleQuoted << value; }
+  void Emit(bool value) { out_ << YAML::TrueFalseBool << value; }
+  void Emit(int value) { out_ << value; }
+  void Emit(double value) { out_ << value; }
+  void Emit(const std::vector<std::string>& values) {
+    out_ << YAML::Flow << YAML::BeginSeq;
+    for (const std::string& value : values) out_ << value;
+    out_ << YAML::EndSeq;
+  }
+
+  YAML::Emitter out_;
+};
+
+// Lists the dotted key paths.
+class KeyLister {
+ public:
+  void BeginSection(const std::string& key) { prefix_.push_back(key); }
+  void EndSection(const std::function<std::string()>&) { prefix_.pop_back(); }
+  template <typename T>
+  void Field(const std::string& key, T*, Range = {}) { Add(key); }
+  void Choice(const std::string& key, std::string*, const std::vector<std::string>&) { Add(key); }
+  void ChoiceList(const std::string& key, std::vector<std::string>*,
+                  const std::vector<std::string>&) {
+    Add(key);
+  }
+  void Features(const std::string& key, std::vector<FeatureSpec>*) { Add(key); }
+  std::vector<std::string> keys;
+
+ private:
+  void Add(const std::string& key) {
+    std::vector<std::string> parts = prefix_;
+    parts.push_back(key);
+    keys.push_back(Join(parts, "."));
+  }
+  std::vector<std::string> prefix_;
+};
+
+}  // namespace
+
+const std::vector<std::string>& OutputOptions::DumpKinds() {
+  static const std::vector<std::string> kinds = {"overlay"};
+  return kinds;
+}
+
+std::string OutputOptions::Check() const {
+  for (const std::string& kind : dump) {
+    if (std::count(dump.begin(), dump.end(), kind) > 1) return "dump lists '" + kind + "' twice";
+  }
+  if (video && !Dumps("overlay")) return "video needs 'overlay' in dump";
+  return "";
+}
+
+bool OutputOptions::Dumps(const std::string& kind) const {
+  return std::find(dump.begin(), dump.end(), kind) != dump.end();
+}
+
+AttendOptions ReadOptions(const ParamBlock& root) {
+  AttendOptions options;
+  Reader reader(root);
+  VisitOptions(&options, reader);
+  reader.Finish();
+  return options;
+}
+
+AttendOptions LoadOptions(const std::string& path, const std::vector<std::string>& overrides) {
+  ParamBlock root = ParamBlock::LoadFile(path);
+  for (const std::string& assignment : overrides) root.Override(assignment);
+  return ReadOptions(root);
+}
+
+std::string OptionsToYaml(const AttendOptions& options) {
+  AttendOptions copy = options;
+  Writer writer;
+  VisitOptions(&copy, writer);
+  return writer.Finish();
+}
+
+std::vector<std::string> ConfigurationKeys() {
+  AttendOptions options;
+  KeyLister lister;
+  VisitOptions(&options, lister);
+  return lister.keys;
+}
+
+}  // namespace attend

@@ -1,0 +1,159 @@
+#include "pipeline/run.h"
+
+#include <algorithm>
+#include <ctime>
+#include <filesystem>
+#include <iomanip>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "io/sequence.h"
+#include "pipeline/options_io.h"
+#include "pipeline/overlay.h"
+#include "pipeline/run_folder.h"
+#include "util/error.h"
+
+namespace fs = std::filesystem;
+
+namespace attend {
+
+namespace {
+
+std::string LocalTime(const char* format) {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  std::ostringstream out;
+  out << std::put_time(&local, format);
+  return out.str();
+}
+
+// The monocular case of SPEC 3.1: a disparity feature needs a right image.
+void CheckFeaturesFitSource(const AttendOptions& options, const SequenceInfo& info) {
+  if (info.stereo) return;
+  for (const FeatureSpec& spec : options.features) {
+    if (spec.name == "disparity") {
+      spec.params.Fail("name", "the disparity feature needs a stereo sequence, but " +
+                                   options.sequence.Describe() +
+                                   " is monocular (remove it from features)");
+    }
+  }
+}
+
+nlohmann::ordered_json SummaryJson(const RunSummary& summary, const SequenceInfo& info,
+                                   const RunRequest& request, const std::string& started) {
+  nlohmann::ordered_json timings = nlohmann::ordered_json::object();
+  for (const auto& [stage, ms] : summary.mean_ms.stages()) timings[stage] = ms;
+  return {{"frames", summary.frames},
+          {"fps", summary.fps},
+          {"wall_seconds", summary.wall_seconds},
+          {"timings_ms", timings},
+          {"targets_attended", summary.targets_attended},
+          {"interrupted", summary.interrupted},
+          {"error", summary.error.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(summary.error)},
+          {"sequence",
+           {{"name", info.name},
+            {"source", request.options.sequence.Describe()},
+            {"stereo", info.stereo},
+            {"frames_in_range", info.frame_count},
+            {"native_size", {info.native_size.width, info.native_size.height}},
+            {"size", {info.size.width, info.size.height}}}},
+          {"config", request.config_path},
+          {"command", request.command_line},
+          {"started", started},
+          {"attend_version", ATTEND_VERSION}};
+}
+
+}  // namespace
+
+std::string RunSummary::BriefReport() const {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(1);
+  out << frames << " frames in " << wall_seconds << " s (" << fps << " frames/s)";
+  if (interrupted) out << ", interrupted";
+  out << "\nper frame:";
+  for (const auto& [stage, ms] : mean_ms.stages()) {
+    out << " " << stage << " " << std::setprecision(2) << ms << " ms";
+  }
+  out << "\noutputs: " << dir;
+  return out.str();
+}
+
+std::string DefaultRunFolder(const std::string& parent, const std::string& config_path,
+                             const std::string& sequence_name) {
+  const std::string stem = config_path.empty() ? "config" : fs::path(config_path).stem().string();
+  const std::string base =
+      (fs::path(parent) / (LocalTime("%Y%m%d-%H%M%S") + "-" + stem + "-" + sequence_name))
+          .string();
+  std::string candidate = base;
+  for (int suffix = 2; fs::exists(candidate); ++suffix) {
+    candidate = base + "-" + std::to_string(suffix);
+  }
+  return candidate;
+}
+
+RunSummary RunSequence(const RunRequest& request) {
+  const AttendOptions& options = request.options;
+  std::unique_ptr<FrameSource> source = FrameSource::Open(options.sequence);
+  const SequenceInfo& info = source->info();
+  CheckFeaturesFitSource(options, info);
+
+  RunFolder folder(request.out_dir, request.overwrite);
+  folder.WriteConfig(OptionsToYaml(options));
+  const std::string started = LocalTime("%Y-%m-%dT%H:%M:%S%z");
+
+  RunSummary summary;
+  summary.dir = folder.dir();
+  StageTimes totals;
+  const Stopwatch wall;
+  auto finish = [&] {
+    summary.wall_seconds = wall.ElapsedMs() / 1000.0;
+    summary.fps = summary.wall_seconds > 0 ? summary.frames / summary.wall_seconds : 0.0;
+    for (const auto& [stage, ms] : totals.stages()) {
+      summary.mean_ms.Add(stage, summary.frames > 0 ? ms / summary.frames : 0.0);
+    }
+    folder.WriteSummary(SummaryJson(summary, info, request, started));
+  };
+
+  try {
+    while (true) {
+      if (request.stop != nullptr && request.stop->load()) {
+        summary.interrupted = true;
+        break;
+      }
+      FrameRecord record;
+      Stopwatch stage;
+      StereoFrame frame;
+      if (!source->Next(&frame)) break;
+      record.frame = frame.index;
+      record.timings.Add("read", stage.ElapsedMs());
+
+      stage.Restart();
+      if (options.output.Dumps("overlay")) {
+        const cv::Mat overlay = DrawOverlay(frame.left, record);
+        folder.WriteImage("overlay", frame.index, overlay);
+        if (options.output.video) folder.AppendVideoFrame("overlay", overlay, info.fps);
+      }
+      record.timings.Add("write", stage.ElapsedMs());
+      folder.AppendFrame(record);
+
+      for (const auto& [name, ms] : record.timings.stages()) totals.Add(name, ms);
+      ++summary.frames;
+      if (request.on_progress) {
+        const double seconds = wall.ElapsedMs() / 1000.0;
+        request.on_progress({summary.frames, info.frame_count,
+                             seconds > 0 ? summary.frames / seconds : 0.0});
+      }
+    }
+  } catch (const Error& e) {
+    summary.interrupted = true;
+    summary.error = e.what();
+    finish();
+    throw;
+  }
+  finish();
+  return summary;
+}
+
+}  // namespace attend

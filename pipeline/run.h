@@ -1,0 +1,54 @@
+// `attend run`: the frame loop over a sequence. It reads each frame, runs the stages,
+// records the frame in the run folder and reports progress; Ctrl-C (the stop flag) finishes
+// the current frame and closes the run with `interrupted: true`.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include "pipeline/attend_options.h"
+#include "util/timer.h"
+
+namespace attend {
+
+struct RunProgress {
+  int done = 0;      // frames finished
+  int total = -1;    // frames in the range; -1 when the source cannot tell
+  double fps = 0.0;  // frames finished per second of wall time so far
+};
+
+struct RunRequest {
+  AttendOptions options;          // sequence source already resolved
+  std::string out_dir;            // the run folder
+  bool overwrite = false;         // replace a previous run in out_dir
+  std::string config_path;        // recorded in the summary
+  std::string command_line;       // recorded in the summary
+  const std::atomic<bool>* stop = nullptr;          // finish the frame, then stop
+  std::function<void(const RunProgress&)> on_progress;  // after every frame
+};
+
+struct RunSummary {
+  std::string dir;
+  int frames = 0;
+  double wall_seconds = 0.0;
+  double fps = 0.0;            // frames / wall_seconds
+  StageTimes mean_ms;          // per-stage mean milliseconds a frame
+  int targets_attended = 0;
+  bool interrupted = false;    // stopped before the end of the range
+  std::string error;           // why it stopped early, when it did on an error
+
+  // Two lines for the terminal: frames, fps, the slowest stages, where the outputs are.
+  std::string BriefReport() const;
+};
+
+// Runs the loop. Problems found before the first frame (options, sequence) throw without
+// creating the run folder. A bad frame later writes summary.json with the error and
+// `interrupted: true`, then throws the InputError (exit status 3).
+RunSummary RunSequence(const RunRequest& request);
+
+// runs/<YYYYmmdd-HHMMSS>-<config stem>-<sequence name> below `parent`, made unique.
+std::string DefaultRunFolder(const std::string& parent, const std::string& config_path,
+                             const std::string& sequence_name);
+
+}  // namespace attend

@@ -1,0 +1,196 @@
+// The attend program end to end: exit statuses (SPEC 3.2) and the messages that name the
+// culprit.
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "tests/support/sequence_maker.h"
+#include "tests/support/temp_dir.h"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+
+namespace attend {
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Starts attend with `args`, stdout and stderr to files in `dir`; returns the pid.
+pid_t Start(const testing::TempDir& dir, const std::vector<std::string>& args) {
+  std::vector<std::string> argv_strings = {ATTEND_BINARY};
+  argv_strings.insert(argv_strings.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& arg : argv_strings) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, dir.File("stdout").c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, dir.File("stderr").c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addchdir_np(&actions, dir.path().c_str());
+  pid_t pid = 0;
+  const int error = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  EXPECT_EQ(error, 0) << "cannot start " << ATTEND_BINARY;
+  return pid;
+}
+
+Result Wait(const testing::TempDir& dir, pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  Result result;
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  result.out = ReadText(dir.File("stdout"));
+  result.err = ReadText(dir.File("stderr"));
+  return result;
+}
+
+Result Attend(const testing::TempDir& dir, const std::vector<std::string>& args) {
+  return Wait(dir, Start(dir, args));
+}
+
+bool Contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST(Cli, VersionHelpAndUsageErrors) {
+  testing::TempDir dir;
+  Result r = Attend(dir, {"--version"});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_TRUE(Contains(r.out, "attend ")) << r.out;
+  r = Attend(dir, {"run", "--help"});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_TRUE(Contains(r.out, "--sequence")) << r.out;
+  r = Attend(dir, {"synth", "--help"});
+  EXPECT_EQ(r.status, 0);
+  r = Attend(dir, {});
+  EXPECT_EQ(r.status, 2);
+  r = Attend(dir, {"run", "--no-such-flag"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "attend: error:")) << r.err;
+  EXPECT_TRUE(Contains(r.err, "--no-such-flag")) << r.err;
+  r = Attend(dir, {"no-such-command"});
+  EXPECT_EQ(r.status, 2);
+  r = Attend(dir, {"run", "--sequence", "a", "--video", "b"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  r = Attend(dir, {"run", "--frames", "9:2", "--sequence", "x"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "--frames 9:2")) << r.err;
+}
+
+TEST(Cli, ConfigurationErrorsExitTwoNamingFileLineAndKey) {
+  testing::TempDir dir;
+  testing::MakeFolderSequence(dir.File("seq"), 2, 16, 16);
+  Result r = Attend(dir, {"run", "--config", "missing.yaml", "--sequence", "seq"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "attend: error: missing.yaml: cannot read")) << r.err;
+
+  dir.Write("bad.yaml", "sequence:\n  stride: 1\n  strid: 2\n");
+  r = Attend(dir, {"run", "--config", "bad.yaml", "--sequence", "seq"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "attend: error: bad.yaml:3: unknown key 'strid' in sequence (did "
+                              "you mean 'stride'?)"))
+      << r.err;
+
+  r = Attend(dir, {"run", "--sequence", "seq", "--set", "sequence.width=-5"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "--set sequence.width=-5: sequence.width: value -5 out of range"))
+      << r.err;
+}
+
+TEST(Cli, BadInputExitsThreeNamingTheCulprit) {
+  testing::TempDir dir;
+  Result r = Attend(dir, {"run", "--sequence", "nowhere", "--out", "run"});
+  EXPECT_EQ(r.status, 3);
+  EXPECT_TRUE(Contains(r.err, "nowhere")) << r.err;
+  EXPECT_FALSE(fs::exists(dir.File("run")));
+
+  testing::MakeFolderSequence(dir.File("seq"), 5, 16, 16);
+  testing::CorruptFrame(dir.File("seq"), "right", 2);
+  r = Attend(dir, {"run", "--sequence", "seq", "--out", "run", "--quiet"});
+  EXPECT_EQ(r.status, 3);
+  EXPECT_TRUE(Contains(r.err, "frame 2")) << r.err;
+  EXPECT_TRUE(Contains(r.err, "000002.png")) << r.err;
+  const nlohmann::json summary = nlohmann::json::parse(ReadText(dir.File("run/summary.json")));
+  EXPECT_EQ(summary["frames"], 2);
+  EXPECT_EQ(summary["interrupted"], true);
+
+  testing::MakeFolderSequence(dir.File("mono"), 2, 16, 16, false);
+  r = Attend(dir, {"run", "--sequence", "mono", "--out", "run2"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "the disparity feature needs a stereo sequence")) << r.err;
+}
+
+TEST(Cli, RunWritesTheFolderAndRefusesToOverwriteIt) {
+  testing::TempDir dir;
+  testing::MakeFolderSequence(dir.File("seq"), 4, 40, 30);
+  Result r = Attend(dir, {"run", "--sequence", "seq", "--out", "run", "--frames", "1:2"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(Contains(r.out, "2 frames")) << r.out;
+  EXPECT_TRUE(Contains(r.out, "run")) << r.out;
+  EXPECT_TRUE(fs::exists(dir.File("run/config.yaml")));
+  EXPECT_TRUE(fs::exists(dir.File("run/overlay/000002.png")));
+  const nlohmann::json summary = nlohmann::json::parse(ReadText(dir.File("run/summary.json")));
+  EXPECT_EQ(summary["frames"], 2);
+  EXPECT_EQ(summary["sequence"]["size"][0], 320);  // 40x30 fits 320x240 exactly at 8x
+
+  r = Attend(dir, {"run", "--sequence", "seq", "--out", "run"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "not empty")) << r.err;
+  r = Attend(dir, {"run", "--sequence", "seq", "--out", "run", "--overwrite", "--quiet"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  // The effective configuration runs again as a configuration file.
+  r = Attend(dir, {"run", "--config", "run/config.yaml", "--out", "again", "--quiet"});
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
+TEST(Cli, CtrlCFinishesTheFrameAndWritesAnInterruptedSummary) {
+  testing::TempDir dir;
+  testing::MakeFolderSequence(dir.File("seq"), 300, 32, 24);
+  // Large overlays make each frame slow enough to interrupt in the middle.
+  const pid_t pid = Start(dir, {"run", "--sequence", "seq", "--out", "run", "--set",
+                                "sequence.width=1600", "--set", "sequence.height=1200"});
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (std::chrono::steady_clock::now() < deadline &&
+         (!fs::exists(dir.File("run/frames.jsonl")) || fs::file_size(dir.File("run/frames.jsonl")) == 0)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  kill(pid, SIGINT);
+  const Result r = Wait(dir, pid);
+  EXPECT_EQ(r.status, 0) << r.err;
+  const nlohmann::json summary = nlohmann::json::parse(ReadText(dir.File("run/summary.json")));
+  EXPECT_EQ(summary["interrupted"], true);
+  EXPECT_GE(summary["frames"].get<int>(), 1);
+  EXPECT_LT(summary["frames"].get<int>(), 300);
+  std::ifstream frames(dir.File("run/frames.jsonl"));
+  int lines = 0;
+  for (std::string line; std::getline(frames, line);) ++lines;
+  EXPECT_EQ(lines, summary["frames"].get<int>());
+}
+
+}  // namespace
+}  // namespace attend

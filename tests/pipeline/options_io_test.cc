@@ -1,0 +1,125 @@
+#include "pipeline/options_io.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "tests/support/temp_dir.h"
+#include "util/error.h"
+#include "util/strings.h"
+
+namespace attend {
+namespace {
+
+std::string DefaultConfig() { return testing::ProjectRoot() + "/configs/default.yaml"; }
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string ConfigErrorOf(const std::function<void()>& body) {
+  try {
+    body();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(OptionsIo, StructDefaultsAreValid) {
+  const AttendOptions options;
+  EXPECT_EQ(options.sequence.Check(), "");
+  EXPECT_EQ(options.output.Check(), "");
+}
+
+TEST(OptionsIo, DefaultYamlSetsEveryKeyToTheStructDefault) {
+  const ParamBlock root = ParamBlock::LoadFile(DefaultConfig());
+  for (const std::string& key : ConfigurationKeys()) {
+    const std::vector<std::string> parts = Split(key, '.');
+    ParamBlock block = root;
+    for (size_t i = 0; i + 1 < parts.size(); ++i) block = block.Child(parts[i]);
+    EXPECT_TRUE(block.Has(parts.back())) << key << " is not set in configs/default.yaml";
+  }
+  const AttendOptions options = LoadOptions(DefaultConfig(), {});
+  const AttendOptions defaults;
+  // The file and the struct agree: a reader of either sees the same defaults.
+  EXPECT_EQ(OptionsToYaml(options).substr(0, OptionsToYaml(options).find("features:")),
+            OptionsToYaml(defaults).substr(0, OptionsToYaml(defaults).find("features:")));
+  ASSERT_EQ(options.features.size(), 4u);
+  EXPECT_EQ(options.features[0].name, "colour_contrast");
+  EXPECT_EQ(options.features[3].name, "disparity");
+}
+
+TEST(OptionsIo, EveryKeyIsDocumentedInConfigsReadme) {
+  const std::string readme = ReadText(testing::ProjectRoot() + "/configs/README.md");
+  ASSERT_FALSE(readme.empty());
+  for (const std::string& key : ConfigurationKeys()) {
+    EXPECT_NE(readme.find("`" + key + "`"), std::string::npos)
+        << key << " is not documented in configs/README.md";
+  }
+}
+
+TEST(OptionsIo, EffectiveConfigurationRoundTrips) {
+  const AttendOptions options =
+      LoadOptions(DefaultConfig(), {"sequence.stride=3", "output.dump=[]", "sequence.resize=native",
+                                    "features.skin.weight=0.25", "features.disparity.window=7"});
+  EXPECT_EQ(options.sequence.stride, 3);
+  EXPECT_TRUE(options.output.dump.empty());
+  const std::string yaml = OptionsToYaml(options);
+  const AttendOptions again = ReadOptions(ParamBlock::Parse(yaml, "config.yaml"));
+  EXPECT_EQ(OptionsToYaml(again), yaml);
+  EXPECT_EQ(again.sequence.resize, "native");
+  EXPECT_DOUBLE_EQ(again.features[2].weight, 0.25);
+  EXPECT_EQ(again.features[3].params.GetInt("window", 0), 7);  // plugin keys survive
+}
+
+TEST(OptionsIo, ErrorsNameKeyLineAndClosestKey) {
+  testing::TempDir dir;
+  std::string path = dir.Write("a.yaml", "sequence:\n  stride: 2\n  widht: 100\n");
+  std::string message = ConfigErrorOf([&] { LoadOptions(path, {}); });
+  EXPECT_NE(message.find(path + ":3: unknown key 'widht' in sequence (did you mean 'width'?)"),
+            std::string::npos)
+      << message;
+
+  path = dir.Write("b.yaml", "sequence: {}\noutptu: {}\n");
+  message = ConfigErrorOf([&] { LoadOptions(path, {}); });
+  EXPECT_NE(message.find(path + ":2: unknown key 'outptu' (did you mean 'output'?)"),
+            std::string::npos)
+      << message;
+
+  path = dir.Write("c.yaml", "sequence:\n  stride: 0\n");
+  message = ConfigErrorOf([&] { LoadOptions(path, {}); });
+  EXPECT_NE(message.find(path + ":2: sequence.stride: value 0 out of range: must be >= 1"),
+            std::string::npos)
+      << message;
+
+  path = dir.Write("d.yaml", "output:\n  dump: [overlay, salience]\n");
+  message = ConfigErrorOf([&] { LoadOptions(path, {}); });
+  EXPECT_NE(message.find(path + ":2: output.dump: 'salience' is not one of"), std::string::npos)
+      << message;
+
+  path = dir.Write("e.yaml", "sequence:\n  first_frame: 10\n  last_frame: 5\n");
+  message = ConfigErrorOf([&] { LoadOptions(path, {}); });
+  EXPECT_NE(message.find(path + ":2: sequence: "), std::string::npos) << message;
+  EXPECT_NE(message.find("last_frame"), std::string::npos) << message;
+
+  message = ConfigErrorOf([&] { LoadOptions(dir.File("missing.yaml"), {}); });
+  EXPECT_NE(message.find("missing.yaml: cannot read"), std::string::npos) << message;
+
+  message = ConfigErrorOf([&] { LoadOptions(DefaultConfig(), {"sequence.strid=2"}); });
+  EXPECT_NE(message.find("--set sequence.strid=2: unknown key 'strid' in sequence (did you mean "
+                         "'stride'?)"),
+            std::string::npos)
+      << message;
+
+  message = ConfigErrorOf([&] { LoadOptions(DefaultConfig(), {"output.video=true", "output.dump=[]"}); });
+  EXPECT_NE(message.find("video needs 'overlay' in dump"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace attend

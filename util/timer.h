@@ -1,0 +1,48 @@
+// Wall-clock timing of pipeline stages.
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace attend {
+
+// Milliseconds since construction (or the last Restart()).
+class Stopwatch {
+ public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  void Restart() { start_ = std::chrono::steady_clock::now(); }
+  double ElapsedMs() const {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
+        .count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+// Per-stage times of one frame, in the order the stages ran.
+class StageTimes {
+ public:
+  void Add(const std::string& stage, double ms) {
+    for (auto& [name, total] : stages_) {
+      if (name == stage) {
+        total += ms;
+        return;
+      }
+    }
+    stages_.emplace_back(stage, ms);
+  }
+  const std::vector<std::pair<std::string, double>>& stages() const { return stages_; }
+  double TotalMs() const {
+    double total = 0.0;
+    for (const auto& stage : stages_) total += stage.second;
+    return total;
+  }
+
+ private:
+  std::vector<std::pair<std::string, double>> stages_;
+};
+
+}  // namespace attend
