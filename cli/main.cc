@@ -1,11 +1,18 @@
 // attend: visual attention on stereo image sequences. See README.md and SPEC 3.2.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <cstdlib>
 
 #include "cli/commands.h"
 #include "util/error.h"
 
 int main(int argc, char** argv) {
+  // attend reports its own errors, naming the file; OpenCV's backend chatter (GStreamer,
+  // image-sequence probing) would only bury them.
+  // Both variables are read by OpenCV on first use; a user's own setting wins.
+  setenv("OPENCV_LOG_LEVEL", "SILENT", 0);
+  setenv("OPENCV_VIDEOIO_PRIORITY_GSTREAMER", "0", 0);
+
   CLI::App app{"attend: visual attention on stereo image sequences (Bounded Irregular Pyramid)"};
   app.set_version_flag("--version", std::string("attend ") + ATTEND_VERSION);
   app.require_subcommand(1);

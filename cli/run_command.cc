@@ -102,9 +102,7 @@ int Run(const RunArguments& args) {
     sequence.video = args.video;
   }
   if (!args.frames.empty()) ParseFrameRange(args.frames, &sequence);
-  const bool has_source = !sequence.folder.empty() || !sequence.left_video.empty() ||
-                          !sequence.side_by_side_video.empty() || !sequence.video.empty();
-  if (!has_source) sequence.folder = EnsureBundledSequence(args.quiet);
+  if (sequence.SourceCount() == 0) sequence.folder = EnsureBundledSequence(args.quiet);
 
   RunRequest request;
   request.options = options;

@@ -451,10 +451,15 @@ class Sequence final : public FrameSource {
 
 }  // namespace
 
+int SequenceOptions::SourceCount() const {
+  const bool has_pair = !left_video.empty() || !right_video.empty();
+  return (folder.empty() ? 0 : 1) + (has_pair ? 1 : 0) + (side_by_side_video.empty() ? 0 : 1) +
+         (video.empty() ? 0 : 1);
+}
+
 std::string SequenceOptions::Check() const {
   const bool has_pair = !left_video.empty() || !right_video.empty();
-  const int sources = (folder.empty() ? 0 : 1) + (has_pair ? 1 : 0) +
-                      (side_by_side_video.empty() ? 0 : 1) + (video.empty() ? 0 : 1);
+  const int sources = SourceCount();
   // No source is valid here: `attend run` then takes the bundled sequence. Open() needs one.
   if (sources > 1) {
     return "at most one source may be set (folder, left_video + right_video, "
@@ -498,7 +503,7 @@ std::string SequenceOptions::Describe() const {
 }
 
 std::unique_ptr<FrameSource> FrameSource::Open(const SequenceOptions& options) {
-  if (options.Describe() == "no source") {
+  if (options.SourceCount() == 0) {
     throw ConfigError("no sequence source is set (folder, left_video + right_video, "
                       "side_by_side_video or video)");
   }

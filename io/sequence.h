@@ -34,6 +34,8 @@ struct SequenceOptions {
 
   // Empty when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+  // How many sources are set (a video pair counts once).
+  int SourceCount() const;
   // A short description of the source for messages: "folder SEQ", "videos A + B", ...
   std::string Describe() const;
 };

@@ -68,8 +68,8 @@ void PrepareFolder(const fs::path& folder, bool overwrite) {
                                   folder / "gt" / "objects.csv", folder / "sequence.yaml"}) {
         fs::remove_all(own, error);
         if (error) {
-          throw InputError(own.string() + ": cannot remove it to overwrite the sequence: " +
-                           error.message());
+          throw InputError(own.string() +
+                           ": cannot remove it to overwrite the sequence: " + error.message());
         }
       }
     }

@@ -51,8 +51,7 @@ double ValueNoise(std::uint64_t key, double u, double v) {
   const double s = u - fu;
   const double t = v - fv;
   const double top = (1 - s) * LatticeValue(key, i, j) + s * LatticeValue(key, i + 1, j);
-  const double bottom =
-      (1 - s) * LatticeValue(key, i, j + 1) + s * LatticeValue(key, i + 1, j + 1);
+  const double bottom = (1 - s) * LatticeValue(key, i, j + 1) + s * LatticeValue(key, i + 1, j + 1);
   return (1 - t) * top + t * bottom;
 }
 
@@ -96,14 +95,14 @@ struct Surface {
   double extent_x = 1.0, extent_y = 1.0;  // half size of the bounding box
   double depth = 1.0;
   double disparity = 0.0;
-  double lattice_per_px = 1.0;            // texture lattice units per pixel
+  double lattice_per_px = 1.0;  // texture lattice units per pixel
   std::uint64_t key = 0;
   Rgb colour = {0, 0, 0};
   double texture = 0.0;
   // Blob only.
   int lobes = 0;
   double amplitude = 0.0;
-  double wave1 = 0.0, wave2 = 0.0;        // phases at this frame, radians
+  double wave1 = 0.0, wave2 = 0.0;  // phases at this frame, radians
 
   // Whether the point at (nx, ny), in units of the half size from the centre, is covered.
   // Edges are half-open so that a shape of width w px at integer alignment covers w pixels.
@@ -151,8 +150,7 @@ std::uint8_t ToByte(double value) {
 // Which surface covers each pixel of one view: the index into `surfaces` (sorted nearest
 // first), or -1 for the background. A pixel of the right view at x shows the surface point
 // that the left view shows at x + disparity.
-std::vector<int> Coverage(const std::vector<Surface>& surfaces, bool right, int width,
-                          int height) {
+std::vector<int> Coverage(const std::vector<Surface>& surfaces, bool right, int width, int height) {
   std::vector<int> owner(static_cast<size_t>(width) * height, -1);
   for (size_t k = 0; k < surfaces.size(); ++k) {
     const Surface& s = surfaces[k];
@@ -193,8 +191,8 @@ void ShadeView(const std::vector<Surface>& surfaces, const Surface& background,
       const double x_left = x + (right ? s.disparity : 0.0);
       double texture = 0.0;
       if (s.texture > 0.0) {
-        texture = s.texture * Texture(s.key, (x_left - s.cx) * s.lattice_per_px,
-                                      (y - s.cy) * s.lattice_per_px);
+        texture = s.texture *
+                  Texture(s.key, (x_left - s.cx) * s.lattice_per_px, (y - s.cy) * s.lattice_per_px);
       }
       // Output is BGR; colours are RGB. Noise is drawn in B, G, R order for every pixel.
       for (int c = 0; c < 3; ++c) {
@@ -230,7 +228,8 @@ SceneRenderer::SceneRenderer(Scene scene) : scene_(std::move(scene)) {
   background_key_ = Mix(scene_.seed, kSurfaceDomain);
   for (const SceneObject& object : scene_.objects) {
     // Keyed by id, so adding an object leaves the others' textures and blobs unchanged.
-    std::mt19937_64 engine(Mix(Mix(scene_.seed, kSurfaceDomain), static_cast<std::uint64_t>(object.id)));
+    std::mt19937_64 engine(
+        Mix(Mix(scene_.seed, kSurfaceDomain), static_cast<std::uint64_t>(object.id)));
     texture_keys_.push_back(engine());
     const double phase1 = kTwoPi * UnitInterval(engine());
     const double phase2 = kTwoPi * UnitInterval(engine());
@@ -305,13 +304,14 @@ RenderedFrame SceneRenderer::Render(int frame) const {
   out.right_ids.create(height, width, CV_32SC1);
 
   const double gain = InterpolateGain(scene_.brightness, frame);
-  const std::uint64_t frame_seed = Mix(Mix(scene_.seed, kNoiseDomain), static_cast<std::uint64_t>(frame));
+  const std::uint64_t frame_seed =
+      Mix(Mix(scene_.seed, kNoiseDomain), static_cast<std::uint64_t>(frame));
   const std::vector<int> left_owner = Coverage(surfaces, false, width, height);
   const std::vector<int> right_owner = Coverage(surfaces, true, width, height);
   ShadeView(surfaces, background, left_owner, false, gain, scene_.noise_left, Mix(frame_seed, 0),
             &out.left, &out.left_ids, &out.disparity);
-  ShadeView(surfaces, background, right_owner, true, gain, scene_.noise_right,
-            Mix(frame_seed, 1), &out.right, &out.right_ids, nullptr);
+  ShadeView(surfaces, background, right_owner, true, gain, scene_.noise_right, Mix(frame_seed, 1),
+            &out.right, &out.right_ids, nullptr);
 
   // Ground truth of the left view from its coverage.
   struct Visible {

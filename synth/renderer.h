@@ -40,8 +40,8 @@ class SceneRenderer final {
  private:
   Scene scene_;
   std::uint64_t background_key_ = 0;
-  std::vector<std::uint64_t> texture_keys_;                // per object, in scene order
-  std::vector<std::array<double, 2>> blob_phases_;         // per object, radians
+  std::vector<std::uint64_t> texture_keys_;         // per object, in scene order
+  std::vector<std::array<double, 2>> blob_phases_;  // per object, radians
 };
 
 }  // namespace attend

@@ -36,6 +36,15 @@ constexpr double kMaxGain = 10.0;
 constexpr int kMinLobes = 2;
 constexpr int kMaxLobes = 16;
 constexpr double kMaxBlobAmplitude = 0.6;
+// Bounds that keep every number finite (YAML accepts .inf) without limiting real scenes.
+constexpr double kLargest = 1e6;
+
+// A length, depth, period or rate: (0, 1e6].
+Range Positive() { return Range{0.0, kLargest, true, false}; }
+// A position or offset in pixels: [-1e6, 1e6].
+Range Coordinate() { return Range::Closed(-kLargest, kLargest); }
+bool IsPositive(double value) { return value > 0.0 && value <= kLargest; }
+bool IsCoordinate(double value) { return value >= -kLargest && value <= kLargest; }
 
 const std::vector<std::string>& ShapeNames() {
   static const std::vector<std::string> names = {"rectangle", "ellipse", "triangle", "blob"};
@@ -64,9 +73,8 @@ void RequirePresent(const ParamBlock& block, std::initializer_list<const char*> 
 }
 
 Rgb ReadColour(const ParamBlock& block, const Rgb& default_value) {
-  const std::vector<double> rgb =
-      block.GetDoubles("colour", {default_value[0], default_value[1], default_value[2]},
-                       Range::Closed(0, 255), 3);
+  const std::vector<double> rgb = block.GetDoubles(
+      "colour", {default_value[0], default_value[1], default_value[2]}, Range::Closed(0, 255), 3);
   return {rgb[0], rgb[1], rgb[2]};
 }
 
@@ -86,9 +94,9 @@ std::vector<PathKeyframe> ReadPath(const ParamBlock& object, const Scene& scene)
   for (const ParamBlock& block : keyframes) {
     PathKeyframe key;
     key.frame = block.GetInt("frame", 0, Range::AtLeast(0));
-    key.x = block.GetDouble("x", 0.0);
-    key.y = block.GetDouble("y", 0.0);
-    key.depth = block.GetDouble("depth", 1.0, Range::Above(0));
+    key.x = block.GetDouble("x", 0.0, Coordinate());
+    key.y = block.GetDouble("y", 0.0, Coordinate());
+    key.depth = block.GetDouble("depth", 1.0, Positive());
     block.CheckNoUnknownKeys();
     RequirePresent(block, {"frame", "x", "y", "depth"});
     if (key.depth >= scene.background.depth_m) {
@@ -108,10 +116,10 @@ std::vector<PathKeyframe> ReadPath(const ParamBlock& object, const Scene& scene)
 Oscillation ReadOscillation(const ParamBlock& object) {
   const ParamBlock block = object.Child("oscillation");
   Oscillation oscillation;
-  const std::vector<double> amplitude = block.GetDoubles("amplitude", {0.0, 0.0}, Range::Any(), 2);
+  const std::vector<double> amplitude = block.GetDoubles("amplitude", {0.0, 0.0}, Coordinate(), 2);
   oscillation.amplitude_x = amplitude[0];
   oscillation.amplitude_y = amplitude[1];
-  oscillation.period = block.GetDouble("period", 0.0, Range::Above(0));
+  oscillation.period = block.GetDouble("period", 0.0, Positive());
   oscillation.phase = block.GetDouble("phase", 0.0, Range{0.0, 1.0, false, true});
   block.CheckNoUnknownKeys();
   if (!block.Keys().empty()) RequirePresent(block, {"period"});
@@ -124,7 +132,7 @@ BlobDeformation ReadBlob(const ParamBlock& object) {
   blob.lobes = block.GetInt("lobes", blob.lobes, Range::Closed(kMinLobes, kMaxLobes));
   blob.amplitude =
       block.GetDouble("amplitude", blob.amplitude, Range::Closed(0, kMaxBlobAmplitude));
-  blob.period = block.GetDouble("period", blob.period, Range::Above(0));
+  blob.period = block.GetDouble("period", blob.period, Positive());
   block.CheckNoUnknownKeys();
   return blob;
 }
@@ -135,12 +143,12 @@ SceneObject ReadObject(const ParamBlock& block, const Scene& scene) {
   object.name = block.GetString("name", "");
   object.kind = block.GetChoice("kind", object.kind, {"object", "skin"});
   object.shape = ShapeFromName(block.GetChoice("shape", "rectangle", ShapeNames()));
-  const std::vector<double> size = block.GetDoubles("size", {0.2, 0.2}, Range::Above(0), 2);
+  const std::vector<double> size = block.GetDoubles("size", {0.2, 0.2}, Positive(), 2);
   object.width_m = size[0];
   object.height_m = size[1];
   object.colour = ReadColour(block, object.colour);
   object.texture = block.GetDouble("texture", object.texture, Range::Closed(0, 255));
-  object.texture_cell_m = block.GetDouble("texture_cell", object.texture_cell_m, Range::Above(0));
+  object.texture_cell_m = block.GetDouble("texture_cell", object.texture_cell_m, Positive());
   object.entry = block.GetInt("entry", 0, Range::AtLeast(0));
   object.exit = block.GetInt("exit", -1, Range::AtLeast(0));
   // Mark the nested blocks as known; they are read after the typo check of this block.
@@ -180,28 +188,26 @@ Scene ReadScene(const ParamBlock& root) {
   scene.width = root.GetInt("width", scene.width, Range::Closed(kMinImageSide, kMaxImageSide));
   scene.height = root.GetInt("height", scene.height, Range::Closed(kMinImageSide, kMaxImageSide));
   scene.frames = root.GetInt("frames", scene.frames, Range::AtLeast(1));
-  scene.fps = root.GetDouble("fps", scene.fps, Range::Above(0));
+  scene.fps = root.GetDouble("fps", scene.fps, Positive());
   scene.seed = static_cast<std::uint64_t>(root.GetInt("seed", 1, Range::AtLeast(0)));
 
   const ParamBlock camera = root.Child("camera");
-  scene.focal_px = camera.GetDouble("focal_px", scene.focal_px, Range::Above(0));
-  scene.baseline_m = camera.GetDouble("baseline_m", scene.baseline_m, Range::Above(0));
+  scene.focal_px = camera.GetDouble("focal_px", scene.focal_px, Positive());
+  scene.baseline_m = camera.GetDouble("baseline_m", scene.baseline_m, Positive());
   camera.CheckNoUnknownKeys();
 
   const ParamBlock noise = root.Child("noise");
   scene.noise_left = noise.GetDouble("left", scene.noise_left, Range::Closed(0, kMaxNoiseSigma));
-  scene.noise_right =
-      noise.GetDouble("right", scene.noise_right, Range::Closed(0, kMaxNoiseSigma));
+  scene.noise_right = noise.GetDouble("right", scene.noise_right, Range::Closed(0, kMaxNoiseSigma));
   noise.CheckNoUnknownKeys();
 
   const ParamBlock background = root.Child("background");
-  scene.background.depth_m =
-      background.GetDouble("depth", scene.background.depth_m, Range::Above(0));
+  scene.background.depth_m = background.GetDouble("depth", scene.background.depth_m, Positive());
   scene.background.colour = ReadColour(background, scene.background.colour);
   scene.background.texture =
       background.GetDouble("texture", scene.background.texture, Range::Closed(0, 255));
   scene.background.texture_cell_m =
-      background.GetDouble("texture_cell", scene.background.texture_cell_m, Range::Above(0));
+      background.GetDouble("texture_cell", scene.background.texture_cell_m, Positive());
   background.CheckNoUnknownKeys();
 
   for (const ParamBlock& block : root.Children("brightness")) {
@@ -254,18 +260,16 @@ std::string Scene::Check() const {
     return "width and height must be in [16, 8192]";
   }
   if (frames < 1) return "frames must be >= 1";
-  if (!(fps > 0)) return "fps must be > 0";
-  if (!(focal_px > 0)) return "camera.focal_px must be > 0";
-  if (!(baseline_m > 0)) return "camera.baseline_m must be > 0";
+  if (!IsPositive(fps)) return "fps must be in (0, 1e6]";
+  if (!IsPositive(focal_px)) return "camera.focal_px must be in (0, 1e6]";
+  if (!IsPositive(baseline_m)) return "camera.baseline_m must be in (0, 1e6]";
   if (!in(noise_left, 0, kMaxNoiseSigma) || !in(noise_right, 0, kMaxNoiseSigma)) {
     return "noise.left and noise.right must be in [0, 100]";
   }
-  if (!(background.depth_m > 0) || !std::isfinite(background.depth_m)) {
-    return "background.depth must be a finite number > 0";
-  }
+  if (!IsPositive(background.depth_m)) return "background.depth must be in (0, 1e6]";
   if (!colour_ok(background.colour)) return "background.colour channels must be in [0, 255]";
   if (!in(background.texture, 0, 255)) return "background.texture must be in [0, 255]";
-  if (!(background.texture_cell_m > 0)) return "background.texture_cell must be > 0";
+  if (!IsPositive(background.texture_cell_m)) return "background.texture_cell must be in (0, 1e6]";
   for (size_t i = 0; i < brightness.size(); ++i) {
     if (brightness[i].frame < 0) return "brightness frames must be >= 0";
     if (!in(brightness[i].gain, 0, kMaxGain)) return "brightness gains must be in [0, 10]";
@@ -279,28 +283,33 @@ std::string Scene::Check() const {
     if (o.id < 1) return what + ": id must be >= 1";
     if (!seen.emplace(o.id, 0).second) return what + ": id is used twice";
     if (o.kind != "object" && o.kind != "skin") return what + ": kind must be object or skin";
-    if (!(o.width_m > 0) || !(o.height_m > 0)) return what + ": size must be > 0";
+    if (!IsPositive(o.width_m) || !IsPositive(o.height_m))
+      return what + ": size must be in (0, 1e6]";
     if (!colour_ok(o.colour)) return what + ": colour channels must be in [0, 255]";
     if (!in(o.texture, 0, 255)) return what + ": texture must be in [0, 255]";
-    if (!(o.texture_cell_m > 0)) return what + ": texture_cell must be > 0";
+    if (!IsPositive(o.texture_cell_m)) return what + ": texture_cell must be in (0, 1e6]";
     if (o.path.empty()) return what + ": path needs at least one keyframe";
     for (size_t i = 0; i < o.path.size(); ++i) {
       const PathKeyframe& key = o.path[i];
       if (key.frame < 0) return what + ": path frames must be >= 0";
       if (i > 0 && key.frame <= o.path[i - 1].frame) return what + ": path frames must increase";
-      if (!std::isfinite(key.x) || !std::isfinite(key.y)) return what + ": path x, y must be finite";
-      if (!(key.depth > 0) || key.depth >= background.depth_m) {
+      if (!IsCoordinate(key.x) || !IsCoordinate(key.y))
+        return what + ": path x, y must be in [-1e6, 1e6]";
+      if (!IsPositive(key.depth) || key.depth >= background.depth_m) {
         return what + ": path depth must be > 0 and in front of the background";
       }
     }
-    if (o.oscillation.period < 0 || !in(o.oscillation.phase, 0, 1) ||
-        !std::isfinite(o.oscillation.amplitude_x) || !std::isfinite(o.oscillation.amplitude_y)) {
-      return what + ": oscillation period must be >= 0 and phase in [0, 1)";
+    const Oscillation& wave = o.oscillation;
+    if (!(wave.period == 0.0 || IsPositive(wave.period)) || !(wave.phase >= 0 && wave.phase < 1) ||
+        !IsCoordinate(wave.amplitude_x) || !IsCoordinate(wave.amplitude_y)) {
+      return what +
+             ": oscillation period must be 0 (none) or in (0, 1e6], phase in [0, 1), "
+             "amplitudes in [-1e6, 1e6]";
     }
     if (o.shape == SynthShape::kBlob &&
         (o.blob.lobes < kMinLobes || o.blob.lobes > kMaxLobes ||
-         !in(o.blob.amplitude, 0, kMaxBlobAmplitude) || !(o.blob.period > 0))) {
-      return what + ": blob lobes must be in [2, 16], amplitude in [0, 0.6], period > 0";
+         !in(o.blob.amplitude, 0, kMaxBlobAmplitude) || !IsPositive(o.blob.period))) {
+      return what + ": blob lobes must be in [2, 16], amplitude in [0, 0.6], period in (0, 1e6]";
     }
     if (o.entry < 0) return what + ": entry must be >= 0";
     if (o.exit != -1 && o.exit < o.entry) return what + ": exit must be -1 or >= entry";
@@ -316,9 +325,9 @@ PathKeyframe InterpolatePath(const std::vector<PathKeyframe>& path, int frame) {
   } else if (frame >= path.back().frame) {
     result = path.back();
   } else {
-    const auto next = std::upper_bound(
-        path.begin(), path.end(), frame,
-        [](int f, const PathKeyframe& key) { return f < key.frame; });
+    const auto next =
+        std::upper_bound(path.begin(), path.end(), frame,
+                         [](int f, const PathKeyframe& key) { return f < key.frame; });
     const PathKeyframe& b = *next;
     const PathKeyframe& a = *(next - 1);
     const double s = static_cast<double>(frame - a.frame) / (b.frame - a.frame);
@@ -334,9 +343,8 @@ double InterpolateGain(const std::vector<GainKeyframe>& brightness, int frame) {
   if (brightness.empty()) return 1.0;
   if (frame <= brightness.front().frame) return brightness.front().gain;
   if (frame >= brightness.back().frame) return brightness.back().gain;
-  const auto next =
-      std::upper_bound(brightness.begin(), brightness.end(), frame,
-                       [](int f, const GainKeyframe& key) { return f < key.frame; });
+  const auto next = std::upper_bound(brightness.begin(), brightness.end(), frame,
+                                     [](int f, const GainKeyframe& key) { return f < key.frame; });
   const GainKeyframe& b = *next;
   const GainKeyframe& a = *(next - 1);
   const double s = static_cast<double>(frame - a.frame) / (b.frame - a.frame);

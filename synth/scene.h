@@ -51,41 +51,41 @@ struct BlobDeformation {
 };
 
 struct SceneObject {
-  int id = 1;                    // >= 1, unique; 0 is the background in id maps
-  std::string name = "object";   // for people reading the scene
-  std::string kind = "object";   // "object" or "skin": the ground-truth kind
+  int id = 1;                   // >= 1, unique; 0 is the background in id maps
+  std::string name = "object";  // for people reading the scene
+  std::string kind = "object";  // "object" or "skin": the ground-truth kind
   SynthShape shape = SynthShape::kRectangle;
-  double width_m = 0.2;          // physical width, metres, > 0
-  double height_m = 0.2;         // physical height, metres, > 0
+  double width_m = 0.2;   // physical width, metres, > 0
+  double height_m = 0.2;  // physical height, metres, > 0
   Rgb colour = {128, 128, 128};
-  double texture = 0.0;          // texture amplitude, grey levels, [0, 255]
-  double texture_cell_m = 0.02;  // texture lattice spacing on the surface, metres, > 0
+  double texture = 0.0;            // texture amplitude, grey levels, [0, 255]
+  double texture_cell_m = 0.02;    // texture lattice spacing on the surface, metres, > 0
   std::vector<PathKeyframe> path;  // at least one, frames strictly increasing
   Oscillation oscillation;
-  BlobDeformation blob;          // used only when shape is kBlob
-  int entry = 0;                 // first frame present
-  int exit = -1;                 // last frame present (inclusive); -1: to the end
+  BlobDeformation blob;  // used only when shape is kBlob
+  int entry = 0;         // first frame present
+  int exit = -1;         // last frame present (inclusive); -1: to the end
 };
 
 struct SceneBackground {
-  double depth_m = 8.0;          // > 0, behind every object
+  double depth_m = 8.0;  // > 0, behind every object
   Rgb colour = {128, 128, 128};
-  double texture = 12.0;         // grey levels, [0, 255]
-  double texture_cell_m = 0.1;   // metres, > 0
+  double texture = 12.0;        // grey levels, [0, 255]
+  double texture_cell_m = 0.1;  // metres, > 0
 };
 
 struct Scene {
   std::string name = "synthetic";
-  std::string source;            // the file it was read from ("" when built in code)
-  int width = 320;               // pixels, [16, 8192]
-  int height = 240;              // pixels, [16, 8192]
-  int frames = 120;              // >= 1
-  double fps = 25.0;             // > 0
-  std::uint64_t seed = 1;        // textures, blob phases and noise derive from it
-  double focal_px = 300.0;       // > 0
-  double baseline_m = 0.12;      // > 0
-  double noise_left = 1.0;       // Gaussian noise sigma of the left view, grey levels, [0, 100]
-  double noise_right = 1.0;      // same for the right view
+  std::string source;        // the file it was read from ("" when built in code)
+  int width = 320;           // pixels, [16, 8192]
+  int height = 240;          // pixels, [16, 8192]
+  int frames = 120;          // >= 1
+  double fps = 25.0;         // > 0
+  std::uint64_t seed = 1;    // textures, blob phases and noise derive from it
+  double focal_px = 300.0;   // > 0
+  double baseline_m = 0.12;  // > 0
+  double noise_left = 1.0;   // Gaussian noise sigma of the left view, grey levels, [0, 100]
+  double noise_right = 1.0;  // same for the right view
   SceneBackground background;
   std::vector<GainKeyframe> brightness;  // empty: gain 1; frames strictly increasing
   std::vector<SceneObject> objects;

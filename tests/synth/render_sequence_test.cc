@@ -67,7 +67,7 @@ std::vector<std::string> FilesBelow(const fs::path& folder) {
   return files;
 }
 
-TEST(RenderSequence, WritesTheLayoutByteIdenticallyForTheSameSeed) {
+TEST(SynthRenderSequence, WritesTheLayoutByteIdenticallyForTheSameSeed) {
   testing::TempDir dir;
   const Scene scene = ParseScene(kSceneText, "tiny.yaml");
   SynthOptions one_thread;
@@ -82,12 +82,13 @@ TEST(RenderSequence, WritesTheLayoutByteIdenticallyForTheSameSeed) {
   three_threads.threads = 3;
   RenderSequence(scene, dir.File("b"), three_threads);
   const std::vector<std::string> files = FilesBelow(dir.File("a"));
-  const std::vector<std::string> expected = {
-      "gt/disparity/000000.pfm", "gt/disparity/000001.pfm", "gt/disparity/000002.pfm",
-      "gt/disparity/000003.pfm", "gt/objects.csv",          "left/000000.png",
-      "left/000001.png",         "left/000002.png",         "left/000003.png",
-      "right/000000.png",        "right/000001.png",        "right/000002.png",
-      "right/000003.png",        "sequence.yaml"};
+  const std::vector<std::string> expected = {"gt/disparity/000000.pfm", "gt/disparity/000001.pfm",
+                                             "gt/disparity/000002.pfm", "gt/disparity/000003.pfm",
+                                             "gt/objects.csv",          "left/000000.png",
+                                             "left/000001.png",         "left/000002.png",
+                                             "left/000003.png",         "right/000000.png",
+                                             "right/000001.png",        "right/000002.png",
+                                             "right/000003.png",        "sequence.yaml"};
   EXPECT_EQ(files, expected);
   EXPECT_EQ(FilesBelow(dir.File("b")), expected);
   for (const std::string& file : files) {
@@ -103,8 +104,8 @@ TEST(RenderSequence, WritesTheLayoutByteIdenticallyForTheSameSeed) {
             ReadBytes(dir.path() / "c" / "gt/objects.csv"));
 
   const std::string yaml = ReadBytes(dir.path() / "a" / "sequence.yaml");
-  for (const char* line : {"name: \"tiny\"\n", "fps: 10\n", "focal_px: 80\n",
-                           "baseline_m: 0.125\n", "generator: attend synth\n", "frames: 4\n"}) {
+  for (const char* line : {"name: \"tiny\"\n", "fps: 10\n", "focal_px: 80\n", "baseline_m: 0.125\n",
+                           "generator: attend synth\n", "frames: 4\n"}) {
     EXPECT_NE(yaml.find(line), std::string::npos) << line << " in\n" << yaml;
   }
   // The images are what the renderer makes.
@@ -116,7 +117,7 @@ TEST(RenderSequence, WritesTheLayoutByteIdenticallyForTheSameSeed) {
   EXPECT_EQ(cv::norm(right, frame2.right, cv::NORM_INF), 0.0);
 }
 
-TEST(RenderSequence, WrittenDisparityIsFocalTimesBaselineOverDepth) {
+TEST(SynthRenderSequence, WrittenDisparityIsFocalTimesBaselineOverDepth) {
   testing::TempDir dir;
   const Scene scene = ParseScene(kSceneText, "tiny.yaml");
   RenderSequence(scene, dir.File("seq"), {});
@@ -136,7 +137,7 @@ TEST(RenderSequence, WrittenDisparityIsFocalTimesBaselineOverDepth) {
   }
 }
 
-TEST(RenderSequence, ObjectsCsvHasARowPerPresentObjectWithTheIdMapBox) {
+TEST(SynthRenderSequence, ObjectsCsvHasARowPerPresentObjectWithTheIdMapBox) {
   testing::TempDir dir;
   const Scene scene = ParseScene(kSceneText, "tiny.yaml");
   RenderSequence(scene, dir.File("seq"), {});
@@ -160,7 +161,7 @@ TEST(RenderSequence, ObjectsCsvHasARowPerPresentObjectWithTheIdMapBox) {
   EXPECT_TRUE(saw_hidden);
 }
 
-TEST(RenderSequence, RefusesANonEmptyFolderAndOverwritesOnlyItsOwnFiles) {
+TEST(SynthRenderSequence, RefusesANonEmptyFolderAndOverwritesOnlyItsOwnFiles) {
   testing::TempDir dir;
   const Scene scene = ParseScene(kSceneText, "tiny.yaml");
   const std::string folder = dir.File("seq");

@@ -207,7 +207,7 @@ TEST(SceneRenderer, BrightnessKeyframesScaleColours) {
   const SceneRenderer renderer(scene);
   const RenderedFrame first = renderer.Render(0);
   EXPECT_EQ(first.left.at<cv::Vec3b>(24, 32), cv::Vec3b(40, 100, 200));  // BGR
-  const RenderedFrame middle = renderer.Render(5);  // gain 0.75
+  const RenderedFrame middle = renderer.Render(5);                       // gain 0.75
   EXPECT_EQ(middle.left.at<cv::Vec3b>(24, 32), cv::Vec3b(30, 75, 150));
   EXPECT_EQ(middle.right.at<cv::Vec3b>(24, 32 - 5), cv::Vec3b(30, 75, 150));
   EXPECT_EQ(middle.left.at<cv::Vec3b>(2, 2), cv::Vec3b(90, 90, 90));

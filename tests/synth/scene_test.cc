@@ -21,18 +21,18 @@ std::string ConfigErrorOf(Body body) {
 
 // A valid scene with one object; `object_extra` is appended to the object's keys.
 std::string SceneText(const std::string& object_extra = "") {
-  return "name: test\n"                                          // 1
-         "width: 64\n"                                           // 2
-         "height: 48\n"                                          // 3
-         "frames: 10\n"                                          // 4
-         "background: {depth: 5, colour: [120, 120, 120]}\n"     // 5
-         "objects:\n"                                            // 6
-         "  - id: 1\n"                                           // 7
-         "    size: [0.2, 0.1]\n"                                // 8
-         "    path:\n"                                           // 9
-         "      - {frame: 0, x: 10, y: 20, depth: 2}\n"          // 10
-         "      - {frame: 8, x: 50, y: 20, depth: 1}\n" +        // 11
-         object_extra;                                           // 12...
+  return "name: test\n"                                       // 1
+         "width: 64\n"                                        // 2
+         "height: 48\n"                                       // 3
+         "frames: 10\n"                                       // 4
+         "background: {depth: 5, colour: [120, 120, 120]}\n"  // 5
+         "objects:\n"                                         // 6
+         "  - id: 1\n"                                        // 7
+         "    size: [0.2, 0.1]\n"                             // 8
+         "    path:\n"                                        // 9
+         "      - {frame: 0, x: 10, y: 20, depth: 2}\n"       // 10
+         "      - {frame: 8, x: 50, y: 20, depth: 1}\n" +     // 11
+         object_extra;                                        // 12...
 }
 
 TEST(Scene, DefaultsAreValid) {
@@ -117,21 +117,22 @@ TEST(Scene, OmittedKeysTakeTheirDefaults) {
 }
 
 TEST(Scene, UnknownKeyNamesLineAndClosestKey) {
-  std::string message = ConfigErrorOf([] { ParseScene(SceneText("    colr: [1, 2, 3]\n"), "s.yaml"); });
+  std::string message =
+      ConfigErrorOf([] { ParseScene(SceneText("    colr: [1, 2, 3]\n"), "s.yaml"); });
   EXPECT_NE(message.find("s.yaml:12: unknown key 'colr' in objects.0"), std::string::npos)
       << message;
   EXPECT_NE(message.find("did you mean 'colour'"), std::string::npos) << message;
   // A misspelt required key is reported as the typo, not as a missing key.
   message = ConfigErrorOf([] {
-    ParseScene("background: {depth: 5}\nobjects:\n  - id: 1\n    size: [1, 1]\n"
-               "    path: [{frame: 0, x: 1, y: 2, dpth: 3}]\n",
-               "k.yaml");
+    ParseScene(
+        "background: {depth: 5}\nobjects:\n  - id: 1\n    size: [1, 1]\n"
+        "    path: [{frame: 0, x: 1, y: 2, dpth: 3}]\n",
+        "k.yaml");
   });
   EXPECT_NE(message.find("k.yaml:5: unknown key 'dpth'"), std::string::npos) << message;
   EXPECT_NE(message.find("did you mean 'depth'"), std::string::npos) << message;
   message = ConfigErrorOf([] { ParseScene("camera: {focal: 300}\n", "c.yaml"); });
-  EXPECT_NE(message.find("c.yaml:1: unknown key 'focal' in camera"), std::string::npos)
-      << message;
+  EXPECT_NE(message.find("c.yaml:1: unknown key 'focal' in camera"), std::string::npos) << message;
   message = ConfigErrorOf([] { ParseScene("widht: 30\n", "w.yaml"); });
   EXPECT_NE(message.find("did you mean 'width'"), std::string::npos) << message;
 }
@@ -149,6 +150,9 @@ TEST(Scene, BadValuesNameKeyAndLine) {
       {"    kind: face\n", "s.yaml:12: objects.0.kind: 'face' is not one of object, skin"},
       {"    blob: {lobes: 3}\n", "s.yaml:12: objects.0.blob: only valid with shape: blob"},
       {"    texture: -1\n", "s.yaml:12: objects.0.texture: value -1 out of range"},
+      {"    texture_cell: .inf\n", "s.yaml:12: objects.0.texture_cell: value .inf out of range"},
+      {"    oscillation: {amplitude: [.nan, 0], period: 4}\n",
+       "s.yaml:12: objects.0.oscillation.amplitude: element 0 = .nan out of range"},
       {"    oscillation: {amplitude: [3, 0]}\n",
        "s.yaml:12: objects.0.oscillation.period: required key is missing"},
       {"  - id: 1\n    size: [1, 1]\n    path: [{frame: 0, x: 0, y: 0, depth: 1}]\n",
@@ -159,26 +163,30 @@ TEST(Scene, BadValuesNameKeyAndLine) {
     EXPECT_NE(message.find(c.expected), std::string::npos) << c.extra << " -> " << message;
   }
   std::string message = ConfigErrorOf([] {
-    ParseScene("objects:\n  - id: 1\n    size: [1, 1]\n"
-               "    path: [{frame: 0, x: 0, y: 0, depth: -1}]\n",
-               "n.yaml");
+    ParseScene(
+        "objects:\n  - id: 1\n    size: [1, 1]\n"
+        "    path: [{frame: 0, x: 0, y: 0, depth: -1}]\n",
+        "n.yaml");
   });
-  EXPECT_NE(message.find("n.yaml:4: objects.0.path.0.depth: value -1 out of range: must be > 0"),
+  EXPECT_NE(message.find(
+                "n.yaml:4: objects.0.path.0.depth: value -1 out of range: must be in (0, 1e+06]"),
             std::string::npos)
       << message;
   message = ConfigErrorOf([] {
-    ParseScene("background: {depth: 3}\nobjects:\n  - id: 1\n    size: [1, 1]\n"
-               "    path: [{frame: 0, x: 0, y: 0, depth: 4}]\n",
-               "b.yaml");
+    ParseScene(
+        "background: {depth: 3}\nobjects:\n  - id: 1\n    size: [1, 1]\n"
+        "    path: [{frame: 0, x: 0, y: 0, depth: 4}]\n",
+        "b.yaml");
   });
   EXPECT_NE(message.find("b.yaml:5: objects.0.path.0.depth: depth 4 m is not in front of the "
                          "background"),
             std::string::npos)
       << message;
   message = ConfigErrorOf([] {
-    ParseScene("objects:\n  - id: 1\n    size: [1, 1]\n    path:\n"
-               "      - {frame: 5, x: 0, y: 0, depth: 1}\n      - {frame: 5, x: 1, y: 0, depth: 1}\n",
-               "f.yaml");
+    ParseScene(
+        "objects:\n  - id: 1\n    size: [1, 1]\n    path:\n"
+        "      - {frame: 5, x: 0, y: 0, depth: 1}\n      - {frame: 5, x: 1, y: 0, depth: 1}\n",
+        "f.yaml");
   });
   EXPECT_NE(message.find("f.yaml:6: objects.0.path.1.frame: keyframe frames must increase"),
             std::string::npos)
