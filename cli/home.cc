@@ -32,7 +32,9 @@ std::string AttendHome() {
   return home != nullptr && *home != '\0' ? home : ATTEND_SOURCE_ROOT;
 }
 
-std::string DefaultConfigPath() { return (fs::path(AttendHome()) / "configs" / "default.yaml").string(); }
+std::string DefaultConfigPath() {
+  return (fs::path(AttendHome()) / "configs" / "default.yaml").string();
+}
 
 std::string EnsureBundledSequence(bool quiet) {
   const fs::path scene_path = fs::path(AttendHome()) / "sequences" / "lab.yaml";
@@ -46,7 +48,8 @@ std::string EnsureBundledSequence(bool quiet) {
   if (fs::exists(target / "left") && ReadText(target / "scene.yaml") == scene_text) {
     return target.string();
   }
-  if (!quiet) std::cerr << "[attend] rendering the bundled sequence into " << target.string() << "\n";
+  if (!quiet)
+    std::cerr << "[attend] rendering the bundled sequence into " << target.string() << "\n";
   const Scene scene = LoadScene(scene_path.string());
   // Render beside the target and rename into place, so that a concurrent run never reads a
   // half-written sequence.

@@ -1,7 +1,7 @@
 // attend: visual attention on stereo image sequences. See README.md and SPEC 3.2.
 #include <CLI/CLI.hpp>
-#include <iostream>
 #include <cstdlib>
+#include <iostream>
 
 #include "cli/commands.h"
 #include "util/error.h"
@@ -34,7 +34,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     std::cerr << "attend: error: " << e.what() << "\n";
     const CLI::App* failing = app.get_subcommands().empty() ? &app : app.get_subcommands().front();
-    std::cerr << "Run '" << (failing == &app ? std::string("attend") : "attend " + failing->get_name())
+    std::cerr << "Run '"
+              << (failing == &app ? std::string("attend") : "attend " + failing->get_name())
               << " --help' for the options.\n";
     return static_cast<int>(attend::ExitStatus::kUsage);
   }

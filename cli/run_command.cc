@@ -65,8 +65,8 @@ void ParseFrameRange(const std::string& text, SequenceOptions* sequence) {
 }
 
 std::string SequenceName(const SequenceOptions& s) {
-  std::string path = !s.folder.empty()         ? s.folder
-                     : !s.left_video.empty()   ? s.left_video
+  std::string path = !s.folder.empty()               ? s.folder
+                     : !s.left_video.empty()         ? s.left_video
                      : !s.side_by_side_video.empty() ? s.side_by_side_video
                                                      : s.video;
   while (path.size() > 1 && path.back() == '/') path.pop_back();
@@ -109,10 +109,10 @@ int Run(const RunArguments& args) {
   request.overwrite = args.overwrite;
   request.config_path = config_path;
   request.command_line = args.command_line;
-  request.out_dir = !args.out.empty()            ? args.out
-                    : !options.output.dir.empty() ? options.output.dir
-                                                  : DefaultRunFolder("runs", config_path,
-                                                                     SequenceName(sequence));
+  request.out_dir = !args.out.empty() ? args.out
+                    : !options.output.dir.empty()
+                        ? options.output.dir
+                        : DefaultRunFolder("runs", config_path, SequenceName(sequence));
   request.stop = &g_stop_requested;
   const bool show_progress = !args.quiet && isatty(STDERR_FILENO);
   if (show_progress) request.on_progress = PrintProgress;
@@ -135,8 +135,9 @@ int Run(const RunArguments& args) {
 void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction* action) {
   auto args = std::make_shared<RunArguments>();
   CLI::App* run = app.add_subcommand(
-      "run", "Run the attention pipeline over a sequence and write a run folder (SPEC 3.3). "
-             "With no source it runs on the bundled sequence.");
+      "run",
+      "Run the attention pipeline over a sequence and write a run folder (SPEC 3.3). "
+      "With no source it runs on the bundled sequence.");
   run->add_option("--config", args->config,
                   "Configuration YAML (default: configs/default.yaml of the attend home)");
   auto* seq = run->add_option("--sequence", args->sequence,
@@ -150,7 +151,8 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
   seq->excludes(left, right, sbs, video);
   left->excludes(sbs, video);
   sbs->excludes(video);
-  run->add_option("--out", args->out, "Run folder (default: runs/<date>-<time>-<config>-<sequence>)");
+  run->add_option("--out", args->out,
+                  "Run folder (default: runs/<date>-<time>-<config>-<sequence>)");
   run->add_flag("--overwrite", args->overwrite, "Replace a previous run in a non-empty --out");
   run->add_option("--set", args->sets,
                   "Override a configuration key, the value parsed as YAML: --set select.max_new=3, "
@@ -159,9 +161,7 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
   run->add_option("--frames", args->frames, "Frame range FIRST:LAST, inclusive (10:50, 10:, :99)");
   run->add_flag("--quiet", args->quiet, "No progress line or report; errors only");
   args->command_line = command_line;
-  run->callback([args, action] {
-    *action = [args] { return Run(*args); };
-  });
+  run->callback([args, action] { *action = [args] { return Run(*args); }; });
 }
 
 }  // namespace attend

@@ -29,8 +29,7 @@ int Synth(const SynthArguments& args) {
   const Stopwatch watch;
   const SynthSummary summary = RenderSequence(scene, args.out, options);
   if (!args.quiet) {
-    std::cout << summary.BriefReport() << " in " << static_cast<int>(watch.ElapsedMs())
-              << " ms\n";
+    std::cout << summary.BriefReport() << " in " << static_cast<int>(watch.ElapsedMs()) << " ms\n";
   }
   return 0;
 }
@@ -40,8 +39,9 @@ int Synth(const SynthArguments& args) {
 void AddSynthCommand(CLI::App& app, const std::string&, CommandAction* action) {
   auto args = std::make_shared<SynthArguments>();
   CLI::App* synth = app.add_subcommand(
-      "synth", "Render a stereo sequence with exact ground truth from a scene description "
-               "(docs/SYNTH.md)");
+      "synth",
+      "Render a stereo sequence with exact ground truth from a scene description "
+      "(docs/SYNTH.md)");
   synth->add_option("SCENE", args->scene, "Scene description (YAML)")->required();
   synth->add_option("--out", args->out, "Sequence folder to write")->required();
   synth->add_option("--seed", args->seed, "Seed for textures and noise (default: the scene's)")

@@ -12,8 +12,8 @@
 namespace attend {
 
 struct FeatureSpec {
-  std::string name;    // plugin name, unique within the list
-  double weight = 1.0; // weight in the saliency sum, >= 0
+  std::string name;     // plugin name, unique within the list
+  double weight = 1.0;  // weight in the saliency sum, >= 0
   // The whole entry; `name` and `weight` are already marked as read, so a plugin reads its
   // own keys and then calls params.CheckNoUnknownKeys().
   ParamBlock params;

@@ -152,7 +152,8 @@ void ParamBlock::Override(const std::string& assignment) {
   std::string resolved;  // the path with list elements as indices
   for (size_t i = 0; i < parts.size(); ++i) {
     const std::string& part = parts[i];
-    if (part.empty()) throw ConfigError("--set " + assignment + ": empty key in '" + key_path + "'");
+    if (part.empty())
+      throw ConfigError("--set " + assignment + ": empty key in '" + key_path + "'");
     const bool last = i + 1 == parts.size();
     YAML::Node next;
     if (current.IsSequence()) {
@@ -280,7 +281,8 @@ int ParamBlock::GetInt(const std::string& key, int default_value, Range range) c
   if (Absent(node)) return default_value;
   int value = 0;
   if (!DecodeScalar(node, &value)) Fail(key, "expected an integer, got " + Describe(node));
-  if (!range.Contains(value)) Fail(key, "value " + node.Scalar() + " out of range: " + range.Describe());
+  if (!range.Contains(value))
+    Fail(key, "value " + node.Scalar() + " out of range: " + range.Describe());
   return value;
 }
 
@@ -289,7 +291,8 @@ double ParamBlock::GetDouble(const std::string& key, double default_value, Range
   if (Absent(node)) return default_value;
   double value = 0.0;
   if (!DecodeScalar(node, &value)) Fail(key, "expected a number, got " + Describe(node));
-  if (!range.Contains(value)) Fail(key, "value " + node.Scalar() + " out of range: " + range.Describe());
+  if (!range.Contains(value))
+    Fail(key, "value " + node.Scalar() + " out of range: " + range.Describe());
   return value;
 }
 

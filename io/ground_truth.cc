@@ -20,8 +20,8 @@ double ParseNumber(const std::string& text, const std::string& path, int line, c
     if (used == text.size() && std::isfinite(value)) return value;
   } catch (const std::exception&) {
   }
-  throw InputError(path + ":" + std::to_string(line) + ": field '" + field + "' is not a number: '" +
-                   text + "'");
+  throw InputError(path + ":" + std::to_string(line) + ": field '" + field +
+                   "' is not a number: '" + text + "'");
 }
 
 int ParseInteger(const std::string& text, const std::string& path, int line, const char* field) {

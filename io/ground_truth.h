@@ -19,8 +19,7 @@ struct GtObject {
 };
 
 // The header line of gt/objects.csv.
-inline constexpr const char* kObjectsCsvHeader =
-    "frame,id,x,y,w,h,visible_fraction,disparity,kind";
+inline constexpr const char* kObjectsCsvHeader = "frame,id,x,y,w,h,visible_fraction,disparity,kind";
 
 // Reads gt/objects.csv. Throws InputError naming the file and line of a malformed row.
 std::vector<GtObject> ReadObjectsCsv(const std::string& path);

@@ -51,8 +51,8 @@ cv::Mat ReadPfm(const std::string& path) {
     throw InputError(path + ": malformed PFM header (width, height, scale)");
   }
   if (width <= 0 || height <= 0 || width > (1 << 16) || height > (1 << 16) || scale == 0.0) {
-    throw InputError(path + ": invalid PFM size " + width_text + "x" + height_text +
-                     " or scale " + scale_text);
+    throw InputError(path + ": invalid PFM size " + width_text + "x" + height_text + " or scale " +
+                     scale_text);
   }
   const int channels = magic == "PF" ? 3 : 1;
   const bool file_little_endian = scale < 0.0;
@@ -62,10 +62,13 @@ cv::Mat ReadPfm(const std::string& path) {
   const size_t row_bytes = static_cast<size_t>(width) * channels * sizeof(float);
   for (int row = height - 1; row >= 0; --row) {
     in.read(reinterpret_cast<char*>(map.ptr<float>(row)), static_cast<std::streamsize>(row_bytes));
-    if (!in) throw InputError(path + ": truncated PFM data (expected " + std::to_string(height) + " rows)");
+    if (!in)
+      throw InputError(path + ": truncated PFM data (expected " + std::to_string(height) +
+                       " rows)");
     if (file_little_endian != host_little_endian) {
       auto* words = reinterpret_cast<uint32_t*>(map.ptr<float>(row));
-      for (size_t i = 0; i < static_cast<size_t>(width) * channels; ++i) words[i] = ByteSwap(words[i]);
+      for (size_t i = 0; i < static_cast<size_t>(width) * channels; ++i)
+        words[i] = ByteSwap(words[i]);
     }
   }
   return map;
@@ -82,7 +85,8 @@ void WritePfm(const std::string& path, const cv::Mat& map) {
       << (little ? "-1" : "1") << "\n";
   const size_t row_bytes = static_cast<size_t>(map.cols) * map.channels() * sizeof(float);
   for (int row = map.rows - 1; row >= 0; --row) {
-    out.write(reinterpret_cast<const char*>(map.ptr<float>(row)), static_cast<std::streamsize>(row_bytes));
+    out.write(reinterpret_cast<const char*>(map.ptr<float>(row)),
+              static_cast<std::streamsize>(row_bytes));
   }
   if (!out) throw InputError(path + ": error while writing the PFM file");
 }

@@ -504,8 +504,9 @@ std::string SequenceOptions::Describe() const {
 
 std::unique_ptr<FrameSource> FrameSource::Open(const SequenceOptions& options) {
   if (options.SourceCount() == 0) {
-    throw ConfigError("no sequence source is set (folder, left_video + right_video, "
-                      "side_by_side_video or video)");
+    throw ConfigError(
+        "no sequence source is set (folder, left_video + right_video, "
+        "side_by_side_video or video)");
   }
   const std::string problem = options.Check();
   if (!problem.empty()) throw ConfigError("sequence options: " + problem);

@@ -12,9 +12,9 @@ namespace attend {
 
 struct SequenceOptions {
   // At most one source may be set; FrameSource::Open needs exactly one.
-  std::string folder;              // SEQ: frames in SEQ/left and SEQ/right (monocular without
-                                   // right/), matched by sorted file name
-  std::string left_video;          // with right_video: a pair of videos
+  std::string folder;      // SEQ: frames in SEQ/left and SEQ/right (monocular without
+                           // right/), matched by sorted file name
+  std::string left_video;  // with right_video: a pair of videos
   std::string right_video;
   std::string side_by_side_video;  // left half | right half; an odd width is bad input
   std::string video;               // a monocular video
@@ -42,27 +42,27 @@ struct SequenceOptions {
 
 // What is known about an opened sequence.
 struct SequenceInfo {
-  std::string name;          // sequence.yaml name, or the folder/video stem
+  std::string name;  // sequence.yaml name, or the folder/video stem
   bool stereo = true;
-  double fps = 25.0;         // sequence.yaml or the video's; 25 when unknown
-  double focal_px = 0.0;     // sequence.yaml; 0 when unknown (at the native size)
-  double baseline_m = 0.0;   // sequence.yaml; 0 when unknown
-  cv::Size native_size;      // size of the source frames (one view)
-  cv::Size size;             // working size of the frames handed out
-  double scale_x = 1.0;      // size / native_size; disparities scale by scale_x
+  double fps = 25.0;        // sequence.yaml or the video's; 25 when unknown
+  double focal_px = 0.0;    // sequence.yaml; 0 when unknown (at the native size)
+  double baseline_m = 0.0;  // sequence.yaml; 0 when unknown
+  cv::Size native_size;     // size of the source frames (one view)
+  cv::Size size;            // working size of the frames handed out
+  double scale_x = 1.0;     // size / native_size; disparities scale by scale_x
   double scale_y = 1.0;
-  int frame_count = -1;      // frames this source will hand out (range and stride applied);
-                             // -1 when a video cannot tell. For videos it comes from the
-                             // container's header, which some containers only estimate.
-  std::string folder;        // the sequence folder ("" for videos); gt/ lives below it
+  int frame_count = -1;  // frames this source will hand out (range and stride applied);
+                         // -1 when a video cannot tell. For videos it comes from the
+                         // container's header, which some containers only estimate.
+  std::string folder;    // the sequence folder ("" for videos); gt/ lives below it
 };
 
 struct StereoFrame {
-  int index = 0;             // index in the source (before stride), the frame's number
-  cv::Mat left;              // CV_8UC3, BGR, working size
-  cv::Mat right;             // CV_8UC3, BGR, working size; empty when monocular
-  std::string left_path;     // the file, or "VIDEO#index" for videos
-  std::string right_path;    // "" when monocular; the same video for side-by-side
+  int index = 0;           // index in the source (before stride), the frame's number
+  cv::Mat left;            // CV_8UC3, BGR, working size
+  cv::Mat right;           // CV_8UC3, BGR, working size; empty when monocular
+  std::string left_path;   // the file, or "VIDEO#index" for videos
+  std::string right_path;  // "" when monocular; the same video for side-by-side
 };
 
 class FrameSource {

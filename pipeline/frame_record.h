@@ -13,17 +13,17 @@ namespace attend {
 struct TargetRecord {
   int id = 0;
   cv::Rect bbox;
-  int area = 0;                   // pixels of its mask
-  double saliency = 0.0;          // mean uninhibited saliency over its mask
-  std::string state = "new";      // new, tracked, occluded, lost, released
-  std::string kind = "object";    // object or skin
-  std::string similarity = "hsv"; // the tracker's similarity policy: hsv or skin
+  int area = 0;                    // pixels of its mask
+  double saliency = 0.0;           // mean uninhibited saliency over its mask
+  std::string state = "new";       // new, tracked, occluded, lost, released
+  std::string kind = "object";     // object or skin
+  std::string similarity = "hsv";  // the tracker's similarity policy: hsv or skin
 };
 
 struct FrameRecord {
-  int frame = 0;                  // index of the frame in its sequence
+  int frame = 0;  // index of the frame in its sequence
   std::vector<TargetRecord> targets;
-  std::vector<int> new_ids;       // targets first attended in this frame
+  std::vector<int> new_ids;  // targets first attended in this frame
   StageTimes timings;
 };
 

@@ -93,7 +93,9 @@ class Reader {
 class Writer {
  public:
   Writer() { out_ << YAML::BeginMap; }
-  void BeginSection(const std::string& key) { out_ << YAML::Key << key << YAML::Value << YAML::BeginMap; }
+  void BeginSection(const std::string& key) {
+    out_ << YAML::Key << key << YAML::Value << YAML::BeginMap;
+  }
   void EndSection(const std::function<std::string()>&) { out_ << YAML::EndMap; }
   template <typename T>
   void Field(const std::string& key, T* value, Range = {}) {
@@ -149,7 +151,9 @@ class KeyLister {
   void BeginSection(const std::string& key) { prefix_.push_back(key); }
   void EndSection(const std::function<std::string()>&) { prefix_.pop_back(); }
   template <typename T>
-  void Field(const std::string& key, T*, Range = {}) { Add(key); }
+  void Field(const std::string& key, T*, Range = {}) {
+    Add(key);
+  }
   void Choice(const std::string& key, std::string*, const std::vector<std::string>&) { Add(key); }
   void ChoiceList(const std::string& key, std::vector<std::string>*,
                   const std::vector<std::string>&) {

@@ -51,7 +51,8 @@ nlohmann::ordered_json SummaryJson(const RunSummary& summary, const SequenceInfo
           {"timings_ms", timings},
           {"targets_attended", summary.targets_attended},
           {"interrupted", summary.interrupted},
-          {"error", summary.error.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(summary.error)},
+          {"error", summary.error.empty() ? nlohmann::ordered_json()
+                                          : nlohmann::ordered_json(summary.error)},
           {"sequence",
            {{"name", info.name},
             {"source", request.options.sequence.Describe()},
@@ -84,8 +85,7 @@ std::string DefaultRunFolder(const std::string& parent, const std::string& confi
                              const std::string& sequence_name) {
   const std::string stem = config_path.empty() ? "config" : fs::path(config_path).stem().string();
   const std::string base =
-      (fs::path(parent) / (LocalTime("%Y%m%d-%H%M%S") + "-" + stem + "-" + sequence_name))
-          .string();
+      (fs::path(parent) / (LocalTime("%Y%m%d-%H%M%S") + "-" + stem + "-" + sequence_name)).string();
   std::string candidate = base;
   for (int suffix = 2; fs::exists(candidate); ++suffix) {
     candidate = base + "-" + std::to_string(suffix);
@@ -142,8 +142,8 @@ RunSummary RunSequence(const RunRequest& request) {
       ++summary.frames;
       if (request.on_progress) {
         const double seconds = wall.ElapsedMs() / 1000.0;
-        request.on_progress({summary.frames, info.frame_count,
-                             seconds > 0 ? summary.frames / seconds : 0.0});
+        request.on_progress(
+            {summary.frames, info.frame_count, seconds > 0 ? summary.frames / seconds : 0.0});
       }
     }
   } catch (const Error& e) {

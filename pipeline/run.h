@@ -19,12 +19,12 @@ struct RunProgress {
 };
 
 struct RunRequest {
-  AttendOptions options;          // sequence source already resolved
-  std::string out_dir;            // the run folder
-  bool overwrite = false;         // replace a previous run in out_dir
-  std::string config_path;        // recorded in the summary
-  std::string command_line;       // recorded in the summary
-  const std::atomic<bool>* stop = nullptr;          // finish the frame, then stop
+  AttendOptions options;                                // sequence source already resolved
+  std::string out_dir;                                  // the run folder
+  bool overwrite = false;                               // replace a previous run in out_dir
+  std::string config_path;                              // recorded in the summary
+  std::string command_line;                             // recorded in the summary
+  const std::atomic<bool>* stop = nullptr;              // finish the frame, then stop
   std::function<void(const RunProgress&)> on_progress;  // after every frame
 };
 
@@ -32,11 +32,11 @@ struct RunSummary {
   std::string dir;
   int frames = 0;
   double wall_seconds = 0.0;
-  double fps = 0.0;            // frames / wall_seconds
-  StageTimes mean_ms;          // per-stage mean milliseconds a frame
+  double fps = 0.0;    // frames / wall_seconds
+  StageTimes mean_ms;  // per-stage mean milliseconds a frame
   int targets_attended = 0;
-  bool interrupted = false;    // stopped before the end of the range
-  std::string error;           // why it stopped early, when it did on an error
+  bool interrupted = false;  // stopped before the end of the range
+  std::string error;         // why it stopped early, when it did on an error
 
   // Two lines for the terminal: frames, fps, the slowest stages, where the outputs are.
   std::string BriefReport() const;

@@ -12,9 +12,9 @@ namespace fs = std::filesystem;
 namespace attend {
 
 const std::vector<std::string>& RunFolder::OwnEntries() {
-  static const std::vector<std::string> entries = {
-      "config.yaml", "frames.jsonl", "summary.json", "overlay.avi", "saliency",
-      "inhibition",  "inhibited",    "features",     "overlay"};
+  static const std::vector<std::string> entries = {"config.yaml", "frames.jsonl", "summary.json",
+                                                   "overlay.avi", "saliency",     "inhibition",
+                                                   "inhibited",   "features",     "overlay"};
   return entries;
 }
 

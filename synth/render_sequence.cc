@@ -62,7 +62,7 @@ void PrepareFolder(const fs::path& folder, bool overwrite) {
       if (!overwrite) {
         throw ConfigError(folder.string() +
                           ": the output folder is not empty; choose an empty or new folder, or "
-                          "allow overwriting");
+                          "allow overwriting (--overwrite)");
       }
       for (const fs::path& own : {folder / "left", folder / "right", folder / "gt" / "disparity",
                                   folder / "gt" / "objects.csv", folder / "sequence.yaml"}) {
@@ -96,8 +96,11 @@ void WritePng(const fs::path& path, const cv::Mat& image) {
 void WriteSequenceYaml(const fs::path& path, const Scene& scene) {
   std::ofstream out(path);
   if (!out) throw InputError(path.string() + ": cannot write the sequence description");
-  out << "# Rendered by attend synth from " << (scene.source.empty() ? "a scene" : scene.source)
-      << ", seed " << scene.seed << ".\n"
+  // The scene's file name only, so that the same scene read from another folder gives the
+  // same bytes.
+  const std::string scene_file =
+      scene.source.empty() ? "a scene" : fs::path(scene.source).filename().string();
+  out << "# Rendered by attend synth from " << scene_file << ", seed " << scene.seed << ".\n"
       << "name: " << QuotedYaml(scene.name) << "\n"
       << "fps: " << ShortestNumber(scene.fps) << "\n"
       << "focal_px: " << ShortestNumber(scene.focal_px) << "\n"
@@ -159,7 +162,13 @@ SynthSummary RenderSequence(const Scene& scene, const std::string& out_folder,
   const int threads =
       std::clamp(options.threads > 0 ? options.threads : std::max(hardware, 1), 1, used.frames);
   std::vector<std::thread> workers;
-  for (int i = 1; i < threads; ++i) workers.emplace_back(work);
+  for (int i = 1; i < threads; ++i) {
+    try {
+      workers.emplace_back(work);
+    } catch (const std::system_error&) {
+      break;  // no more threads to be had: the ones running take all frames
+    }
+  }
   work();
   for (std::thread& worker : workers) worker.join();
   if (failure) std::rethrow_exception(failure);

@@ -1,10 +1,8 @@
 #include "synth/scene.h"
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <initializer_list>
-#include <limits>
 #include <map>
 #include <sstream>
 
@@ -183,8 +181,9 @@ Scene ReadScene(const ParamBlock& root) {
   const std::string& source = root.source();
   Scene scene;
   scene.source = source;
-  scene.name = root.GetString("name", std::filesystem::path(source).stem().string());
-  if (scene.name.empty()) scene.name = "synthetic";
+  const std::string stem = std::filesystem::path(source).stem().string();
+  scene.name = root.GetString("name", stem.empty() ? scene.name : stem);
+  if (scene.name.empty()) root.Fail("name", "must not be empty");
   scene.width = root.GetInt("width", scene.width, Range::Closed(kMinImageSide, kMaxImageSide));
   scene.height = root.GetInt("height", scene.height, Range::Closed(kMinImageSide, kMaxImageSide));
   scene.frames = root.GetInt("frames", scene.frames, Range::AtLeast(1));

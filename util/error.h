@@ -10,9 +10,9 @@ namespace attend {
 // Exit statuses of the `attend` program (SPEC 3.2).
 enum class ExitStatus : int {
   kOk = 0,
-  kInternal = 1,   // a bug: an internal invariant did not hold
-  kUsage = 2,      // bad command line or configuration
-  kBadInput = 3,   // bad input data: a missing, unreadable or inconsistent sequence or image
+  kInternal = 1,  // a bug: an internal invariant did not hold
+  kUsage = 2,     // bad command line or configuration
+  kBadInput = 3,  // bad input data: a missing, unreadable or inconsistent sequence or image
 };
 
 // Base of every error that is reported to the user. The message says what and where

@@ -1,7 +1,7 @@
 // The attend program end to end: exit statuses (SPEC 3.2) and the messages that name the
 // culprit.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -111,8 +111,9 @@ TEST(Cli, ConfigurationErrorsExitTwoNamingFileLineAndKey) {
   dir.Write("bad.yaml", "sequence:\n  stride: 1\n  strid: 2\n");
   r = Attend(dir, {"run", "--config", "bad.yaml", "--sequence", "seq"});
   EXPECT_EQ(r.status, 2);
-  EXPECT_TRUE(Contains(r.err, "attend: error: bad.yaml:3: unknown key 'strid' in sequence (did "
-                              "you mean 'stride'?)"))
+  EXPECT_TRUE(Contains(r.err,
+                       "attend: error: bad.yaml:3: unknown key 'strid' in sequence (did "
+                       "you mean 'stride'?)"))
       << r.err;
 
   r = Attend(dir, {"run", "--sequence", "seq", "--set", "sequence.width=-5"});
@@ -176,7 +177,8 @@ TEST(Cli, CtrlCFinishesTheFrameAndWritesAnInterruptedSummary) {
                                 "sequence.width=1600", "--set", "sequence.height=1200"});
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   while (std::chrono::steady_clock::now() < deadline &&
-         (!fs::exists(dir.File("run/frames.jsonl")) || fs::file_size(dir.File("run/frames.jsonl")) == 0)) {
+         (!fs::exists(dir.File("run/frames.jsonl")) ||
+          fs::file_size(dir.File("run/frames.jsonl")) == 0)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   kill(pid, SIGINT);

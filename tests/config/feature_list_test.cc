@@ -71,9 +71,8 @@ TEST(FeatureList, RejectsMissingNameNegativeWeightDuplicatesAndNonMaps) {
   EXPECT_NE(message.find("c.yaml:3: features.1.name: feature 'a' is listed twice"),
             std::string::npos)
       << message;
-  message = ConfigErrorOf([] {
-    ReadFeatureList(ParamBlock::Parse("features:\n  - skin\n", "c.yaml"), "features");
-  });
+  message = ConfigErrorOf(
+      [] { ReadFeatureList(ParamBlock::Parse("features:\n  - skin\n", "c.yaml"), "features"); });
   EXPECT_NE(message.find("expected a map of keys"), std::string::npos) << message;
 }
 

@@ -49,7 +49,8 @@ TEST(ParamBlock, UnknownKeyNamesKeyLineAndClosestKnownKey) {
 TEST(ParamBlock, WrongTypeAndOutOfRangeNameKeyAndLine) {
   const ParamBlock block = ParamBlock::Parse("x: 1\ny: abc\nz: -2\nw: 2.5\n", "c.yaml");
   std::string message = ConfigErrorOf([&] { block.GetDouble("y", 0.0); });
-  EXPECT_NE(message.find("c.yaml:2: y: expected a number, got 'abc'"), std::string::npos) << message;
+  EXPECT_NE(message.find("c.yaml:2: y: expected a number, got 'abc'"), std::string::npos)
+      << message;
   message = ConfigErrorOf([&] { block.GetDouble("z", 0.0, Range::AtLeast(0)); });
   EXPECT_NE(message.find("c.yaml:3: z: value -2 out of range: must be >= 0"), std::string::npos)
       << message;

@@ -117,7 +117,9 @@ TEST(OptionsIo, ErrorsNameKeyLineAndClosestKey) {
             std::string::npos)
       << message;
 
-  message = ConfigErrorOf([&] { LoadOptions(DefaultConfig(), {"output.video=true", "output.dump=[]"}); });
+  message = ConfigErrorOf([&] {
+    LoadOptions(DefaultConfig(), {"output.video=true", "output.dump=[]"});
+  });
   EXPECT_NE(message.find("video needs 'overlay' in dump"), std::string::npos) << message;
 }
 

@@ -32,8 +32,7 @@ nlohmann::json ReadJson(const std::string& path) {
 
 RunRequest TinyRequest(const testing::TempDir& dir, int frames) {
   RunRequest request;
-  request.options.sequence.folder =
-      testing::MakeFolderSequence(dir.File("seq"), frames, 32, 24);
+  request.options.sequence.folder = testing::MakeFolderSequence(dir.File("seq"), frames, 32, 24);
   request.options.sequence.resize = "native";
   request.out_dir = dir.File("run");
   return request;
@@ -119,8 +118,8 @@ TEST(RunSequence, BadSourceFailsBeforeCreatingTheRunFolder) {
 TEST(RunSequence, DisparityOnAMonocularSourceIsAConfigurationError) {
   testing::TempDir dir;
   RunRequest request;
-  request.options = ReadOptions(
-      ParamBlock::Parse("features:\n  - {name: colour_contrast}\n  - {name: disparity}\n", "c.yaml"));
+  request.options = ReadOptions(ParamBlock::Parse(
+      "features:\n  - {name: colour_contrast}\n  - {name: disparity}\n", "c.yaml"));
   request.options.sequence.folder = testing::MakeFolderSequence(dir.File("mono"), 2, 16, 16, false);
   request.out_dir = dir.File("run");
   try {

@@ -20,7 +20,8 @@ std::string MakeFolderSequence(const std::string& folder, int frames, int width,
   std::filesystem::create_directories(std::filesystem::path(folder) / "left");
   if (stereo) std::filesystem::create_directories(std::filesystem::path(folder) / "right");
   for (int i = 0; i < frames; ++i) {
-    cv::imwrite(FramePath(folder, "left", i), cv::Mat(height, width, CV_8UC3, cv::Scalar(i, 100, 200)));
+    cv::imwrite(FramePath(folder, "left", i),
+                cv::Mat(height, width, CV_8UC3, cv::Scalar(i, 100, 200)));
     if (stereo) {
       cv::imwrite(FramePath(folder, "right", i),
                   cv::Mat(height, width, CV_8UC3, cv::Scalar(i, 50, 150)));

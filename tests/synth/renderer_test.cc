@@ -164,6 +164,16 @@ TEST(SceneRenderer, HalfOutOfTheImageHasFractionOneHalf) {
   EXPECT_EQ(FindGt(outside, 1)->visible_fraction, 0.0);
 }
 
+TEST(SceneRenderer, ObjectMuchLargerThanTheImageCoversItAndCountsItsArea) {
+  Scene scene = BaseScene();
+  scene.objects = {Box(1, 32, 24, 0.05, 6400, 4000)};  // 6400 x 4000 px: its area is counted
+  const RenderedFrame frame = SceneRenderer(scene).Render(0);
+  const GtObject* gt = FindGt(frame, 1);
+  EXPECT_EQ(gt->box, cv::Rect2d(0, 0, 64, 48));
+  EXPECT_NEAR(gt->visible_fraction, 64.0 * 48.0 / (6400.0 * 4000.0), 1e-12);
+  EXPECT_DOUBLE_EQ(gt->disparity, 200.0);
+}
+
 TEST(SceneRenderer, GroundTruthBoxesAreTheBoundingBoxesOfTheIdMap) {
   Scene scene = BaseScene();
   scene.objects = {Box(1, 20, 20, 2.0, 20, 16), Box(2, 28, 24, 1.0, 14, 14),

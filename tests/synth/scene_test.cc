@@ -195,6 +195,8 @@ TEST(Scene, BadValuesNameKeyAndLine) {
   EXPECT_NE(message.find("objects.0.path: required key is missing"), std::string::npos) << message;
   message = ConfigErrorOf([] { ParseScene("objects:\n  - id: 1\n    path: []\n", "e.yaml"); });
   EXPECT_NE(message.find("objects.0.size: required key is missing"), std::string::npos) << message;
+  message = ConfigErrorOf([] { ParseScene("name: ''\n", "m.yaml"); });
+  EXPECT_NE(message.find("m.yaml:1: name: must not be empty"), std::string::npos) << message;
   message = ConfigErrorOf([] { ParseScene("width: 8\n", "w.yaml"); });
   EXPECT_NE(message.find("w.yaml:1: width: value 8 out of range: must be in [16, 8192]"),
             std::string::npos)
