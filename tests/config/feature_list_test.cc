@@ -4,19 +4,15 @@
 
 #include <functional>
 
+#include "tests/support/error_message.h"
 #include "util/error.h"
 
 namespace attend {
 namespace {
 
-std::string ConfigErrorOf(const std::function<void()>& body) {
-  try {
-    body();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ConfigErrorOf;
+using testing::ErrorOf;
+using testing::InputErrorOf;
 
 constexpr const char* kList =
     "features:\n"

@@ -5,22 +5,16 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/error_message.h"
 #include "tests/support/temp_dir.h"
 #include "util/error.h"
 
 namespace attend {
 namespace {
 
-// Runs `body` and returns the InputError message it throws ("" if none).
-template <typename Body>
-std::string InputErrorOf(Body body) {
-  try {
-    body();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ConfigErrorOf;
+using testing::ErrorOf;
+using testing::InputErrorOf;
 
 GtObject Object(int frame, int id, cv::Rect2d box, double visible, double disparity,
                 const std::string& kind) {

@@ -9,24 +9,18 @@
 #include <limits>
 #include <string>
 
+#include "tests/support/error_message.h"
 #include "tests/support/temp_dir.h"
 #include "util/error.h"
 
 namespace attend {
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
+using testing::ConfigErrorOf;
+using testing::ErrorOf;
+using testing::InputErrorOf;
 
-// Runs `body` and returns the InputError message it throws ("" if none).
-template <typename Body>
-std::string InputErrorOf(Body body) {
-  try {
-    body();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // True when both maps have the same type, size and bits (so infinities compare equal).
 bool SameBits(const cv::Mat& a, const cv::Mat& b) {

@@ -9,11 +9,16 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/error_message.h"
 #include "tests/support/temp_dir.h"
 #include "util/error.h"
 
 namespace attend {
 namespace {
+
+using testing::ConfigErrorOf;
+using testing::ErrorOf;
+using testing::InputErrorOf;
 
 namespace fs = std::filesystem;
 
@@ -61,17 +66,6 @@ SequenceOptions FolderOptions(const std::string& folder, const std::string& resi
   options.folder = folder;
   options.resize = resize;
   return options;
-}
-
-// Runs `body` and returns the message of the Error of type E it throws ("" if none).
-template <typename E, typename Body>
-std::string ErrorOf(Body body) {
-  try {
-    body();
-  } catch (const E& e) {
-    return e.what();
-  }
-  return "";
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -6,12 +6,17 @@
 #include <functional>
 #include <sstream>
 
+#include "tests/support/error_message.h"
 #include "tests/support/temp_dir.h"
 #include "util/error.h"
 #include "util/strings.h"
 
 namespace attend {
 namespace {
+
+using testing::ConfigErrorOf;
+using testing::ErrorOf;
+using testing::InputErrorOf;
 
 std::string DefaultConfig() { return testing::ProjectRoot() + "/configs/default.yaml"; }
 
@@ -20,15 +25,6 @@ std::string ReadText(const std::string& path) {
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
-}
-
-std::string ConfigErrorOf(const std::function<void()>& body) {
-  try {
-    body();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(OptionsIo, StructDefaultsAreValid) {

@@ -2,22 +2,16 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/error_message.h"
 #include "tests/support/temp_dir.h"
 #include "util/error.h"
 
 namespace attend {
 namespace {
 
-// Runs `body` and returns the ConfigError message it throws ("" if it throws none).
-template <typename Body>
-std::string ConfigErrorOf(Body body) {
-  try {
-    body();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ConfigErrorOf;
+using testing::ErrorOf;
+using testing::InputErrorOf;
 
 // A valid scene with one object; `object_extra` is appended to the object's keys.
 std::string SceneText(const std::string& object_extra = "") {
