@@ -13,6 +13,7 @@
 #include "pipeline/options_io.h"
 #include "pipeline/run.h"
 #include "util/error.h"
+#include "util/timer.h"
 
 namespace attend {
 
@@ -75,6 +76,11 @@ std::string SequenceName(const SequenceOptions& s) {
 }
 
 void PrintProgress(const RunProgress& progress) {
+  // Ten updates a second are enough to read; more would slow a fast run down.
+  static Stopwatch since_last;
+  const bool last = progress.total > 0 && progress.done == progress.total;
+  if (progress.done > 1 && !last && since_last.ElapsedMs() < 100.0) return;
+  since_last.Restart();
   std::ostringstream line;
   line << "\r[attend] frame " << progress.done;
   if (progress.total > 0) line << "/" << progress.total;

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Configures and builds attend in Release into build/ (or $ATTEND_BUILD_DIR).
+# Configures attend in Release into build/ (or $ATTEND_BUILD_DIR) and builds the given targets
+# (all when none is given).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${ATTEND_BUILD_DIR:-$root/build}"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
-cmake --build "$build" -j"$(nproc)"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+targets=()
+for target in "$@"; do targets+=(--target "$target"); done
+cmake --build "$build" -j"$(nproc)" "${targets[@]}"

@@ -4,6 +4,6 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/install_deps.sh"
-"$root/scripts/build.sh"
+"$root/scripts/build.sh" attend
 cd "$root"
 "${ATTEND_BUILD_DIR:-$root/build}/attend" run "$@"

@@ -3,6 +3,6 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/install_deps.sh"
-"$root/scripts/build.sh" -DATTEND_BUILD_TESTS=ON
+"$root/scripts/build.sh"
 cd "${ATTEND_BUILD_DIR:-$root/build}"
 ctest --output-on-failure --timeout 300 -j"$(nproc)"
