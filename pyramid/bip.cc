@@ -1,0 +1,389 @@
+#include "pyramid/bip.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "util/error.h"
+
+namespace attend {
+
+namespace {
+
+// The 8-neighbourhood, in raster order; ties between equally similar neighbours go to the
+// first one in this order.
+constexpr int kDx[8] = {-1, 0, 1, -1, 1, -1, 0, 1};
+constexpr int kDy[8] = {-1, -1, -1, 0, 0, 1, 1, 1};
+
+inline float Distance2(const float* a, const float* b) {
+  const float d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
+  return d0 * d0 + d1 * d1 + d2 * d2;
+}
+
+inline uint64_t EdgeKey(int a, int b) {
+  const auto lo = static_cast<uint64_t>(std::min(a, b));
+  const auto hi = static_cast<uint64_t>(std::max(a, b));
+  return (lo << 32) | hi;
+}
+
+// Keeps the most similar candidate seen so far.
+struct Best {
+  int id = -1;
+  float distance2 = std::numeric_limits<float>::infinity();
+  void Offer(int candidate, float d2) {
+    if (d2 < distance2) {
+      distance2 = d2;
+      id = candidate;
+    }
+  }
+};
+
+}  // namespace
+
+std::string BipOptions::Check() const {
+  if (max_levels < 1) return "max_levels must be >= 1, got " + std::to_string(max_levels);
+  return "";
+}
+
+int BipLevel::CountRegular() const {
+  return static_cast<int>(std::count(hom.begin(), hom.end(), uint8_t{1}));
+}
+
+BipBuilder::BipBuilder(BipOptions options) : options_(options) {
+  const std::string problem = options_.Check();
+  ATTEND_CHECK(problem.empty()) << problem;
+}
+
+const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& policy,
+                             const cv::Mat& mask) {
+  ATTEND_CHECK(features.type() == CV_32FC3 && !features.empty())
+      << "BIP features must be a non-empty CV_32FC3 image";
+  ATTEND_CHECK(mask.empty() || (mask.type() == CV_8UC1 && mask.size() == features.size()))
+      << "the BIP mask must be CV_8UC1 of the features' size";
+  const int width = features.cols, height = features.rows;
+  if (levels_.empty()) levels_.resize(1);
+
+  BipLevel& base = levels_[0];
+  base.cols = width;
+  base.rows = height;
+  base.num_virtual = 0;
+  const size_t cells = static_cast<size_t>(width) * height;
+  base.hom.resize(cells);
+  base.area.resize(cells);
+  base.parent.assign(cells, -1);
+  base.feature.resize(3 * cells);
+  base.edges.clear();
+  for (int row = 0; row < height; ++row) {
+    const float* in = features.ptr<float>(row);
+    std::copy(in, in + 3 * width, base.feature.begin() + 3 * static_cast<size_t>(row) * width);
+    const uchar* inside = mask.empty() ? nullptr : mask.ptr<uchar>(row);
+    for (int col = 0; col < width; ++col) {
+      const uint8_t hom = inside == nullptr || inside[col] != 0 ? 1 : 0;
+      base.hom[static_cast<size_t>(row) * width + col] = hom;
+      base.area[static_cast<size_t>(row) * width + col] = hom;
+    }
+  }
+
+  bip_.levels_ = &levels_;
+  bip_.width_ = width;
+  bip_.height_ = height;
+  bip_.top_regular_level_ = static_cast<int>(std::floor(std::log2(std::min(width, height))));
+  bip_.thresholds_.clear();
+  bip_.num_levels_ = 1;
+  for (int l = 0; l + 1 < options_.max_levels; ++l) {
+    const float threshold = policy.Threshold(l, bip_.top_regular_level_);
+    bip_.thresholds_.push_back(threshold);
+    BuildLevel(l, threshold);
+    const BipLevel& up = levels_[l + 1];
+    if (up.num_virtual == 0 && up.CountRegular() == 0) break;  // the stop rule
+    bip_.num_levels_ = l + 2;
+  }
+  return bip_;
+}
+
+void BipBuilder::BuildLevel(int l, float threshold) {
+  if (static_cast<int>(levels_.size()) < l + 2) levels_.resize(l + 2);
+  BipLevel& up = levels_[l + 1];
+  const BipLevel& cur = levels_[l];
+  up.cols = cur.cols / 2;
+  up.rows = cur.rows / 2;
+  up.num_virtual = 0;
+  const size_t cells = static_cast<size_t>(up.cols) * up.rows;
+  up.hom.assign(cells, 0);
+  up.area.assign(cells, 0);
+  up.parent.assign(cells, -1);
+  up.feature.assign(3 * cells, 0.f);
+  up.edges.clear();
+
+  const float t2 = threshold * threshold;
+  RegularDecimation(l, t2);  // stage 1
+  BuildAdjacency(l);
+  RegularOrphans(l, t2);  // stage 2
+  VirtualOrphans(l, t2);  // stage 3
+  UpdateParents(l);
+  IntraLevelEdges(l);  // stage 4
+}
+
+// Stage 1: (i, j, l+1) is a regular vertex iff its four sons are regular and pairwise similar.
+void BipBuilder::RegularDecimation(int l, float t2) {
+  BipLevel& cur = levels_[l];
+  BipLevel& up = levels_[l + 1];
+  for (int row = 0; row < up.rows; ++row) {
+    for (int col = 0; col < up.cols; ++col) {
+      const int a = 2 * row * cur.cols + 2 * col;
+      const int sons[4] = {a, a + 1, a + cur.cols, a + cur.cols + 1};
+      bool homogeneous = true;
+      for (int s = 0; s < 4 && homogeneous; ++s) homogeneous = cur.hom[sons[s]] != 0;
+      for (int s = 0; s < 4 && homogeneous; ++s) {
+        for (int t = s + 1; t < 4 && homogeneous; ++t) {
+          homogeneous = Distance2(cur.Feature(sons[s]), cur.Feature(sons[t])) < t2;
+        }
+      }
+      if (!homogeneous) continue;
+      const int id = row * up.cols + col;
+      up.hom[id] = 1;
+      for (int s : sons) cur.parent[s] = id;
+    }
+  }
+}
+
+void BipBuilder::BuildAdjacency(int l) {
+  const BipLevel& cur = levels_[l];
+  const int ids = cur.num_ids();
+  adjacency_offsets_.assign(ids + 1, 0);
+  for (uint64_t key : cur.edges) {
+    ++adjacency_offsets_[(key >> 32) + 1];
+    ++adjacency_offsets_[(key & 0xffffffffu) + 1];
+  }
+  for (int i = 0; i < ids; ++i) adjacency_offsets_[i + 1] += adjacency_offsets_[i];
+  adjacency_.resize(2 * cur.edges.size());
+  edge_scratch_.assign(adjacency_offsets_.begin(), adjacency_offsets_.end() - 1);  // fill cursor
+  for (uint64_t key : cur.edges) {
+    const auto a = static_cast<int32_t>(key >> 32), b = static_cast<int32_t>(key & 0xffffffffu);
+    adjacency_[edge_scratch_[a]++] = b;
+    adjacency_[edge_scratch_[b]++] = a;
+  }
+}
+
+int BipBuilder::NewVirtual(BipLevel* up) {
+  const int id = up->num_cells() + up->num_virtual;
+  ++up->num_virtual;
+  up->feature.insert(up->feature.end(), 3, 0.f);
+  up->area.push_back(0);
+  up->parent.push_back(-1);
+  return id;
+}
+
+// Stage 2, in raster order: parent search (condition 1), else intra-level twining
+// (condition 2).
+void BipBuilder::RegularOrphans(int l, float t2) {
+  BipLevel& cur = levels_[l];
+  BipLevel& up = levels_[l + 1];
+  const bool across = options_.link_across_kinds;
+  for (int row = 0; row < cur.rows; ++row) {
+    for (int col = 0; col < cur.cols; ++col) {
+      const int id = row * cur.cols + col;
+      if (cur.hom[id] == 0 || cur.parent[id] >= 0) continue;
+      const float* colour = cur.Feature(id);
+      Best parented, orphan;
+      for (int k = 0; k < 8; ++k) {
+        const int x = col + kDx[k], y = row + kDy[k];
+        if (x < 0 || y < 0 || x >= cur.cols || y >= cur.rows) continue;
+        const int n = y * cur.cols + x;
+        if (cur.hom[n] == 0) continue;
+        const float d2 = Distance2(colour, cur.Feature(n));
+        if (cur.parent[n] >= 0) {
+          parented.Offer(n, d2);
+        } else {
+          orphan.Offer(n, d2);
+        }
+      }
+      if (across) {
+        for (int e = adjacency_offsets_[id]; e < adjacency_offsets_[id + 1]; ++e) {
+          const int n = adjacency_[e];
+          if (!cur.IsVirtual(n)) continue;
+          const float d2 = Distance2(colour, cur.Feature(n));
+          if (cur.parent[n] >= 0) {
+            parented.Offer(n, d2);
+          } else {
+            orphan.Offer(n, d2);
+          }
+        }
+      }
+      if (parented.distance2 < t2) {
+        cur.parent[id] = cur.parent[parented.id];
+      } else if (orphan.distance2 < t2) {
+        const int fresh = NewVirtual(&up);
+        cur.parent[id] = fresh;
+        cur.parent[orphan.id] = fresh;
+      }
+    }
+  }
+}
+
+// Stage 3, in order of creation: virtual parent search, else virtual linking (condition 3).
+void BipBuilder::VirtualOrphans(int l, float t2) {
+  BipLevel& cur = levels_[l];
+  BipLevel& up = levels_[l + 1];
+  const bool across = options_.link_across_kinds;
+  for (int id = cur.num_cells(); id < cur.num_ids(); ++id) {
+    if (cur.parent[id] >= 0) continue;
+    const float* colour = cur.Feature(id);
+    Best parented, orphan;
+    for (int e = adjacency_offsets_[id]; e < adjacency_offsets_[id + 1]; ++e) {
+      const int n = adjacency_[e];
+      const bool is_virtual = cur.IsVirtual(n);
+      if (!is_virtual && !across) continue;
+      const float d2 = Distance2(colour, cur.Feature(n));
+      if (cur.parent[n] >= 0) {
+        parented.Offer(n, d2);
+      } else {
+        orphan.Offer(n, d2);  // a regular orphan only with link_across_kinds
+      }
+    }
+    if (parented.distance2 < t2) {
+      cur.parent[id] = cur.parent[parented.id];
+    } else if (orphan.distance2 < t2) {
+      const int fresh = NewVirtual(&up);
+      cur.parent[id] = fresh;
+      cur.parent[orphan.id] = fresh;
+    }
+  }
+}
+
+// Area-weighted means of the sons: the parents' features and areas.
+void BipBuilder::UpdateParents(int l) {
+  const BipLevel& cur = levels_[l];
+  BipLevel& up = levels_[l + 1];
+  for (int id = 0; id < cur.num_ids(); ++id) {
+    const int p = cur.parent[id];
+    if (p < 0) continue;
+    const float weight = static_cast<float>(cur.area[id]);
+    const float* son = cur.Feature(id);
+    float* sum = &up.feature[3 * static_cast<size_t>(p)];
+    sum[0] += weight * son[0];
+    sum[1] += weight * son[1];
+    sum[2] += weight * son[2];
+    up.area[p] += cur.area[id];
+  }
+  for (int id = 0; id < up.num_ids(); ++id) {
+    if (up.area[id] == 0) continue;
+    const float inverse = 1.f / static_cast<float>(up.area[id]);
+    float* mean = &up.feature[3 * static_cast<size_t>(id)];
+    mean[0] *= inverse;
+    mean[1] *= inverse;
+    mean[2] *= inverse;
+  }
+}
+
+// Stage 4: two vertices of l + 1 are neighbours iff their reduction windows are adjacent at l.
+// Only pairs with a virtual end are stored; regular pairs are implicit in the array.
+void BipBuilder::IntraLevelEdges(int l) {
+  const BipLevel& cur = levels_[l];
+  BipLevel& up = levels_[l + 1];
+  edge_scratch_.clear();
+  // Regular sons, adjacent in the array, whose parents differ and one of which is virtual.
+  for (int row = 0; row < cur.rows; ++row) {
+    for (int col = 0; col < cur.cols; ++col) {
+      const int id = row * cur.cols + col;
+      const int p = cur.parent[id];
+      if (p < 0 || !up.IsVirtual(p)) continue;
+      for (int k = 0; k < 8; ++k) {
+        const int x = col + kDx[k], y = row + kDy[k];
+        if (x < 0 || y < 0 || x >= cur.cols || y >= cur.rows) continue;
+        const int q = cur.parent[y * cur.cols + x];
+        if (q >= 0 && q != p) edge_scratch_.push_back(EdgeKey(p, q));
+      }
+    }
+  }
+  // Sons joined by an explicit edge.
+  for (uint64_t key : cur.edges) {
+    const int p = cur.parent[key >> 32], q = cur.parent[key & 0xffffffffu];
+    if (p < 0 || q < 0 || p == q) continue;
+    if (up.IsVirtual(p) || up.IsVirtual(q)) edge_scratch_.push_back(EdgeKey(p, q));
+  }
+  std::sort(edge_scratch_.begin(), edge_scratch_.end());
+  edge_scratch_.erase(std::unique(edge_scratch_.begin(), edge_scratch_.end()), edge_scratch_.end());
+  up.edges.assign(edge_scratch_.begin(), edge_scratch_.end());
+}
+
+int Bip::CountRoots() const {
+  int roots = 0;
+  for (int l = 0; l < num_levels_; ++l) {
+    const BipLevel& level = (*levels_)[l];
+    for (int id = 0; id < level.num_ids(); ++id) {
+      if (level.Exists(id) && level.parent[id] < 0) ++roots;
+    }
+  }
+  return roots;
+}
+
+int Bip::LabelRoots(cv::Mat* labels, std::vector<VertexRef>* root_refs) const {
+  // Top-down: a vertex takes its parent's root, or starts a new one.
+  std::vector<int32_t> above, current;
+  std::vector<VertexRef> found;
+  int roots = 0;
+  for (int l = num_levels_ - 1; l >= 0; --l) {
+    const BipLevel& level = (*levels_)[l];
+    current.assign(level.num_ids(), -1);
+    for (int id = 0; id < level.num_ids(); ++id) {
+      if (!level.Exists(id)) continue;
+      const int p = level.parent[id];
+      if (p >= 0) {
+        current[id] = above[p];
+      } else {
+        current[id] = roots++;
+        if (root_refs != nullptr) found.push_back({l, id});
+      }
+    }
+    std::swap(above, current);
+  }
+  // Number roots by first appearance in raster order, so labels do not depend on the order in
+  // which levels were visited.
+  labels->create(height_, width_, CV_32SC1);
+  std::vector<int32_t> renumber(roots, -1);
+  int next = 0;
+  for (int row = 0; row < height_; ++row) {
+    int32_t* out = labels->ptr<int32_t>(row);
+    for (int col = 0; col < width_; ++col) {
+      const int root = above[static_cast<size_t>(row) * width_ + col];
+      if (root < 0) {
+        out[col] = -1;
+        continue;
+      }
+      if (renumber[root] < 0) renumber[root] = next++;
+      out[col] = renumber[root];
+    }
+  }
+  if (root_refs != nullptr) {
+    root_refs->assign(next, VertexRef{});
+    for (int root = 0; root < roots; ++root) {
+      if (renumber[root] >= 0) (*root_refs)[renumber[root]] = found[root];
+    }
+  }
+  return next;
+}
+
+void Bip::AncestorMap(int level, cv::Mat* ids) const {
+  ATTEND_CHECK(level >= 0 && level < num_levels_) << "level " << level << " out of range";
+  ids->create(height_, width_, CV_32SC1);
+  const BipLevel& base = (*levels_)[0];
+  for (int row = 0; row < height_; ++row) {
+    int32_t* out = ids->ptr<int32_t>(row);
+    for (int col = 0; col < width_; ++col) {
+      int id = row * width_ + col;
+      if (base.hom[id] == 0) id = -1;
+      for (int l = 0; l < level && id >= 0; ++l) id = (*levels_)[l].parent[id];
+      out[col] = id;
+    }
+  }
+}
+
+cv::Mat Bip::ReceptiveField(int level, int id) const {
+  cv::Mat ids;
+  AncestorMap(level, &ids);
+  cv::Mat field = ids == id;
+  return field;
+}
+
+}  // namespace attend

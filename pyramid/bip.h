@@ -1,0 +1,142 @@
+// The Bounded Irregular Pyramid (thesis chapter 3, SPEC 2.2).
+//
+// Each level l is a graph whose vertices are of two kinds. Regular vertices live in an
+// incomplete 2-D array of (W >> l) x (H >> l) cells; a cell is a vertex iff Hom = 1, and two
+// regular vertices are neighbours iff their cells are 8-adjacent. Virtual vertices form a
+// simple graph with explicit edges. Vertices of one level share one id space: cells first
+// (id = row * cols + col, holes included), then virtual vertices (id = cells + k). Every
+// vertex has a feature vector (area-weighted mean of its sons'), an area in level-0 pixels and
+// a parent id in the level above, or -1. A vertex without a parent is a root; its receptive
+// field is one region of the segmentation.
+//
+// Level l + 1 is built from level l in four stages (SPEC 2.2): regular decimation; parent
+// search then intra-level twining of regular orphans (raster order); virtual parent search then
+// virtual linking of virtual orphans (union-find); intra-level edges of l + 1 from the
+// adjacency of the sons at l. Building stops when a level would add no vertex.
+#pragma once
+
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "pyramid/similarity.h"
+
+namespace attend {
+
+struct BipOptions {
+  // Variant (not in the thesis): an orphan also considers neighbours of the other kind, both
+  // for parent search (a regular orphan takes a virtual neighbour's parent, a virtual orphan a
+  // regular neighbour's) and for twining (a regular and a virtual orphan make a new virtual
+  // vertex). It lets the regular and irregular parts of one homogeneous region meet, which the
+  // faithful rules cannot do. docs/PYRAMID.md measures it.
+  bool link_across_kinds = false;
+  // Safety bound on the number of levels; the stop rule ends far earlier in practice.
+  int max_levels = 64;
+
+  // "" when valid; otherwise names the field and the broken constraint.
+  std::string Check() const;
+};
+
+// One level of the pyramid. Indexed by vertex id (see above).
+struct BipLevel {
+  int cols = 0;  // regular array width, W >> l
+  int rows = 0;  // regular array height, H >> l
+  int num_virtual = 0;
+  std::vector<uint8_t> hom;     // per cell: 1 iff the cell is a regular vertex
+  std::vector<float> feature;   // 3 per vertex
+  std::vector<int32_t> area;    // per vertex, level-0 pixels (0 for holes)
+  std::vector<int32_t> parent;  // per vertex, id in level l + 1, or -1
+  // Explicit intra-level edges with at least one virtual end, as (min id, max id), sorted,
+  // unique. Regular-regular adjacency is implicit in the array.
+  std::vector<uint64_t> edges;
+
+  int num_cells() const { return cols * rows; }
+  int num_ids() const { return num_cells() + num_virtual; }
+  bool IsVirtual(int id) const { return id >= num_cells(); }
+  // Whether `id` is a vertex of this level (a Hom = 1 cell or a virtual vertex).
+  bool Exists(int id) const { return IsVirtual(id) || hom[id] != 0; }
+  const float* Feature(int id) const { return &feature[3 * static_cast<size_t>(id)]; }
+  // Number of regular vertices (Hom = 1 cells).
+  int CountRegular() const;
+};
+
+// A built pyramid. Valid until the BipBuilder that made it builds again.
+class Bip {
+ public:
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // Number of levels (the height of the hierarchy); level(0) is the base.
+  int num_levels() const { return num_levels_; }
+  const BipLevel& level(int l) const { return (*levels_)[l]; }
+  // L_reg = floor(log2(min(width, height))).
+  int top_regular_level() const { return top_regular_level_; }
+  // The threshold used to link vertices of level l.
+  float threshold(int l) const { return thresholds_[l]; }
+
+  // Number of roots (regions).
+  int CountRoots() const;
+
+  // A vertex: its level and its id in that level.
+  struct VertexRef {
+    int level = 0;
+    int id = 0;
+  };
+
+  // Labels every level-0 pixel with the index of its root (0..CountRoots()-1, roots numbered
+  // in order of first appearance in raster order), -1 outside the mask. `labels` is CV_32SC1.
+  // With `roots`, also gives the root vertex of each label. Returns the number of roots.
+  int LabelRoots(cv::Mat* labels, std::vector<VertexRef>* roots = nullptr) const;
+
+  // For every level-0 pixel, the id of its ancestor at `level` (itself at level 0), or -1 when
+  // its chain ends below `level` or it is outside the mask. CV_32SC1.
+  void AncestorMap(int level, cv::Mat* ids) const;
+
+  // The receptive field of vertex `id` of `level`: a CV_8UC1 mask of its level-0 pixels.
+  cv::Mat ReceptiveField(int level, int id) const;
+
+ private:
+  friend class BipBuilder;
+  const std::vector<BipLevel>* levels_ = nullptr;
+  std::vector<float> thresholds_;
+  int width_ = 0;
+  int height_ = 0;
+  int num_levels_ = 0;
+  int top_regular_level_ = 0;
+};
+
+// Builds pyramids. It owns every buffer, and keeps them between builds, so that after the
+// first frame of a size a build allocates nothing: use one builder per stream of frames.
+class BipBuilder {
+ public:
+  explicit BipBuilder(BipOptions options = {});
+
+  // Builds the pyramid over `features` (CV_32FC3, level-0 vectors as made by the policy's
+  // Features()). With a non-empty `mask` (CV_8UC1, same size) only pixels where it is
+  // non-zero take part. The result refers to this builder's buffers.
+  const Bip& Build(const cv::Mat& features, const SimilarityPolicy& policy,
+                   const cv::Mat& mask = cv::Mat());
+
+  const Bip& bip() const { return bip_; }
+  const BipOptions& options() const { return options_; }
+
+ private:
+  void BuildLevel(int l, float threshold);
+  void RegularDecimation(int l, float t2);
+  void RegularOrphans(int l, float t2);
+  void VirtualOrphans(int l, float t2);
+  void UpdateParents(int l);
+  void IntraLevelEdges(int l);
+  void BuildAdjacency(int l);
+  int NewVirtual(BipLevel* up);
+
+  BipOptions options_;
+  std::vector<BipLevel> levels_;
+  Bip bip_;
+  // CSR adjacency of the current level's explicit edges, over all ids.
+  std::vector<int32_t> adjacency_offsets_;
+  std::vector<int32_t> adjacency_;
+  std::vector<uint64_t> edge_scratch_;
+};
+
+}  // namespace attend

@@ -1,0 +1,160 @@
+#include "pyramid/segmentation.h"
+
+#include <algorithm>
+
+#include "util/error.h"
+#include "util/timer.h"
+
+namespace attend {
+
+std::string SegmentationOptions::Check() const {
+  if (!(t_max > 0.f) || t_max > 1000.f) return "t_max must be in (0, 1000]";
+  return bip.Check();
+}
+
+Segmenter::Segmenter(SegmentationOptions options)
+    : options_(options), policy_(options.t_max), builder_(options.bip) {
+  const std::string problem = options_.Check();
+  ATTEND_CHECK(problem.empty()) << problem;
+}
+
+void Segmenter::Segment(const cv::Mat& bgr, Segmentation* out) {
+  BgrToCylinder(bgr, &cylinder_);
+  SegmentCylinder(cylinder_, out);
+}
+
+void Segmenter::SegmentCylinder(const cv::Mat& cylinder, Segmentation* out, const cv::Mat& mask) {
+  const Stopwatch watch;
+  const Bip& bip = builder_.Build(cylinder, policy_, mask);
+  const int regions = bip.LabelRoots(&out->labels);
+  out->pyramid_levels = bip.num_levels();
+  out->milliseconds = watch.ElapsedMs();
+  ComputeRegionStats(out->labels, regions, cylinder, &out->regions, &out->graph, &boundary_runs_);
+}
+
+void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
+                        std::vector<RegionStats>* regions, RegionGraph* graph,
+                        std::vector<uint64_t>* scratch) {
+  ATTEND_CHECK(labels.type() == CV_32SC1 && cylinder.type() == CV_32FC3 &&
+               labels.size() == cylinder.size())
+      << "labels and cylinder image must match";
+  regions->assign(num_regions, RegionStats{});
+  // Sums in double: a 640x480 region of V = 255 reaches 8e7, beyond float's exact integers.
+  std::vector<double> sums(4 * static_cast<size_t>(num_regions), 0.0);
+  std::vector<cv::Point> low(num_regions, cv::Point(labels.cols, labels.rows));
+  std::vector<cv::Point> high(num_regions, cv::Point(-1, -1));
+  scratch->clear();
+  // Consecutive boundary pixels mostly separate the same pair of regions: count runs.
+  uint64_t run_key = 0;
+  uint32_t run_length = 0;
+  auto boundary = [&](int a, int b) {
+    ++(*regions)[a].perimeter;
+    ++(*regions)[b].perimeter;
+    const uint64_t key = (static_cast<uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+    if (run_length > 0 && key == run_key) {
+      ++run_length;
+      return;
+    }
+    if (run_length > 0) {
+      scratch->push_back(run_key);
+      scratch->push_back(run_length);
+    }
+    run_key = key;
+    run_length = 1;
+  };
+  for (int row = 0; row < labels.rows; ++row) {
+    const int32_t* label = labels.ptr<int32_t>(row);
+    const int32_t* below = row + 1 < labels.rows ? labels.ptr<int32_t>(row + 1) : nullptr;
+    const float* colour = cylinder.ptr<float>(row);
+    for (int col = 0; col < labels.cols; ++col) {
+      const int r = label[col];
+      if (r < 0) continue;
+      RegionStats& region = (*regions)[r];
+      ++region.area;
+      const float* c = colour + 3 * col;
+      double* sum = &sums[4 * static_cast<size_t>(r)];
+      sum[0] += c[0];
+      sum[1] += c[1];
+      sum[2] += c[2];
+      sum[3] += std::sqrt(c[0] * c[0] + c[1] * c[1]);
+      low[r].x = std::min(low[r].x, col);
+      low[r].y = std::min(low[r].y, row);
+      high[r].x = std::max(high[r].x, col);
+      high[r].y = std::max(high[r].y, row);
+      if (col + 1 < labels.cols && label[col + 1] >= 0 && label[col + 1] != r) {
+        boundary(r, label[col + 1]);
+      }
+      if (below != nullptr && below[col] >= 0 && below[col] != r) boundary(r, below[col]);
+    }
+  }
+  if (run_length > 0) {
+    scratch->push_back(run_key);
+    scratch->push_back(run_length);
+  }
+  for (int r = 0; r < num_regions; ++r) {
+    RegionStats& region = (*regions)[r];
+    ATTEND_CHECK(region.area > 0) << "region " << r << " has no pixel";
+    const double* sum = &sums[4 * static_cast<size_t>(r)];
+    region.colour = {static_cast<float>(sum[0] / region.area),
+                     static_cast<float>(sum[1] / region.area),
+                     static_cast<float>(sum[2] / region.area)};
+    region.intensity = region.colour.v;
+    region.saturation = static_cast<float>(sum[3] / region.area);
+    region.bbox = cv::Rect(low[r], high[r] + cv::Point(1, 1));
+  }
+  // Merge the runs by pair into graph edges.
+  const size_t runs = scratch->size() / 2;
+  std::vector<std::pair<uint64_t, uint32_t>> pairs(runs);
+  for (size_t i = 0; i < runs; ++i) {
+    pairs[i] = {(*scratch)[2 * i], static_cast<uint32_t>((*scratch)[2 * i + 1])};
+  }
+  std::sort(pairs.begin(), pairs.end());
+  graph->clear();
+  for (int r = 0; r < num_regions; ++r) boost::add_vertex(*graph);
+  for (size_t i = 0; i < pairs.size();) {
+    size_t j = i;
+    int length = 0;
+    while (j < pairs.size() && pairs[j].first == pairs[i].first) length += pairs[j++].second;
+    boost::add_edge(static_cast<int>(pairs[i].first >> 32),
+                    static_cast<int>(pairs[i].first & 0xffffffffu), RegionBoundary{length}, *graph);
+    i = j;
+  }
+}
+
+cv::Mat FalseColour(const cv::Mat& labels) {
+  cv::Mat image(labels.size(), CV_8UC3);
+  for (int row = 0; row < labels.rows; ++row) {
+    const int32_t* label = labels.ptr<int32_t>(row);
+    cv::Vec3b* out = image.ptr<cv::Vec3b>(row);
+    for (int col = 0; col < labels.cols; ++col) {
+      if (label[col] < 0) {
+        out[col] = cv::Vec3b(0, 0, 0);
+        continue;
+      }
+      // A multiplicative hash spreads consecutive labels over the colour cube.
+      const uint32_t h = static_cast<uint32_t>(label[col] + 1) * 2654435761u;
+      out[col] = cv::Vec3b(64 + (h & 0xbf), 64 + ((h >> 8) & 0xbf), 64 + ((h >> 16) & 0xbf));
+    }
+  }
+  return image;
+}
+
+cv::Mat MeanColourImage(const cv::Mat& labels, const std::vector<RegionStats>& regions) {
+  std::vector<cv::Vec3b> palette(regions.size());
+  for (size_t r = 0; r < regions.size(); ++r) {
+    const cv::Vec3f rgb = RgbFromCylinder(regions[r].colour);
+    palette[r] = cv::Vec3b(cv::saturate_cast<uchar>(rgb[2]), cv::saturate_cast<uchar>(rgb[1]),
+                           cv::saturate_cast<uchar>(rgb[0]));
+  }
+  cv::Mat image(labels.size(), CV_8UC3);
+  for (int row = 0; row < labels.rows; ++row) {
+    const int32_t* label = labels.ptr<int32_t>(row);
+    cv::Vec3b* out = image.ptr<cv::Vec3b>(row);
+    for (int col = 0; col < labels.cols; ++col) {
+      out[col] = label[col] < 0 ? cv::Vec3b(0, 0, 0) : palette[label[col]];
+    }
+  }
+  return image;
+}
+
+}  // namespace attend

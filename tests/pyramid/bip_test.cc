@@ -1,0 +1,169 @@
+#include "pyramid/bip.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "colour/colour.h"
+
+namespace attend {
+namespace {
+
+cv::Mat Features(const cv::Mat& bgr) {
+  cv::Mat features;
+  HsvSimilarity::Features(bgr, &features);
+  return features;
+}
+
+TEST(HsvSimilarity, ThresholdScheduleFollowsEquation31) {
+  const HsvSimilarity policy(30.f);
+  EXPECT_FLOAT_EQ(policy.Threshold(0, 7), 30.f);
+  EXPECT_FLOAT_EQ(policy.Threshold(7, 7), 30.f * 0.3f);
+  EXPECT_FLOAT_EQ(policy.Threshold(3, 6), 30.f * (1.f - 0.7f * 3.f / 6.f));
+  EXPECT_FLOAT_EQ(policy.Threshold(9, 7), 30.f * 0.3f);
+}
+
+TEST(Bip, FlatImageBuildsTheWholeRegularPyramidAndOneRoot) {
+  const cv::Mat image(64, 64, CV_8UC3, cv::Scalar(30, 120, 200));
+  BipBuilder builder;
+  const Bip& bip = builder.Build(Features(image), HsvSimilarity(30.f));
+  // 64x64 halves down to 1x1 at level 6, with every cell homogeneous.
+  EXPECT_EQ(bip.num_levels(), 7);
+  EXPECT_EQ(bip.top_regular_level(), 6);
+  for (int l = 0; l < bip.num_levels(); ++l) {
+    EXPECT_EQ(bip.level(l).CountRegular(), (64 >> l) * (64 >> l)) << "level " << l;
+    EXPECT_EQ(bip.level(l).num_virtual, 0) << "level " << l;
+  }
+  EXPECT_EQ(bip.level(6).area[0], 64 * 64);
+  EXPECT_EQ(bip.CountRoots(), 1);
+  cv::Mat labels;
+  EXPECT_EQ(bip.LabelRoots(&labels), 1);
+  EXPECT_EQ(cv::countNonZero(labels != 0), 0);
+}
+
+TEST(Bip, OddSizedFlatImageEndsInVirtualVerticesAndOneRoot) {
+  // 320x240: the regular part runs out at 2x1 (level 7); the leftovers of odd rows and columns
+  // find parents or twine, and the last regular vertices twine into virtual ones.
+  const cv::Mat image(240, 320, CV_8UC3, cv::Scalar(10, 200, 20));
+  BipBuilder builder;
+  const Bip& bip = builder.Build(Features(image), HsvSimilarity(30.f));
+  EXPECT_EQ(bip.top_regular_level(), 7);
+  EXPECT_EQ(bip.CountRoots(), 1);
+  EXPECT_GT(bip.num_levels(), 8);
+}
+
+TEST(Bip, EveryVertexAreaIsTheSumOfItsSonsAndParentsExist) {
+  cv::Mat image(50, 70, CV_8UC3);
+  cv::randu(image, 0, 256);
+  cv::GaussianBlur(image, image, cv::Size(9, 9), 3.0);
+  BipBuilder builder;
+  const Bip& bip = builder.Build(Features(image), HsvSimilarity(25.f));
+  long total_pixels = 0;
+  for (int l = 0; l < bip.num_levels(); ++l) {
+    const BipLevel& level = bip.level(l);
+    std::vector<long> son_area(l + 1 < bip.num_levels() ? bip.level(l + 1).num_ids() : 0, 0);
+    for (int id = 0; id < level.num_ids(); ++id) {
+      if (!level.Exists(id)) {
+        EXPECT_EQ(level.parent[id], -1);
+        continue;
+      }
+      const int p = level.parent[id];
+      if (p < 0) {
+        total_pixels += level.area[id];  // a root
+        continue;
+      }
+      ASSERT_LT(l + 1, bip.num_levels());
+      ASSERT_TRUE(bip.level(l + 1).Exists(p)) << "level " << l << " id " << id;
+      son_area[p] += level.area[id];
+    }
+    if (l + 1 < bip.num_levels()) {
+      const BipLevel& up = bip.level(l + 1);
+      for (int id = 0; id < up.num_ids(); ++id) {
+        if (up.Exists(id)) {
+          EXPECT_EQ(up.area[id], son_area[id]) << "level " << l + 1;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(total_pixels, 50 * 70);  // the roots' fields partition the image
+}
+
+TEST(Bip, RegularDecimationStopsWhereTheGradientExceedsTheThreshold) {
+  // V grows by 2 per column (a grey ramp). At level l, horizontal neighbours differ by
+  // 2 * 2^l, so a 2x2 window at level l is homogeneous iff 2^(l+1) < T(l). With T_max = 30
+  // and L_reg = 6: level 0: 2 < 30, level 1: 4 < 26.5, level 2: 8 < 23, level 3: 16 < 19.5,
+  // level 4: 32 >= 16. So levels 1..4 are complete regular arrays and level 5 has none.
+  cv::Mat image(64, 64, CV_8UC3);
+  for (int col = 0; col < 64; ++col) image.col(col).setTo(cv::Scalar::all(40 + 2 * col));
+  const HsvSimilarity policy(30.f);
+  for (int l = 0; l <= 4; ++l) {
+    ASSERT_EQ(std::pow(2.f, l + 1) < policy.Threshold(l, 6), l < 4) << "level " << l;
+  }
+  BipBuilder builder;
+  const Bip& bip = builder.Build(Features(image), policy);
+  for (int l = 1; l <= 4; ++l) EXPECT_EQ(bip.level(l).CountRegular(), (64 >> l) * (64 >> l));
+  EXPECT_EQ(bip.level(5).CountRegular(), 0);
+}
+
+TEST(Bip, MaskedPixelsTakeNoPart) {
+  cv::Mat image(40, 40, CV_8UC3, cv::Scalar(100, 100, 100));
+  cv::Mat mask = cv::Mat::zeros(40, 40, CV_8UC1);
+  cv::rectangle(mask, cv::Rect(5, 7, 20, 13), 255, cv::FILLED);
+  cv::rectangle(mask, cv::Rect(30, 30, 6, 6), 255, cv::FILLED);
+  BipBuilder builder;
+  const Bip& bip = builder.Build(Features(image), HsvSimilarity(30.f), mask);
+  cv::Mat labels;
+  const int regions = bip.LabelRoots(&labels);
+  EXPECT_EQ(regions, 2);  // two separate windows of one colour
+  for (int row = 0; row < 40; ++row) {
+    for (int col = 0; col < 40; ++col) {
+      EXPECT_EQ(labels.at<int>(row, col) < 0, mask.at<uchar>(row, col) == 0) << row << "," << col;
+    }
+  }
+  // The receptive field of a root is its region.
+  std::vector<Bip::VertexRef> roots;
+  bip.LabelRoots(&labels, &roots);
+  for (int r = 0; r < regions; ++r) {
+    const cv::Mat field = bip.ReceptiveField(roots[r].level, roots[r].id);
+    EXPECT_EQ(cv::countNonZero(field != (labels == r)), 0);
+  }
+}
+
+TEST(Bip, ClassSimilarityLinksOnlyWithinAClass) {
+  cv::Mat classes = cv::Mat::zeros(48, 48, CV_8UC1);
+  cv::circle(classes, cv::Point(15, 15), 8, 255, cv::FILLED);
+  cv::rectangle(classes, cv::Rect(28, 30, 15, 10), 255, cv::FILLED);
+  cv::Mat features;
+  ClassSimilarity::Features(classes, &features);
+  BipBuilder builder;
+  const Bip& bip = builder.Build(features, ClassSimilarity());
+  cv::Mat labels;
+  bip.LabelRoots(&labels);
+  // Every region lies within one class.
+  double minimum, maximum;
+  for (int r = 0; r < bip.CountRoots(); ++r) {
+    cv::minMaxLoc(classes, &minimum, &maximum, nullptr, nullptr, labels == r);
+    EXPECT_EQ(minimum, maximum) << "region " << r << " mixes classes";
+  }
+  EXPECT_EQ(labels.at<int>(15, 15) == labels.at<int>(35, 35), false);
+}
+
+TEST(Bip, BuilderReuseGivesTheSameResultAsAFreshBuilder) {
+  cv::Mat a(60, 80, CV_8UC3), b(30, 50, CV_8UC3);
+  cv::randu(a, 0, 256);
+  cv::randu(b, 0, 256);
+  cv::GaussianBlur(a, a, cv::Size(7, 7), 2.0);
+  const HsvSimilarity policy(30.f);
+  BipBuilder reused;
+  reused.Build(Features(a), policy);
+  reused.Build(Features(b), policy);
+  cv::Mat labels_reused, labels_fresh;
+  reused.Build(Features(a), policy).LabelRoots(&labels_reused);
+  BipBuilder fresh;
+  fresh.Build(Features(a), policy).LabelRoots(&labels_fresh);
+  EXPECT_EQ(cv::countNonZero(labels_reused != labels_fresh), 0);
+}
+
+}  // namespace
+}  // namespace attend

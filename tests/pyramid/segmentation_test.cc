@@ -1,0 +1,236 @@
+#include "pyramid/segmentation.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+#include <random>
+
+namespace attend {
+namespace {
+
+Segmentation SegmentImage(const cv::Mat& bgr, SegmentationOptions options = {}) {
+  Segmenter segmenter(options);
+  Segmentation segmentation;
+  segmenter.Segment(bgr, &segmentation);
+  return segmentation;
+}
+
+SegmentationOptions Variant() {
+  SegmentationOptions options;
+  options.bip.link_across_kinds = true;
+  return options;
+}
+
+// Every region lies within one colour of `image`: the segmentation never merges across an
+// edge, whatever else it does.
+void ExpectNoRegionCrossesAColourEdge(const cv::Mat& image, const Segmentation& s) {
+  for (size_t r = 0; r < s.regions.size(); ++r) {
+    const cv::Mat mask = s.labels == static_cast<int>(r);
+    for (int c = 0; c < 3; ++c) {
+      cv::Mat channel;
+      cv::extractChannel(image, channel, c);
+      double minimum, maximum;
+      cv::minMaxLoc(channel, &minimum, &maximum, nullptr, nullptr, mask);
+      EXPECT_EQ(minimum, maximum) << "region " << r << " crosses a colour edge";
+    }
+  }
+}
+
+// Number of 8-connected components of `mask`.
+int Components(const cv::Mat& mask) {
+  cv::Mat ignored;
+  return cv::connectedComponents(mask, ignored, 8) - 1;
+}
+
+TEST(Segmentation, FlatImageIsOneRegion) {
+  const Segmentation s = SegmentImage(cv::Mat(97, 131, CV_8UC3, cv::Scalar(200, 40, 90)));
+  ASSERT_EQ(s.regions.size(), 1u);
+  EXPECT_EQ(s.regions[0].area, 97 * 131);
+  EXPECT_EQ(s.regions[0].perimeter, 0);
+  EXPECT_EQ(boost::num_edges(s.graph), 0u);
+}
+
+// Thesis figure 3.4a: four rectangles of different colours on a background.
+cv::Mat FourRectangles(std::vector<cv::Rect>* boxes) {
+  cv::Mat image(128, 128, CV_8UC3, cv::Scalar(180, 180, 180));
+  *boxes = {cv::Rect(10, 12, 30, 20), cv::Rect(61, 9, 41, 33), cv::Rect(17, 70, 23, 45),
+            cv::Rect(69, 77, 50, 31)};
+  const cv::Scalar colours[] = {cv::Scalar(0, 0, 220), cv::Scalar(0, 200, 0), cv::Scalar(220, 0, 0),
+                                cv::Scalar(0, 220, 220)};
+  for (size_t i = 0; i < boxes->size(); ++i) {
+    cv::rectangle(image, (*boxes)[i], colours[i], cv::FILLED);
+  }
+  return image;
+}
+
+void ExpectEachBoxIsOneRegion(const Segmentation& s, const std::vector<cv::Rect>& boxes) {
+  for (const cv::Rect& box : boxes) {
+    const int label = s.labels.at<int>(box.y + box.height / 2, box.x + box.width / 2);
+    cv::Mat expected = cv::Mat::zeros(s.labels.size(), CV_8UC1);
+    cv::rectangle(expected, box, 255, cv::FILLED);
+    EXPECT_EQ(cv::countNonZero(expected != (s.labels == label)), 0) << "box " << box;
+  }
+}
+
+TEST(Segmentation, FourRectanglesOnABackgroundAreFiveRegions) {
+  std::vector<cv::Rect> boxes;
+  const cv::Mat image = FourRectangles(&boxes);
+  const Segmentation s = SegmentImage(image, Variant());
+  EXPECT_EQ(s.regions.size(), 5u);
+  ExpectEachBoxIsOneRegion(s, boxes);
+}
+
+TEST(Segmentation, FaithfulRulesKeepEachRectangleButMaySplitTheBackground) {
+  // With the thesis's rules a regular and a virtual orphan never meet, so a background broken
+  // around odd-placed rectangles stays in pieces; the rectangles are still exact.
+  std::vector<cv::Rect> boxes;
+  const cv::Mat image = FourRectangles(&boxes);
+  const Segmentation s = SegmentImage(image);
+  EXPECT_GE(s.regions.size(), 5u);
+  ExpectEachBoxIsOneRegion(s, boxes);
+  ExpectNoRegionCrossesAColourEdge(image, s);
+}
+
+// Thesis figure 3.4d: bars of aspect ratios from 1:2 to 1:40.
+cv::Mat Bars(std::vector<cv::Rect>* bars) {
+  cv::Mat image(160, 160, CV_8UC3, cv::Scalar(230, 230, 230));
+  *bars = {cv::Rect(5, 5, 150, 4),   cv::Rect(7, 20, 3, 120),   cv::Rect(20, 30, 90, 9),
+           cv::Rect(30, 60, 40, 20), cv::Rect(120, 40, 6, 110), cv::Rect(20, 150, 100, 5)};
+  const cv::Scalar colours[] = {cv::Scalar(0, 0, 200),   cv::Scalar(0, 160, 0),
+                                cv::Scalar(200, 0, 0),   cv::Scalar(0, 120, 200),
+                                cv::Scalar(150, 0, 150), cv::Scalar(20, 20, 20)};
+  for (size_t i = 0; i < bars->size(); ++i)
+    cv::rectangle(image, (*bars)[i], colours[i], cv::FILLED);
+  return image;
+}
+
+TEST(Segmentation, ElongatedBarsAreOneRegionEach) {
+  std::vector<cv::Rect> bars;
+  const cv::Mat image = Bars(&bars);
+  for (const SegmentationOptions& options : {SegmentationOptions{}, Variant()}) {
+    const Segmentation s = SegmentImage(image, options);
+    ExpectEachBoxIsOneRegion(s, bars);
+    ExpectNoRegionCrossesAColourEdge(image, s);
+    if (options.bip.link_across_kinds) {
+      EXPECT_EQ(s.regions.size(), bars.size() + 1);
+    }
+  }
+}
+
+TEST(Segmentation, EqualColoursThatDoNotTouchAreTwoRegions) {
+  cv::Mat image(64, 96, CV_8UC3, cv::Scalar(240, 240, 240));
+  cv::rectangle(image, cv::Rect(4, 10, 30, 30), cv::Scalar(0, 0, 255), cv::FILLED);
+  cv::rectangle(image, cv::Rect(60, 20, 30, 30), cv::Scalar(0, 0, 255), cv::FILLED);
+  for (const SegmentationOptions& options : {SegmentationOptions{}, Variant()}) {
+    const Segmentation s = SegmentImage(image, options);
+    EXPECT_NE(s.labels.at<int>(20, 20), s.labels.at<int>(30, 70));
+    ExpectEachBoxIsOneRegion(s, {cv::Rect(4, 10, 30, 30), cv::Rect(60, 20, 30, 30)});
+    if (options.bip.link_across_kinds) {
+      EXPECT_EQ(s.regions.size(), 3u);
+    }
+  }
+}
+
+// Invariants that hold on any image.
+class SegmentationInvariants : public ::testing::TestWithParam<int> {};
+
+// Even seeds use the thesis's rules, odd ones the variant.
+
+TEST_P(SegmentationInvariants, HoldOnRandomImages) {
+  std::mt19937 random(GetParam());
+  cv::Mat image(60 + GetParam() * 7, 80 + GetParam() * 5, CV_8UC3);
+  cv::randu(image, 0, 256);
+  // Blur some so that both the regular and the irregular parts are exercised.
+  if (GetParam() % 4 < 2) cv::GaussianBlur(image, image, cv::Size(0, 0), 1.0 + GetParam());
+  cv::Mat cylinder;
+  BgrToCylinder(image, &cylinder);
+  SegmentationOptions options;
+  options.bip.link_across_kinds = GetParam() % 2 == 1;
+  Segmenter segmenter(options);
+  Segmentation s;
+  segmenter.SegmentCylinder(cylinder, &s);
+  const int regions = static_cast<int>(s.regions.size());
+
+  // Labels cover every pixel once, with indices 0..R-1.
+  double minimum, maximum;
+  cv::minMaxLoc(s.labels, &minimum, &maximum);
+  EXPECT_EQ(minimum, 0);
+  EXPECT_EQ(maximum, regions - 1);
+  long area_sum = 0;
+  for (const RegionStats& r : s.regions) area_sum += r.area;
+  EXPECT_EQ(area_sum, static_cast<long>(image.total()));
+
+  // Each region is one 8-connected piece, and the root's mean is the mean over its pixels.
+  std::vector<Bip::VertexRef> roots;
+  segmenter.bip().LabelRoots(&s.labels, &roots);
+  for (int r = 0; r < regions; ++r) {
+    const cv::Mat mask = s.labels == r;
+    EXPECT_EQ(Components(mask), 1) << "region " << r;
+    const cv::Scalar mean = cv::mean(cylinder, mask);
+    const float* root = segmenter.bip().level(roots[r].level).Feature(roots[r].id);
+    EXPECT_NEAR(root[0], mean[0], 1e-2) << "region " << r;
+    EXPECT_NEAR(root[1], mean[1], 1e-2) << "region " << r;
+    EXPECT_NEAR(root[2], mean[2], 1e-2) << "region " << r;
+    EXPECT_NEAR(s.regions[r].colour.v, mean[2], 1e-2);
+  }
+
+  // The graph's boundary lengths add up to the 4-neighbour pixel edges between regions, and
+  // each region's perimeter to the lengths of its edges.
+  long boundary_edges = 0;
+  std::vector<long> perimeter(regions, 0);
+  for (int row = 0; row < s.labels.rows; ++row) {
+    for (int col = 0; col < s.labels.cols; ++col) {
+      const int a = s.labels.at<int>(row, col);
+      if (col + 1 < s.labels.cols && s.labels.at<int>(row, col + 1) != a) ++boundary_edges;
+      if (row + 1 < s.labels.rows && s.labels.at<int>(row + 1, col) != a) ++boundary_edges;
+    }
+  }
+  long graph_total = 0;
+  for (auto [e, end] = boost::edges(s.graph); e != end; ++e) {
+    graph_total += s.graph[*e].length;
+    perimeter[boost::source(*e, s.graph)] += s.graph[*e].length;
+    perimeter[boost::target(*e, s.graph)] += s.graph[*e].length;
+  }
+  EXPECT_EQ(graph_total, boundary_edges);
+  for (int r = 0; r < regions; ++r) EXPECT_EQ(perimeter[r], s.regions[r].perimeter);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, SegmentationInvariants, ::testing::Range(0, 8));
+
+TEST(Segmentation, MaskedSegmentationLeavesOutsidePixelsUnlabelled) {
+  cv::Mat image(50, 50, CV_8UC3);
+  cv::randu(image, 0, 256);
+  cv::Mat mask = cv::Mat::zeros(50, 50, CV_8UC1);
+  cv::circle(mask, cv::Point(25, 25), 15, 255, cv::FILLED);
+  cv::Mat cylinder;
+  BgrToCylinder(image, &cylinder);
+  Segmenter segmenter;
+  Segmentation s;
+  segmenter.SegmentCylinder(cylinder, &s, mask);
+  EXPECT_EQ(cv::countNonZero((s.labels < 0) != (mask == 0)), 0);
+  long area_sum = 0;
+  for (const RegionStats& r : s.regions) area_sum += r.area;
+  EXPECT_EQ(area_sum, cv::countNonZero(mask));
+}
+
+TEST(Segmentation, RegionStatisticsOfATwoColourImage) {
+  // Left half pure red, right half grey 100: saturation 255 vs 0, intensity 255 vs 100, and
+  // one boundary of 40 pixel edges.
+  cv::Mat image(40, 60, CV_8UC3, cv::Scalar(100, 100, 100));
+  image(cv::Rect(0, 0, 30, 40)).setTo(cv::Scalar(0, 0, 255));
+  const Segmentation s = SegmentImage(image);
+  ASSERT_EQ(s.regions.size(), 2u);
+  const RegionStats& red = s.regions[s.labels.at<int>(0, 0)];
+  const RegionStats& grey = s.regions[s.labels.at<int>(0, 59)];
+  EXPECT_NEAR(red.saturation, 255.f, 1e-3);
+  EXPECT_NEAR(red.intensity, 255.f, 1e-3);
+  EXPECT_NEAR(grey.saturation, 0.f, 1e-3);
+  EXPECT_NEAR(grey.intensity, 100.f, 1e-3);
+  EXPECT_EQ(red.perimeter, 40);
+  EXPECT_EQ(red.bbox, cv::Rect(0, 0, 30, 40));
+  ASSERT_EQ(boost::num_edges(s.graph), 1u);
+  EXPECT_EQ(s.graph[*boost::edges(s.graph).first].length, 40);
+}
+
+}  // namespace
+}  // namespace attend
