@@ -7,6 +7,7 @@
 
 #include "config/feature_list.h"
 #include "io/sequence.h"
+#include "pyramid/segmentation.h"
 
 namespace attend {
 
@@ -29,6 +30,8 @@ struct OutputOptions {
 struct AttendOptions {
   SequenceOptions sequence;
   OutputOptions output;
+  // The BIP colour segmentation of each frame (and of `attend segment`).
+  SegmentationOptions segmentation;
   // Feature plugins with their weights and own parameters (SPEC 2.3, 3.4).
   std::vector<FeatureSpec> features;
   // Out-of-tree plugin libraries loaded at start.

@@ -32,6 +32,11 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Choice("resize", &o->sequence.resize, {"fit", "stretch", "native"});
   v.EndSection([o] { return o->sequence.Check(); });
 
+  v.BeginSection("segmentation");
+  v.Field("t_max", &o->segmentation.t_max, Range::Closed(0.001, 1000));
+  v.Field("link_across_kinds", &o->segmentation.bip.link_across_kinds);
+  v.EndSection([o] { return o->segmentation.Check(); });
+
   v.BeginSection("output");
   v.Field("dir", &o->output.dir);
   v.ChoiceList("dump", &o->output.dump, OutputOptions::DumpKinds());
@@ -62,6 +67,9 @@ class Reader {
   }
   void Field(const std::string& key, double* value, Range range = {}) {
     *value = top().GetDouble(key, *value, range);
+  }
+  void Field(const std::string& key, float* value, Range range = {}) {
+    *value = static_cast<float>(top().GetDouble(key, *value, range));
   }
   void Field(const std::string& key, std::vector<std::string>* value) {
     *value = top().GetStrings(key, *value);
@@ -136,6 +144,7 @@ class Writer {
   void Emit(bool value) { out_ << YAML::TrueFalseBool << value; }
   void Emit(int value) { out_ << value; }
   void Emit(double value) { out_ << value; }
+  void Emit(float value) { out_ << static_cast<double>(value); }
   void Emit(const std::vector<std::string>& values) {
     out_ << YAML::Flow << YAML::BeginSeq;
     for (const std::string& value : values) out_ << value;

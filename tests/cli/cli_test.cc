@@ -14,66 +14,27 @@
 #include <sstream>
 #include <thread>
 
+#include "tests/support/attend_process.h"
 #include "tests/support/sequence_maker.h"
 #include "tests/support/temp_dir.h"
-
-extern char** environ;
 
 namespace fs = std::filesystem;
 
 namespace attend {
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
+using testing::Contains;
+using testing::ReadText;
+using testing::Result;
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Starts attend with `args`, stdout and stderr to files in `dir`; returns the pid.
 pid_t Start(const testing::TempDir& dir, const std::vector<std::string>& args) {
-  std::vector<std::string> argv_strings = {ATTEND_BINARY};
-  argv_strings.insert(argv_strings.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& arg : argv_strings) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, dir.File("stdout").c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, dir.File("stderr").c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addchdir_np(&actions, dir.path().c_str());
-  pid_t pid = 0;
-  const int error = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  EXPECT_EQ(error, 0) << "cannot start " << ATTEND_BINARY;
-  return pid;
+  return testing::Start(ATTEND_BINARY, dir, args);
 }
 
-Result Wait(const testing::TempDir& dir, pid_t pid) {
-  int status = 0;
-  waitpid(pid, &status, 0);
-  Result result;
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  result.out = ReadText(dir.File("stdout"));
-  result.err = ReadText(dir.File("stderr"));
-  return result;
-}
+Result Wait(const testing::TempDir& dir, pid_t pid) { return testing::Wait(dir, pid); }
 
 Result Attend(const testing::TempDir& dir, const std::vector<std::string>& args) {
-  return Wait(dir, Start(dir, args));
-}
-
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
+  return testing::Run(ATTEND_BINARY, dir, args);
 }
 
 TEST(Cli, VersionHelpAndUsageErrors) {
