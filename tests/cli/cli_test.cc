@@ -31,7 +31,6 @@ pid_t Start(const testing::TempDir& dir, const std::vector<std::string>& args) {
   return testing::Start(ATTEND_BINARY, dir, args);
 }
 
-Result Wait(const testing::TempDir& dir, pid_t pid) { return testing::Wait(dir, pid); }
 
 Result Attend(const testing::TempDir& dir, const std::vector<std::string>& args) {
   return testing::Run(ATTEND_BINARY, dir, args);
@@ -143,7 +142,7 @@ TEST(Cli, CtrlCFinishesTheFrameAndWritesAnInterruptedSummary) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   kill(pid, SIGINT);
-  const Result r = Wait(dir, pid);
+  const Result r = testing::Wait(dir, pid);
   EXPECT_EQ(r.status, 0) << r.err;
   const nlohmann::json summary = nlohmann::json::parse(ReadText(dir.File("run/summary.json")));
   EXPECT_EQ(summary["interrupted"], true);
