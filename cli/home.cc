@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -38,29 +39,31 @@ std::string DefaultConfigPath() {
 
 std::string EnsureBundledSequence(bool quiet) {
   const fs::path scene_path = fs::path(AttendHome()) / "sequences" / "lab.yaml";
-  const fs::path target = fs::path(AttendHome()) / "sequences" / "generated" / "lab";
   const std::string scene_text = ReadText(scene_path);
   if (scene_text.empty()) {
     throw ConfigError(scene_path.string() + ": the bundled scene is missing (set ATTEND_HOME to " +
                       "the attend source folder)");
   }
-  // The copy of the scene beside the frames tells whether they are current.
-  if (fs::exists(target / "left") && ReadText(target / "scene.yaml") == scene_text) {
-    return target.string();
-  }
-  if (!quiet)
-    std::cerr << "[attend] rendering the bundled sequence into " << target.string() << "\n";
+  // One folder per version of the scene file (FNV-1a of its text): a changed scene renders
+  // into a new folder, and a folder in use by another run is never touched.
+  uint64_t hash = 1469598103934665603ull;
+  for (unsigned char c : scene_text) hash = (hash ^ c) * 1099511628211ull;
+  char version[20];
+  std::snprintf(version, sizeof(version), "%016llx", static_cast<unsigned long long>(hash));
+  const fs::path target =
+      fs::path(AttendHome()) / "sequences" / "generated" / (std::string("lab-") + version);
+  if (fs::exists(target / "sequence.yaml")) return target.string();
+  if (!quiet) std::cerr << "[attend] rendering the bundled sequence into " << target.string() << "\n";
   const Scene scene = LoadScene(scene_path.string());
   // Render beside the target and rename into place, so that a concurrent run never reads a
-  // half-written sequence.
+  // half-written sequence; if another process got there first, its copy is as good.
   const fs::path temporary = target.string() + ".tmp-" + std::to_string(getpid());
   std::error_code ignored;
   fs::remove_all(temporary, ignored);
   RenderSequence(scene, temporary.string(), SynthOptions{});
   std::ofstream(temporary / "scene.yaml") << scene_text;
-  fs::remove_all(target, ignored);
   fs::rename(temporary, target, ignored);
-  fs::remove_all(temporary, ignored);  // another process won the race: its copy is as good
+  fs::remove_all(temporary, ignored);
   return target.string();
 }
 

@@ -13,7 +13,7 @@ std::string AttendHome();
 std::string DefaultConfigPath();
 
 // The bundled default sequence, rendered from sequences/lab.yaml on first use into
-// sequences/generated/lab (and rendered again when the scene file changes). Returns the
+// sequences/generated/lab-<hash of the scene file> (a changed scene renders anew). Returns the
 // sequence folder. `quiet` silences the one-line notice printed while rendering.
 std::string EnsureBundledSequence(bool quiet);
 

@@ -22,9 +22,13 @@ namespace {
 // Set by the first Ctrl-C; a signal handler can only reach global state.
 std::atomic<bool> g_stop_requested{false};
 
-extern "C" void OnInterrupt(int) {
+// The signal that asked the run to stop (SIGINT or SIGTERM), 0 when none did.
+std::atomic<int> g_stop_signal{0};
+
+extern "C" void OnStopSignal(int signal) {
+  g_stop_signal.store(signal);
   g_stop_requested.store(true);
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C stops at once
+  std::signal(signal, SIG_DFL);  // a second one stops at once
 }
 
 struct RunArguments {
@@ -61,7 +65,9 @@ void ParseFrameRange(const std::string& text, SequenceOptions* sequence) {
   parse(text.substr(0, colon), &sequence->first_frame);
   parse(text.substr(colon + 1), &sequence->last_frame);
   if (sequence->last_frame >= 0 && sequence->last_frame < sequence->first_frame) {
-    throw ConfigError("--frames " + text + ": LAST is before FIRST");
+    throw ConfigError("--frames " + text + ": the range ends (" +
+                      std::to_string(sequence->last_frame) + ") before it starts (" +
+                      std::to_string(sequence->first_frame) + ")");
   }
 }
 
@@ -109,6 +115,12 @@ int Run(const RunArguments& args) {
   }
   if (!args.frames.empty()) ParseFrameRange(args.frames, &sequence);
   if (sequence.SourceCount() == 0) sequence.folder = EnsureBundledSequence(args.quiet);
+  // The effective configuration names the source absolutely, so RUN/config.yaml repeats the
+  // run from any folder.
+  for (std::string* path : {&sequence.folder, &sequence.left_video, &sequence.right_video,
+                            &sequence.side_by_side_video, &sequence.video}) {
+    if (!path->empty()) *path = std::filesystem::absolute(*path).lexically_normal().string();
+  }
 
   RunRequest request;
   request.options = options;
@@ -123,7 +135,8 @@ int Run(const RunArguments& args) {
   const bool show_progress = !args.quiet && isatty(STDERR_FILENO);
   if (show_progress) request.on_progress = PrintProgress;
 
-  std::signal(SIGINT, OnInterrupt);
+  std::signal(SIGINT, OnStopSignal);
+  std::signal(SIGTERM, OnStopSignal);
   RunSummary summary;
   try {
     summary = RunSequence(request);
@@ -133,6 +146,9 @@ int Run(const RunArguments& args) {
   }
   if (show_progress) std::cerr << "\n";
   if (!args.quiet) std::cout << summary.BriefReport() << std::endl;
+  // Stopped by a signal: the run is complete up to its last frame, but not done. Exit as the
+  // shell does for a killed command (128 + signal), so scripts can tell.
+  if (summary.interrupted && g_stop_signal.load() != 0) return 128 + g_stop_signal.load();
   return 0;
 }
 

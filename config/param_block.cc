@@ -3,6 +3,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <charconv>
+#include <filesystem>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -20,6 +22,7 @@ namespace {
 // Formats a number without trailing zeros ("0.5", "3", "1e+06").
 std::string FormatNumber(double value) {
   std::ostringstream out;
+  out.precision(12);
   out << value;
   return out.str();
 }
@@ -99,6 +102,7 @@ ParamBlock MakeRoot(const YAML::Node& root, const std::string& source) {
 }
 
 std::string Describe(const YAML::Node& node) {
+  if (node.IsNull()) return "no value";
   if (node.IsScalar()) return "'" + node.Scalar() + "'";
   if (node.IsSequence()) return "a list";
   if (node.IsMap()) return "a map";
@@ -112,6 +116,10 @@ ParamBlock::ParamBlock() : ParamBlock(MakeRoot(YAML::Node(), "<defaults>")) {}
 ParamBlock::ParamBlock(std::shared_ptr<State> state) : state_(std::move(state)) {}
 
 ParamBlock ParamBlock::LoadFile(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw ConfigError(path + ": is a folder, not a YAML file");
+  }
   std::ifstream file(path);
   if (!file) throw ConfigError(path + ": cannot read the file (missing or not readable)");
   std::stringstream text;
@@ -159,8 +167,9 @@ void ParamBlock::Override(const std::string& assignment) {
     if (current.IsSequence()) {
       int index = -1;
       if (std::all_of(part.begin(), part.end(), ::isdigit)) {
-        index = std::stoi(part);
-        if (index >= static_cast<int>(current.size())) {
+        const auto [end, status] = std::from_chars(part.data(), part.data() + part.size(), index);
+        if (status != std::errc() || end != part.data() + part.size() ||
+            index >= static_cast<int>(current.size())) {
           throw ConfigError("--set " + assignment + ": '" + JoinPath(resolved, part) +
                             "': the list has " + std::to_string(current.size()) + " elements");
         }
@@ -258,7 +267,7 @@ YAML::Node Lookup(const ParamBlock::State& state, const std::string& key) {
   return state.node[key];
 }
 
-bool Absent(const YAML::Node& node) { return !node.IsDefined() || node.IsNull(); }
+bool Absent(const YAML::Node& node) { return !node.IsDefined(); }
 
 template <typename T>
 bool DecodeScalar(const YAML::Node& node, T* value) {
@@ -392,7 +401,7 @@ ParamBlock ParamBlock::Child(const std::string& key) const {
   auto child = std::make_shared<State>();
   child->document = state_->document;
   child->path = KeyPath(key);
-  if (Absent(node)) {
+  if (Absent(node) || node.IsNull()) {
     child->node = YAML::Node(YAML::NodeType::Map);
   } else if (!node.IsMap()) {
     Fail(key, "expected a map of keys, got " + Describe(node));
@@ -405,7 +414,7 @@ ParamBlock ParamBlock::Child(const std::string& key) const {
 std::vector<ParamBlock> ParamBlock::Children(const std::string& key) const {
   const YAML::Node node = Lookup(*state_, key);
   std::vector<ParamBlock> children;
-  if (Absent(node)) return children;
+  if (Absent(node) || node.IsNull()) return children;
   if (!node.IsSequence()) Fail(key, "expected a list, got " + Describe(node));
   for (size_t i = 0; i < node.size(); ++i) {
     auto child = std::make_shared<State>();

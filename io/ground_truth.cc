@@ -85,14 +85,14 @@ std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
 
 void WriteObjectsCsv(const std::string& path, const std::vector<GtObject>& objects) {
   std::ofstream out(path);
-  if (!out) throw InputError(path + ": cannot write the ground-truth file");
+  if (!out) throw OutputError(path + ": cannot write the ground-truth file");
   out << kObjectsCsvHeader << "\n";
   out.precision(17);
   for (const GtObject& o : objects) {
     out << o.frame << "," << o.id << "," << o.box.x << "," << o.box.y << "," << o.box.width << ","
         << o.box.height << "," << o.visible_fraction << "," << o.disparity << "," << o.kind << "\n";
   }
-  if (!out) throw InputError(path + ": error while writing the ground-truth file");
+  if (!out) throw OutputError(path + ": error while writing the ground-truth file");
 }
 
 std::string FrameStem(int index) {

@@ -55,6 +55,16 @@ cv::Mat ReadPfm(const std::string& path) {
                      scale_text);
   }
   const int channels = magic == "PF" ? 3 : 1;
+  // Check the size the header announces against the file before allocating for it.
+  const std::streampos data_start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const std::streamoff available = in.tellg() - data_start;
+  in.seekg(data_start);
+  const std::streamoff needed = static_cast<std::streamoff>(width) * height * channels * 4;
+  if (available < needed) {
+    throw InputError(path + ": truncated PFM data (the header announces " + width_text + "x" +
+                     height_text + " but the file is too short)");
+  }
   const bool file_little_endian = scale < 0.0;
   const bool host_little_endian = std::endian::native == std::endian::little;
 
@@ -78,7 +88,7 @@ void WritePfm(const std::string& path, const cv::Mat& map) {
   ATTEND_CHECK(map.depth() == CV_32F && (map.channels() == 1 || map.channels() == 3))
       << "WritePfm needs CV_32FC1 or CV_32FC3, got type " << map.type();
   std::ofstream out(path, std::ios::binary);
-  if (!out) throw InputError(path + ": cannot write the PFM file");
+  if (!out) throw OutputError(path + ": cannot write the PFM file");
   const bool little = std::endian::native == std::endian::little;
   out << (map.channels() == 3 ? "PF" : "Pf") << "\n"
       << map.cols << " " << map.rows << "\n"
@@ -88,7 +98,7 @@ void WritePfm(const std::string& path, const cv::Mat& map) {
     out.write(reinterpret_cast<const char*>(map.ptr<float>(row)),
               static_cast<std::streamsize>(row_bytes));
   }
-  if (!out) throw InputError(path + ": error while writing the PFM file");
+  if (!out) throw OutputError(path + ": error while writing the PFM file");
 }
 
 }  // namespace attend

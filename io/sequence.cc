@@ -22,7 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::string> ResizeModes() { return {"fit", "stretch", "native"}; }
 
 // Lower case; file extensions are compared case-insensitively.
 std::vector<std::string> ImageExtensions() { return {".png", ".jpg", ".jpeg", ".ppm", ".pgm"}; }
@@ -451,6 +450,11 @@ class Sequence final : public FrameSource {
 
 }  // namespace
 
+const std::vector<std::string>& SequenceOptions::ResizeModes() {
+  static const std::vector<std::string> modes = {"fit", "stretch", "native"};
+  return modes;
+}
+
 int SequenceOptions::SourceCount() const {
   const bool has_pair = !left_video.empty() || !right_video.empty();
   return (folder.empty() ? 0 : 1) + (has_pair ? 1 : 0) + (side_by_side_video.empty() ? 0 : 1) +
@@ -476,7 +480,7 @@ std::string SequenceOptions::Check() const {
     return "last_frame must be -1 (to the end) or >= first_frame (" + std::to_string(first_frame) +
            "), got " + std::to_string(last_frame);
   }
-  const std::vector<std::string> modes = ResizeModes();
+  const std::vector<std::string>& modes = ResizeModes();
   if (std::find(modes.begin(), modes.end(), resize) == modes.end()) {
     return "resize must be one of " + Join(modes, ", ") + ", got '" + resize + "'" +
            DidYouMean(resize, modes);

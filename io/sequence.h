@@ -7,6 +7,7 @@
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 namespace attend {
 
@@ -36,6 +37,8 @@ struct SequenceOptions {
   std::string Check() const;
   // How many sources are set (a video pair counts once).
   int SourceCount() const;
+  // The values of `resize`.
+  static const std::vector<std::string>& ResizeModes();
   // A short description of the source for messages: "folder SEQ", "videos A + B", ...
   std::string Describe() const;
 };

@@ -24,12 +24,12 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("right_video", &o->sequence.right_video);
   v.Field("side_by_side_video", &o->sequence.side_by_side_video);
   v.Field("video", &o->sequence.video);
-  v.Field("first_frame", &o->sequence.first_frame, Range::AtLeast(0));
-  v.Field("last_frame", &o->sequence.last_frame, Range::AtLeast(-1));
-  v.Field("stride", &o->sequence.stride, Range::AtLeast(1));
+  v.Field("first_frame", &o->sequence.first_frame, Range::Closed(0, 1e9));
+  v.Field("last_frame", &o->sequence.last_frame, Range::Closed(-1, 1e9));
+  v.Field("stride", &o->sequence.stride, Range::Closed(1, 1e6));
   v.Field("width", &o->sequence.width, Range::Closed(1, 16384));
   v.Field("height", &o->sequence.height, Range::Closed(1, 16384));
-  v.Choice("resize", &o->sequence.resize, {"fit", "stretch", "native"});
+  v.Choice("resize", &o->sequence.resize, SequenceOptions::ResizeModes());
   v.EndSection([o] { return o->sequence.Check(); });
 
   v.BeginSection("segmentation");

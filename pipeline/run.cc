@@ -146,7 +146,8 @@ RunSummary RunSequence(const RunRequest& request) {
             {summary.frames, info.frame_count, seconds > 0 ? summary.frames / seconds : 0.0});
       }
     }
-  } catch (const Error& e) {
+  } catch (const std::exception& e) {
+    // Whatever stopped the loop, the frames done so far are kept and the summary says why.
     summary.interrupted = true;
     summary.error = e.what();
     finish();

@@ -6,6 +6,7 @@
 
 #include "io/ground_truth.h"
 #include "util/error.h"
+#include "util/output_folder.h"
 
 namespace fs = std::filesystem;
 
@@ -19,24 +20,17 @@ const std::vector<std::string>& RunFolder::OwnEntries() {
 }
 
 RunFolder::RunFolder(const std::string& dir, bool overwrite) : dir_(dir) {
-  std::error_code error;
-  if (fs::exists(dir_, error)) {
-    if (!fs::is_directory(dir_, error)) {
-      throw ConfigError(dir_ + ": the output path exists and is not a folder");
-    }
-    if (!fs::is_empty(dir_, error)) {
-      if (!overwrite) {
-        throw ConfigError(dir_ + ": the output folder is not empty (use --overwrite to replace " +
-                          "a previous run there)");
-      }
-      for (const std::string& entry : OwnEntries()) fs::remove_all(fs::path(dir_) / entry, error);
-    }
-  }
-  fs::create_directories(dir_, error);
-  if (error) throw ConfigError(dir_ + ": cannot create the output folder: " + error.message());
+  OutputFolderRules rules;
+  rules.what = "run";
+  rules.own_entries = OwnEntries();
+  rules.is_previous_output = [](const std::string& folder) {
+    return fs::exists(fs::path(folder) / "frames.jsonl") ||
+           fs::exists(fs::path(folder) / "summary.json");
+  };
+  PrepareOutputFolder(dir_, overwrite, rules);
   const std::string frames_path = (fs::path(dir_) / "frames.jsonl").string();
   frames_.open(frames_path);
-  if (!frames_) throw ConfigError(frames_path + ": cannot write");
+  if (!frames_) throw OutputError(frames_path + ": cannot write");
 }
 
 RunFolder::~RunFolder() = default;
@@ -45,13 +39,13 @@ void RunFolder::WriteConfig(const std::string& yaml) {
   const std::string path = (fs::path(dir_) / "config.yaml").string();
   std::ofstream out(path);
   out << yaml;
-  if (!out) throw ConfigError(path + ": cannot write");
+  if (!out) throw OutputError(path + ": cannot write");
 }
 
 void RunFolder::AppendFrame(const FrameRecord& record) {
   frames_ << FrameRecordToJson(record) << "\n";
   frames_.flush();
-  if (!frames_) throw InputError(dir_ + "/frames.jsonl: write failed (disk full?)");
+  if (!frames_) throw OutputError(dir_ + "/frames.jsonl: write failed (disk full?)");
 }
 
 void RunFolder::WriteImage(const std::string& kind, int frame, const cv::Mat& image) {
@@ -59,7 +53,7 @@ void RunFolder::WriteImage(const std::string& kind, int frame, const cv::Mat& im
   std::error_code error;
   fs::create_directories(folder, error);
   const std::string path = (folder / (FrameStem(frame) + ".png")).string();
-  if (error || !cv::imwrite(path, image)) throw InputError(path + ": cannot write the image");
+  if (error || !cv::imwrite(path, image)) throw OutputError(path + ": cannot write the image");
 }
 
 void RunFolder::AppendVideoFrame(const std::string& name, const cv::Mat& image, double fps) {
@@ -68,7 +62,7 @@ void RunFolder::AppendVideoFrame(const std::string& name, const cv::Mat& image, 
     video_ = std::make_unique<cv::VideoWriter>(
         video_path_, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), fps, image.size());
     if (!video_->isOpened()) {
-      throw ConfigError(video_path_ + ": this OpenCV build cannot write Motion-JPEG video " +
+      throw OutputError(video_path_ + ": this OpenCV build cannot write Motion-JPEG video " +
                         "(set output.video: false)");
     }
   }
@@ -81,7 +75,7 @@ void RunFolder::WriteSummary(const nlohmann::ordered_json& summary) {
   {
     std::ofstream out(temporary);
     out << summary.dump(2) << "\n";
-    if (!out) throw InputError(temporary.string() + ": cannot write");
+    if (!out) throw OutputError(temporary.string() + ": cannot write");
   }
   fs::rename(temporary, path);
 }

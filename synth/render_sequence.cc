@@ -17,6 +17,7 @@
 #include "io/pfm.h"
 #include "synth/renderer.h"
 #include "util/error.h"
+#include "util/output_folder.h"
 
 namespace attend {
 
@@ -49,34 +50,27 @@ std::string QuotedYaml(const std::string& text) {
   return quoted + "\"";
 }
 
-// Makes `folder` ready for the layout: refuses a non-empty folder unless `overwrite`, and then
-// removes only what the layout itself writes, so stale frames of a longer earlier render
-// cannot survive next to the new ones.
+// Makes `folder` ready for the layout. Only a folder that holds an earlier `attend synth`
+// output (its sequence.yaml says so) may be overwritten, and then only the layout's own
+// entries are removed, so stale frames of a longer earlier render cannot survive next to the
+// new ones and a recorded sequence is never deleted.
 void PrepareFolder(const fs::path& folder, bool overwrite) {
+  OutputFolderRules rules;
+  rules.what = "sequence";
+  rules.own_entries = {"left", "right", "gt/disparity", "gt/objects.csv", "sequence.yaml"};
+  rules.is_previous_output = [](const std::string& existing) {
+    std::ifstream in(fs::path(existing) / "sequence.yaml");
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.rfind("generator: attend synth", 0) == 0) return true;
+    }
+    return false;
+  };
+  PrepareOutputFolder(folder.string(), overwrite, rules);
   std::error_code error;
-  if (fs::exists(folder, error)) {
-    if (!fs::is_directory(folder, error)) {
-      throw ConfigError(folder.string() + ": the output path exists and is not a folder");
-    }
-    if (!fs::is_empty(folder, error)) {
-      if (!overwrite) {
-        throw ConfigError(folder.string() +
-                          ": the output folder is not empty; choose an empty or new folder, or "
-                          "allow overwriting (--overwrite)");
-      }
-      for (const fs::path& own : {folder / "left", folder / "right", folder / "gt" / "disparity",
-                                  folder / "gt" / "objects.csv", folder / "sequence.yaml"}) {
-        fs::remove_all(own, error);
-        if (error) {
-          throw InputError(own.string() +
-                           ": cannot remove it to overwrite the sequence: " + error.message());
-        }
-      }
-    }
-  }
   for (const fs::path& sub : {folder / "left", folder / "right", folder / "gt" / "disparity"}) {
     fs::create_directories(sub, error);
-    if (error) throw InputError(sub.string() + ": cannot create the folder: " + error.message());
+    if (error) throw OutputError(sub.string() + ": cannot create the folder: " + error.message());
   }
 }
 
@@ -88,14 +82,14 @@ void WritePng(const fs::path& path, const cv::Mat& image) {
   try {
     written = cv::imwrite(path.string(), image, params);
   } catch (const cv::Exception& e) {
-    throw InputError(path.string() + ": cannot write the image: " + e.what());
+    throw OutputError(path.string() + ": cannot write the image: " + e.what());
   }
-  if (!written) throw InputError(path.string() + ": cannot write the image");
+  if (!written) throw OutputError(path.string() + ": cannot write the image");
 }
 
 void WriteSequenceYaml(const fs::path& path, const Scene& scene) {
   std::ofstream out(path);
-  if (!out) throw InputError(path.string() + ": cannot write the sequence description");
+  if (!out) throw OutputError(path.string() + ": cannot write the sequence description");
   // The scene's file name only, so that the same scene read from another folder gives the
   // same bytes.
   const std::string scene_file =
@@ -107,7 +101,7 @@ void WriteSequenceYaml(const fs::path& path, const Scene& scene) {
       << "baseline_m: " << ShortestNumber(scene.baseline_m) << "\n"
       << "generator: attend synth\n"
       << "frames: " << scene.frames << "\n";
-  if (!out) throw InputError(path.string() + ": error while writing the sequence description");
+  if (!out) throw OutputError(path.string() + ": error while writing the sequence description");
 }
 
 }  // namespace

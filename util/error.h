@@ -33,6 +33,13 @@ class ConfigError : public Error {
   explicit ConfigError(const std::string& message) : Error(ExitStatus::kUsage, message) {}
 };
 
+// An output location that cannot be used or written: a non-empty folder without --overwrite,
+// a read-only folder, a full disk. A usage error (exit status 2): the user picks the output.
+class OutputError : public Error {
+ public:
+  explicit OutputError(const std::string& message) : Error(ExitStatus::kUsage, message) {}
+};
+
 // Bad input data (exit status 3).
 class InputError : public Error {
  public:

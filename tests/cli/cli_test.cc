@@ -143,7 +143,7 @@ TEST(Cli, CtrlCFinishesTheFrameAndWritesAnInterruptedSummary) {
   }
   kill(pid, SIGINT);
   const Result r = testing::Wait(dir, pid);
-  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.status, 130) << r.err;  // 128 + SIGINT: complete up to a frame, but not done
   const nlohmann::json summary = nlohmann::json::parse(ReadText(dir.File("run/summary.json")));
   EXPECT_EQ(summary["interrupted"], true);
   EXPECT_GE(summary["frames"].get<int>(), 1);
@@ -152,6 +152,79 @@ TEST(Cli, CtrlCFinishesTheFrameAndWritesAnInterruptedSummary) {
   int lines = 0;
   for (std::string line; std::getline(frames, line);) ++lines;
   EXPECT_EQ(lines, summary["frames"].get<int>());
+}
+
+TEST(Cli, MalformedOverridesAndConfigPathsAreUsageErrors) {
+  testing::TempDir dir;
+  testing::MakeFolderSequence(dir.File("seq"), 2, 16, 16);
+  Result r = Attend(dir, {"run", "--sequence", "seq", "--set", "features.99999999999=1"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(Contains(r.err, "--set features.99999999999=1")) << r.err;
+  r = Attend(dir, {"run", "--sequence", "seq", "--set", "sequence.width="});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(Contains(r.err, "sequence.width: expected an integer, got no value")) << r.err;
+  r = Attend(dir, {"run", "--sequence", "seq", "--config", dir.path().string()});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(Contains(r.err, "is a folder, not a YAML file")) << r.err;
+  dir.Write("home/features/notes.txt", "precious");
+  r = Attend(dir, {"run", "--sequence", "seq", "--out", "home", "--overwrite"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(fs::exists(dir.File("home/features/notes.txt")));
+}
+
+TEST(Cli, SynthWritesASequenceAndRefusesBadOutputs) {
+  testing::TempDir dir;
+  const std::string scene = dir.Write(
+      "scene.yaml",
+      "name: tiny\nwidth: 48\nheight: 32\nframes: 3\n"
+      "objects:\n  - {id: 1, size: [0.1, 0.1], colour: [200, 30, 30], "
+      "path: [{frame: 0, x: 20, y: 16, depth: 2}]}\n");
+  Result r = Attend(dir, {"synth", "scene.yaml", "--out", "seq"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir.File("seq/left/000002.png")));
+  EXPECT_TRUE(fs::exists(dir.File("seq/gt/objects.csv")));
+  r = Attend(dir, {"run", "--sequence", "seq", "--out", "run", "--quiet"});
+  EXPECT_EQ(r.status, 0) << r.err;
+
+  r = Attend(dir, {"synth", "scene.yaml", "--out", "seq"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "not empty")) << r.err;
+  r = Attend(dir, {"synth", "scene.yaml", "--out", "seq", "--overwrite", "--frames", "2"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir.File("seq/left/000002.png")));
+  r = Attend(dir, {"synth", "scene.yaml", "--out", "scene.yaml"});
+  EXPECT_EQ(r.status, 2);
+  r = Attend(dir, {"synth", "scene.yaml", "--out", ""});
+  EXPECT_EQ(r.status, 2);
+  r = Attend(dir, {"synth", "missing.yaml", "--out", "other"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "missing.yaml")) << r.err;
+  dir.Write("typo.yaml", "name: t\nwidht: 40\n");
+  r = Attend(dir, {"synth", "typo.yaml", "--out", "other"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "typo.yaml:2: unknown key 'widht' (did you mean 'width'?)")) << r.err;
+}
+
+TEST(Cli, RunWithNoArgumentsUsesTheBundledSequenceAndDefaultConfig) {
+  // A private home with the bundled configuration and scene, so the test renders its own copy.
+  testing::TempDir dir;
+  fs::create_directories(dir.path() / "home" / "configs");
+  fs::create_directories(dir.path() / "home" / "sequences");
+  fs::copy_file(testing::ProjectRoot() + "/configs/default.yaml",
+                dir.path() / "home" / "configs" / "default.yaml");
+  fs::copy_file(testing::ProjectRoot() + "/sequences/lab.yaml",
+                dir.path() / "home" / "sequences" / "lab.yaml");
+  setenv("ATTEND_HOME", dir.File("home").c_str(), 1);
+  Result r = Attend(dir, {"run", "--frames", "0:3"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(Contains(r.err, "rendering the bundled sequence")) << r.err;
+  EXPECT_TRUE(Contains(r.out, "4 frames")) << r.out;
+  EXPECT_TRUE(Contains(r.out, "outputs: runs/")) << r.out;
+  EXPECT_TRUE(fs::exists(dir.path() / "runs"));
+  // The second time it reuses the rendered sequence.
+  r = Attend(dir, {"run", "--frames", "0:1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(Contains(r.err, "rendering")) << r.err;
 }
 
 }  // namespace

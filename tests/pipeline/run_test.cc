@@ -139,14 +139,24 @@ TEST(RunFolder, RefusesNonEmptyFolderAndOverwriteKeepsForeignFiles) {
   dir.Write("run/notes.txt", "mine");
   dir.Write("run/summary.json", "{}");
   dir.Write("run/overlay/000000.png", "old");
-  EXPECT_THROW(RunFolder(dir.File("run"), false), ConfigError);
+  EXPECT_THROW(RunFolder(dir.File("run"), false), OutputError);
   { RunFolder folder(dir.File("run"), true); }
   EXPECT_TRUE(fs::exists(dir.File("run/notes.txt")));
   EXPECT_FALSE(fs::exists(dir.File("run/summary.json")));
   EXPECT_FALSE(fs::exists(dir.File("run/overlay")));
   EXPECT_TRUE(fs::exists(dir.File("run/frames.jsonl")));
   dir.Write("file", "x");
-  EXPECT_THROW(RunFolder(dir.File("file"), true), ConfigError);
+  EXPECT_THROW(RunFolder(dir.File("file"), true), OutputError);
+  EXPECT_THROW(RunFolder("", true), OutputError);
+}
+
+TEST(RunFolder, OverwriteRefusesAFolderThatIsNotARun) {
+  // A folder of the user's that happens to have a `features/` subfolder is not a run: nothing
+  // in it may be deleted.
+  testing::TempDir dir;
+  dir.Write("home/features/notes.txt", "precious");
+  EXPECT_THROW(RunFolder(dir.File("home"), true), OutputError);
+  EXPECT_TRUE(fs::exists(dir.File("home/features/notes.txt")));
 }
 
 TEST(DefaultRunFolder, NamesByTimeConfigAndSequenceAndIsUnique) {

@@ -165,32 +165,46 @@ TEST(SynthRenderSequence, RefusesANonEmptyFolderAndOverwritesOnlyItsOwnFiles) {
   testing::TempDir dir;
   const Scene scene = ParseScene(kSceneText, "tiny.yaml");
   const std::string folder = dir.File("seq");
+  SynthOptions options;
+  options.frames = 4;
+  RenderSequence(scene, folder, options);
   dir.Write("seq/notes.txt", "keep me");
-  dir.Write("seq/left/000099.png", "stale");
   try {
     RenderSequence(scene, folder, {});
     FAIL() << "a non-empty folder was accepted";
-  } catch (const ConfigError& e) {
+  } catch (const OutputError& e) {
     EXPECT_NE(std::string(e.what()).find(folder + ": the output folder is not empty"),
               std::string::npos)
         << e.what();
   }
-  EXPECT_FALSE(fs::exists(dir.path() / "seq" / "sequence.yaml"));
 
-  SynthOptions options;
+  // Over an earlier render, --overwrite replaces the layout and keeps other files.
   options.overwrite = true;
   options.frames = 2;
   EXPECT_EQ(RenderSequence(scene, folder, options).frames, 2);
   EXPECT_EQ(ReadBytes(dir.path() / "seq" / "notes.txt"), "keep me");
-  EXPECT_FALSE(fs::exists(dir.path() / "seq" / "left" / "000099.png"));
   EXPECT_TRUE(fs::exists(dir.path() / "seq" / "right" / "000001.png"));
+  EXPECT_FALSE(fs::exists(dir.path() / "seq" / "left" / "000003.png"));
   EXPECT_FALSE(fs::exists(dir.path() / "seq" / "right" / "000002.png"));
 
   const std::string file = dir.Write("file", "x");
-  EXPECT_THROW(RenderSequence(scene, file, options), ConfigError);
+  EXPECT_THROW(RenderSequence(scene, file, options), OutputError);
   options.frames = 0;
   EXPECT_THROW(RenderSequence(scene, dir.File("new"), options), ConfigError);
   EXPECT_FALSE(fs::exists(dir.path() / "new"));
+}
+
+TEST(SynthRenderSequence, OverwriteNeverTouchesARecordedSequence) {
+  // A folder in the same layout that attend synth did not write (a real recording) is refused
+  // even with overwrite, and keeps its frames.
+  testing::TempDir dir;
+  dir.Write("real/left/capture_0001.png", "frame");
+  dir.Write("real/right/capture_0001.png", "frame");
+  SynthOptions options;
+  options.overwrite = true;
+  EXPECT_THROW(RenderSequence(ParseScene(kSceneText, "tiny.yaml"), dir.File("real"), options),
+               OutputError);
+  EXPECT_TRUE(fs::exists(dir.path() / "real" / "left" / "capture_0001.png"));
 }
 
 TEST(SynthOptions, DefaultsAreValid) {

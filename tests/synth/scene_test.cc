@@ -163,7 +163,7 @@ TEST(Scene, BadValuesNameKeyAndLine) {
         "n.yaml");
   });
   EXPECT_NE(message.find(
-                "n.yaml:4: objects.0.path.0.depth: value -1 out of range: must be in (0, 1e+06]"),
+                "n.yaml:4: objects.0.path.0.depth: value -1 out of range: must be in (0, 1000000]"),
             std::string::npos)
       << message;
   message = ConfigErrorOf([] {

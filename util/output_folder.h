@@ -1,0 +1,23 @@
+// Preparing the folder a command writes into, without ever deleting what it did not write.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace attend {
+
+struct OutputFolderRules {
+  std::string what;                     // "run", "sequence": for messages
+  std::vector<std::string> own_entries; // files and folders the command writes below it
+  // True when the folder holds an earlier output of the same command, the only kind that
+  // `overwrite` may replace.
+  std::function<bool(const std::string& folder)> is_previous_output;
+};
+
+// Creates `folder` (and its parents) or takes it when empty. A non-empty folder is an
+// OutputError unless `overwrite` and it holds a previous output, in which case only
+// `own_entries` are removed; other files stay. An empty path is an OutputError.
+void PrepareOutputFolder(const std::string& folder, bool overwrite, const OutputFolderRules& rules);
+
+}  // namespace attend
