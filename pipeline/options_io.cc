@@ -34,6 +34,7 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
 
   v.BeginSection("segmentation");
   v.Field("t_max", &o->segmentation.t_max, Range::Closed(0.001, 1000));
+  v.Field("min_region_area", &o->segmentation.min_region_area, Range::Closed(0, 1e6));
   v.Field("link_across_kinds", &o->segmentation.bip.link_across_kinds);
   v.EndSection([o] { return o->segmentation.Check(); });
 

@@ -1,6 +1,9 @@
 #include "pyramid/segmentation.h"
 
 #include <algorithm>
+#include <array>
+#include <limits>
+#include <queue>
 
 #include "util/error.h"
 #include "util/timer.h"
@@ -9,6 +12,7 @@ namespace attend {
 
 std::string SegmentationOptions::Check() const {
   if (!(t_max > 0.f) || t_max > 1000.f) return "t_max must be in (0, 1000]";
+  if (min_region_area < 0) return "min_region_area must be >= 0";
   return bip.Check();
 }
 
@@ -26,10 +30,90 @@ void Segmenter::Segment(const cv::Mat& bgr, Segmentation* out) {
 void Segmenter::SegmentCylinder(const cv::Mat& cylinder, Segmentation* out, const cv::Mat& mask) {
   const Stopwatch watch;
   const Bip& bip = builder_.Build(cylinder, policy_, mask);
-  const int regions = bip.LabelRoots(&out->labels);
+  int regions = bip.LabelRoots(&out->labels);
   out->pyramid_levels = bip.num_levels();
-  out->milliseconds = watch.ElapsedMs();
   ComputeRegionStats(out->labels, regions, cylinder, &out->regions, &out->graph, &boundary_runs_);
+  if (options_.min_region_area > 1) {
+    const int merged =
+        MergeSmallRegions(options_.min_region_area, out->regions, out->graph, &out->labels);
+    if (merged != regions) {
+      regions = merged;
+      ComputeRegionStats(out->labels, regions, cylinder, &out->regions, &out->graph,
+                         &boundary_runs_);
+    }
+  }
+  out->milliseconds = watch.ElapsedMs();
+}
+
+int MergeSmallRegions(int min_area, const std::vector<RegionStats>& regions,
+                      const RegionGraph& graph, cv::Mat* labels) {
+  const int count = static_cast<int>(regions.size());
+  std::vector<int> parent(count), area(count);
+  std::vector<std::array<double, 3>> sum(count);
+  std::vector<std::vector<int>> neighbours(count);
+  for (int r = 0; r < count; ++r) {
+    parent[r] = r;
+    area[r] = regions[r].area;
+    const CylinderColour& c = regions[r].colour;
+    sum[r] = {c.sx * static_cast<double>(area[r]), c.sy * static_cast<double>(area[r]),
+              c.v * static_cast<double>(area[r])};
+  }
+  for (auto [e, end] = boost::edges(graph); e != end; ++e) {
+    const int a = static_cast<int>(boost::source(*e, graph));
+    const int b = static_cast<int>(boost::target(*e, graph));
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+  }
+  auto find = [&](int r) {
+    while (parent[r] != r) r = parent[r] = parent[parent[r]];
+    return r;
+  };
+  // Smallest first; an entry whose area is stale was merged since it was queued.
+  using Entry = std::pair<int, int>;  // (area, region)
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (int r = 0; r < count; ++r) {
+    if (area[r] < min_area) queue.push({area[r], r});
+  }
+  while (!queue.empty()) {
+    const auto [queued_area, r] = queue.top();
+    queue.pop();
+    if (find(r) != r || area[r] != queued_area) continue;
+    int best = -1;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (int n : neighbours[r]) {
+      const int m = find(n);
+      if (m == r) continue;
+      double distance = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const double d = sum[r][k] / area[r] - sum[m][k] / area[m];
+        distance += d * d;
+      }
+      if (distance < best_distance) {
+        best_distance = distance;
+        best = m;
+      }
+    }
+    if (best < 0) continue;  // an isolated region (inside a mask) stays
+    parent[r] = best;
+    area[best] += area[r];
+    for (int k = 0; k < 3; ++k) sum[best][k] += sum[r][k];
+    neighbours[best].insert(neighbours[best].end(), neighbours[r].begin(), neighbours[r].end());
+    neighbours[r].clear();
+    if (area[best] < min_area) queue.push({area[best], best});
+  }
+  // Relabel, numbering the surviving regions by first appearance.
+  std::vector<int> renumber(count, -1);
+  int next = 0;
+  for (int row = 0; row < labels->rows; ++row) {
+    int32_t* label = labels->ptr<int32_t>(row);
+    for (int col = 0; col < labels->cols; ++col) {
+      if (label[col] < 0) continue;
+      const int root = find(label[col]);
+      if (renumber[root] < 0) renumber[root] = next++;
+      label[col] = renumber[root];
+    }
+  }
+  return next;
 }
 
 void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,

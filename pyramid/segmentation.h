@@ -15,6 +15,10 @@ struct SegmentationOptions {
   // T_max of the threshold schedule T(l) = T_max a(l) (eq. 3.1), in HSV-cylinder units
   // (S and V in [0, 255]).
   float t_max = 40.f;
+  // Regions smaller than this many pixels are merged into their most similar neighbour
+  // (smallest first), as in the thesis's comparison of segmentations (3.3.2: 20 pixels for
+  // every method). 0 keeps the pyramid's roots as they are.
+  int min_region_area = 20;
   BipOptions bip;
 
   // "" when valid; otherwise names the field and the broken constraint.
@@ -79,6 +83,13 @@ class Segmenter {
 void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
                         std::vector<RegionStats>* regions, RegionGraph* graph,
                         std::vector<uint64_t>* scratch);
+
+// Merges every region smaller than `min_area` pixels into its adjacent region of closest mean
+// colour, smallest first, until none is left that has a neighbour; relabels `labels` with
+// regions numbered by first appearance in raster order. Merged regions stay connected. Returns
+// the new number of regions; `regions` and `graph` are the inputs' statistics and adjacency.
+int MergeSmallRegions(int min_area, const std::vector<RegionStats>& regions,
+                      const RegionGraph& graph, cv::Mat* labels);
 
 // Paints each region with a distinct colour (hashing its index), black outside the mask.
 cv::Mat FalseColour(const cv::Mat& labels);

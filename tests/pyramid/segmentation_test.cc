@@ -146,6 +146,7 @@ TEST_P(SegmentationInvariants, HoldOnRandomImages) {
   BgrToCylinder(image, &cylinder);
   SegmentationOptions options;
   options.bip.link_across_kinds = GetParam() % 2 == 1;
+  options.min_region_area = 0;  // the pyramid's own roots, to check them against the pixels
   Segmenter segmenter(options);
   Segmentation s;
   segmenter.SegmentCylinder(cylinder, &s);
@@ -230,6 +231,44 @@ TEST(Segmentation, RegionStatisticsOfATwoColourImage) {
   EXPECT_EQ(red.bbox, cv::Rect(0, 0, 30, 40));
   ASSERT_EQ(boost::num_edges(s.graph), 1u);
   EXPECT_EQ(s.graph[*boost::edges(s.graph).first].length, 40);
+}
+
+TEST(Segmentation, SmallRegionsMergeIntoTheirMostSimilarNeighbour) {
+  // A 3x3 dark grey dot (V 80 below the background, beyond T_max) and a 4x4 dot of a very different
+  // one, on a background beside a large red block: with a 20-pixel minimum both dots join the
+  // background (their only neighbour), and nothing else changes.
+  cv::Mat image(60, 80, CV_8UC3, cv::Scalar(200, 200, 200));
+  image(cv::Rect(50, 0, 30, 60)).setTo(cv::Scalar(0, 0, 230));
+  image(cv::Rect(10, 10, 3, 3)).setTo(cv::Scalar(120, 120, 120));
+  image(cv::Rect(20, 30, 4, 4)).setTo(cv::Scalar(0, 150, 0));
+  SegmentationOptions options = Variant();  // one background region, so counts are exact
+  options.min_region_area = 0;
+  EXPECT_EQ(SegmentImage(image, options).regions.size(), 4u);
+  options.min_region_area = 20;
+  const Segmentation s = SegmentImage(image, options);
+  ASSERT_EQ(s.regions.size(), 2u);
+  EXPECT_EQ(s.labels.at<int>(11, 11), s.labels.at<int>(0, 0));
+  EXPECT_EQ(s.labels.at<int>(31, 21), s.labels.at<int>(0, 0));
+  EXPECT_EQ(s.regions[s.labels.at<int>(0, 0)].area, 50 * 60);
+  EXPECT_EQ(s.regions[s.labels.at<int>(0, 79)].area, 30 * 60);
+  // The merged statistics are those of the pixels.
+  cv::Mat cylinder;
+  BgrToCylinder(image, &cylinder);
+  const int background = s.labels.at<int>(0, 0);
+  EXPECT_NEAR(s.regions[background].intensity, cv::mean(cylinder, s.labels == background)[2], 1e-3);
+}
+
+TEST(Segmentation, AfterMergingEveryRegionIsLargeEnoughAndConnected) {
+  cv::Mat image(90, 120, CV_8UC3);
+  cv::randu(image, 0, 256);
+  cv::GaussianBlur(image, image, cv::Size(0, 0), 1.5);
+  SegmentationOptions options;
+  options.min_region_area = 25;
+  const Segmentation s = SegmentImage(image, options);
+  for (size_t r = 0; r < s.regions.size(); ++r) {
+    EXPECT_GE(s.regions[r].area, 25) << "region " << r;
+    EXPECT_EQ(Components(s.labels == static_cast<int>(r)), 1) << "region " << r;
+  }
 }
 
 }  // namespace
