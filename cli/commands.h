@@ -12,5 +12,6 @@ using CommandAction = std::function<int()>;
 // `command_line` is the whole invocation, recorded in what a command writes.
 void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 void AddSynthCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
+void AddSegmentCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 
 }  // namespace attend

@@ -53,7 +53,8 @@ std::string EnsureBundledSequence(bool quiet) {
   const fs::path target =
       fs::path(AttendHome()) / "sequences" / "generated" / (std::string("lab-") + version);
   if (fs::exists(target / "sequence.yaml")) return target.string();
-  if (!quiet) std::cerr << "[attend] rendering the bundled sequence into " << target.string() << "\n";
+  if (!quiet)
+    std::cerr << "[attend] rendering the bundled sequence into " << target.string() << "\n";
   const Scene scene = LoadScene(scene_path.string());
   // Render beside the target and rename into place, so that a concurrent run never reads a
   // half-written sequence; if another process got there first, its copy is as good.

@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <iostream>
+#include <opencv2/core/utils/logger.hpp>
 
 #include "cli/commands.h"
 #include "util/error.h"
@@ -9,8 +10,11 @@
 int main(int argc, char** argv) {
   // attend reports its own errors, naming the file; OpenCV's backend chatter (GStreamer,
   // image-sequence probing) would only bury them.
-  // Both variables are read by OpenCV on first use; a user's own setting wins.
-  setenv("OPENCV_LOG_LEVEL", "SILENT", 0);
+  // OpenCV reads its log level at start-up, so it is set here directly; a user who sets
+  // OPENCV_LOG_LEVEL keeps theirs. GStreamer is only probed after the FFmpeg backend fails.
+  if (std::getenv("OPENCV_LOG_LEVEL") == nullptr) {
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+  }
   setenv("OPENCV_VIDEOIO_PRIORITY_GSTREAMER", "0", 0);
 
   CLI::App app{"attend: visual attention on stereo image sequences (Bounded Irregular Pyramid)"};
@@ -22,6 +26,7 @@ int main(int argc, char** argv) {
   attend::CommandAction action;
   attend::AddRunCommand(app, command_line, &action);
   attend::AddSynthCommand(app, command_line, &action);
+  attend::AddSegmentCommand(app, command_line, &action);
 
   try {
     app.parse(argc, argv);

@@ -30,37 +30,32 @@ void Segmenter::Segment(const cv::Mat& bgr, Segmentation* out) {
 void Segmenter::SegmentCylinder(const cv::Mat& cylinder, Segmentation* out, const cv::Mat& mask) {
   const Stopwatch watch;
   const Bip& bip = builder_.Build(cylinder, policy_, mask);
-  int regions = bip.LabelRoots(&out->labels);
+  const int regions = bip.LabelRoots(&out->labels);
   out->pyramid_levels = bip.num_levels();
   ComputeRegionStats(out->labels, regions, cylinder, &out->regions, &out->graph, &boundary_runs_);
   if (options_.min_region_area > 1) {
-    const int merged =
-        MergeSmallRegions(options_.min_region_area, out->regions, out->graph, &out->labels);
-    if (merged != regions) {
-      regions = merged;
-      ComputeRegionStats(out->labels, regions, cylinder, &out->regions, &out->graph,
-                         &boundary_runs_);
-    }
+    MergeSmallRegions(options_.min_region_area, &out->labels, &out->regions, &out->graph);
   }
   out->milliseconds = watch.ElapsedMs();
 }
 
-int MergeSmallRegions(int min_area, const std::vector<RegionStats>& regions,
-                      const RegionGraph& graph, cv::Mat* labels) {
-  const int count = static_cast<int>(regions.size());
+int MergeSmallRegions(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions,
+                      RegionGraph* graph) {
+  const int count = static_cast<int>(regions->size());
   std::vector<int> parent(count), area(count);
-  std::vector<std::array<double, 3>> sum(count);
+  std::vector<std::array<double, 4>> sum(count);  // sx, sy, v, saturation times area
   std::vector<std::vector<int>> neighbours(count);
   for (int r = 0; r < count; ++r) {
+    const RegionStats& region = (*regions)[r];
     parent[r] = r;
-    area[r] = regions[r].area;
-    const CylinderColour& c = regions[r].colour;
-    sum[r] = {c.sx * static_cast<double>(area[r]), c.sy * static_cast<double>(area[r]),
-              c.v * static_cast<double>(area[r])};
+    area[r] = region.area;
+    const double a = region.area;
+    sum[r] = {region.colour.sx * a, region.colour.sy * a, region.colour.v * a,
+              region.saturation * a};
   }
-  for (auto [e, end] = boost::edges(graph); e != end; ++e) {
-    const int a = static_cast<int>(boost::source(*e, graph));
-    const int b = static_cast<int>(boost::target(*e, graph));
+  for (auto [e, end] = boost::edges(*graph); e != end; ++e) {
+    const int a = static_cast<int>(boost::source(*e, *graph));
+    const int b = static_cast<int>(boost::target(*e, *graph));
     neighbours[a].push_back(b);
     neighbours[b].push_back(a);
   }
@@ -74,6 +69,7 @@ int MergeSmallRegions(int min_area, const std::vector<RegionStats>& regions,
   for (int r = 0; r < count; ++r) {
     if (area[r] < min_area) queue.push({area[r], r});
   }
+  bool merged_any = false;
   while (!queue.empty()) {
     const auto [queued_area, r] = queue.top();
     queue.pop();
@@ -94,13 +90,16 @@ int MergeSmallRegions(int min_area, const std::vector<RegionStats>& regions,
       }
     }
     if (best < 0) continue;  // an isolated region (inside a mask) stays
+    merged_any = true;
     parent[r] = best;
     area[best] += area[r];
-    for (int k = 0; k < 3; ++k) sum[best][k] += sum[r][k];
+    for (int k = 0; k < 4; ++k) sum[best][k] += sum[r][k];
     neighbours[best].insert(neighbours[best].end(), neighbours[r].begin(), neighbours[r].end());
     neighbours[r].clear();
     if (area[best] < min_area) queue.push({area[best], best});
   }
+  if (!merged_any) return count;
+
   // Relabel, numbering the surviving regions by first appearance.
   std::vector<int> renumber(count, -1);
   int next = 0;
@@ -113,6 +112,48 @@ int MergeSmallRegions(int min_area, const std::vector<RegionStats>& regions,
       label[col] = renumber[root];
     }
   }
+  // Statistics of the merged regions: sums add, boxes join, and a perimeter is the length of
+  // the boundaries that remain between different regions.
+  std::vector<RegionStats> merged(next);
+  for (int r = 0; r < count; ++r) {
+    const int target = renumber[find(r)];
+    const RegionStats& source = (*regions)[r];
+    RegionStats& region = merged[target];
+    region.bbox = region.area == 0 ? source.bbox : (region.bbox | source.bbox);
+    region.area += source.area;
+  }
+  for (int r = 0; r < count; ++r) {
+    if (find(r) != r) continue;
+    RegionStats& region = merged[renumber[r]];
+    region.colour = {static_cast<float>(sum[r][0] / area[r]),
+                     static_cast<float>(sum[r][1] / area[r]),
+                     static_cast<float>(sum[r][2] / area[r])};
+    region.intensity = region.colour.v;
+    region.saturation = static_cast<float>(sum[r][3] / area[r]);
+  }
+  std::vector<std::pair<uint64_t, int>> pairs;
+  for (auto [e, end] = boost::edges(*graph); e != end; ++e) {
+    const int a = renumber[find(static_cast<int>(boost::source(*e, *graph)))];
+    const int b = renumber[find(static_cast<int>(boost::target(*e, *graph)))];
+    if (a == b) continue;
+    const uint64_t key = (static_cast<uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+    pairs.emplace_back(key, (*graph)[*e].length);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  graph->clear();
+  for (int r = 0; r < next; ++r) boost::add_vertex(*graph);
+  for (size_t i = 0; i < pairs.size();) {
+    size_t j = i;
+    int length = 0;
+    while (j < pairs.size() && pairs[j].first == pairs[i].first) length += pairs[j++].second;
+    const int a = static_cast<int>(pairs[i].first >> 32);
+    const int b = static_cast<int>(pairs[i].first & 0xffffffffu);
+    boost::add_edge(a, b, RegionBoundary{length}, *graph);
+    merged[a].perimeter += length;
+    merged[b].perimeter += length;
+    i = j;
+  }
+  *regions = std::move(merged);
   return next;
 }
 

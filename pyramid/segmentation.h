@@ -85,11 +85,12 @@ void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& c
                         std::vector<uint64_t>* scratch);
 
 // Merges every region smaller than `min_area` pixels into its adjacent region of closest mean
-// colour, smallest first, until none is left that has a neighbour; relabels `labels` with
-// regions numbered by first appearance in raster order. Merged regions stay connected. Returns
-// the new number of regions; `regions` and `graph` are the inputs' statistics and adjacency.
-int MergeSmallRegions(int min_area, const std::vector<RegionStats>& regions,
-                      const RegionGraph& graph, cv::Mat* labels);
+// colour, smallest first, until none is left that has a neighbour. Relabels `labels` (regions
+// numbered by first appearance in raster order) and updates `regions` and `graph` exactly,
+// without another pass over the pixels. Merged regions stay connected. Returns the new number
+// of regions.
+int MergeSmallRegions(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions,
+                      RegionGraph* graph);
 
 // Paints each region with a distinct colour (hashing its index), black outside the mask.
 cv::Mat FalseColour(const cv::Mat& labels);
