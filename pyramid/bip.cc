@@ -45,9 +45,7 @@ std::string BipOptions::Check() const {
   return "";
 }
 
-int BipLevel::CountRegular() const {
-  return static_cast<int>(std::count(hom.begin(), hom.end(), uint8_t{1}));
-}
+int BipLevel::CountRegular() const { return num_regular; }
 
 BipBuilder::BipBuilder(BipOptions options) : options_(options) {
   const std::string problem = options_.Check();
@@ -67,6 +65,7 @@ const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& po
   base.cols = width;
   base.rows = height;
   base.num_virtual = 0;
+  base.num_regular = 0;
   const size_t cells = static_cast<size_t>(width) * height;
   base.hom.resize(cells);
   base.area.resize(cells);
@@ -81,6 +80,7 @@ const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& po
       const uint8_t hom = inside == nullptr || inside[col] != 0 ? 1 : 0;
       base.hom[static_cast<size_t>(row) * width + col] = hom;
       base.area[static_cast<size_t>(row) * width + col] = hom;
+      base.num_regular += hom;
     }
   }
 
@@ -95,7 +95,7 @@ const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& po
     bip_.thresholds_.push_back(threshold);
     BuildLevel(l, threshold);
     const BipLevel& up = levels_[l + 1];
-    if (up.num_virtual == 0 && up.CountRegular() == 0) break;  // the stop rule
+    if (up.num_virtual == 0 && up.num_regular == 0) break;  // the stop rule
     bip_.num_levels_ = l + 2;
   }
   return bip_;
@@ -108,6 +108,7 @@ void BipBuilder::BuildLevel(int l, float threshold) {
   up.cols = cur.cols / 2;
   up.rows = cur.rows / 2;
   up.num_virtual = 0;
+  up.num_regular = 0;
   const size_t cells = static_cast<size_t>(up.cols) * up.rows;
   up.hom.assign(cells, 0);
   up.area.assign(cells, 0);
@@ -142,6 +143,7 @@ void BipBuilder::RegularDecimation(int l, float t2) {
       if (!homogeneous) continue;
       const int id = row * up.cols + col;
       up.hom[id] = 1;
+      ++up.num_regular;
       for (int s : sons) cur.parent[s] = id;
     }
   }
@@ -186,16 +188,22 @@ void BipBuilder::RegularOrphans(int l, float t2) {
       if (cur.hom[id] == 0 || cur.parent[id] >= 0) continue;
       const float* colour = cur.Feature(id);
       Best parented, orphan;
-      for (int k = 0; k < 8; ++k) {
-        const int x = col + kDx[k], y = row + kDy[k];
-        if (x < 0 || y < 0 || x >= cur.cols || y >= cur.rows) continue;
-        const int n = y * cur.cols + x;
-        if (cur.hom[n] == 0) continue;
+      auto offer = [&](int n) {
+        if (cur.hom[n] == 0) return;
         const float d2 = Distance2(colour, cur.Feature(n));
         if (cur.parent[n] >= 0) {
           parented.Offer(n, d2);
         } else {
           orphan.Offer(n, d2);
+        }
+      };
+      if (row > 0 && col > 0 && row + 1 < cur.rows && col + 1 < cur.cols) {
+        // Inside the array: no bounds to check.
+        for (int k = 0; k < 8; ++k) offer(id + kDy[k] * cur.cols + kDx[k]);
+      } else {
+        for (int k = 0; k < 8; ++k) {
+          const int x = col + kDx[k], y = row + kDy[k];
+          if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) offer(y * cur.cols + x);
         }
       }
       if (across) {
@@ -320,8 +328,10 @@ int Bip::CountRoots() const {
 
 int Bip::LabelRoots(cv::Mat* labels, std::vector<VertexRef>* root_refs) const {
   // Top-down: a vertex takes its parent's root, or starts a new one.
-  std::vector<int32_t> above, current;
-  std::vector<VertexRef> found;
+  std::vector<int32_t>& above = label_scratch_[0];
+  std::vector<int32_t>& current = label_scratch_[1];
+  std::vector<VertexRef>& found = root_scratch_;
+  found.clear();
   int roots = 0;
   for (int l = num_levels_ - 1; l >= 0; --l) {
     const BipLevel& level = (*levels_)[l];
@@ -341,7 +351,8 @@ int Bip::LabelRoots(cv::Mat* labels, std::vector<VertexRef>* root_refs) const {
   // Number roots by first appearance in raster order, so labels do not depend on the order in
   // which levels were visited.
   labels->create(height_, width_, CV_32SC1);
-  std::vector<int32_t> renumber(roots, -1);
+  std::vector<int32_t>& renumber = label_scratch_[1];
+  renumber.assign(roots, -1);
   int next = 0;
   for (int row = 0; row < height_; ++row) {
     int32_t* out = labels->ptr<int32_t>(row);

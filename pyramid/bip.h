@@ -43,6 +43,7 @@ struct BipLevel {
   int cols = 0;  // regular array width, W >> l
   int rows = 0;  // regular array height, H >> l
   int num_virtual = 0;
+  int num_regular = 0;          // cells with Hom = 1
   std::vector<uint8_t> hom;     // per cell: 1 iff the cell is a regular vertex
   std::vector<float> feature;   // 3 per vertex
   std::vector<int32_t> area;    // per vertex, level-0 pixels (0 for holes)
@@ -103,6 +104,9 @@ class Bip {
   int height_ = 0;
   int num_levels_ = 0;
   int top_regular_level_ = 0;
+  // Reused by LabelRoots so that labelling a frame allocates nothing after the first.
+  mutable std::vector<int32_t> label_scratch_[2];
+  mutable std::vector<VertexRef> root_scratch_;
 };
 
 // Builds pyramids. It owns every buffer, and keeps them between builds, so that after the

@@ -191,25 +191,35 @@ void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& c
     const int32_t* label = labels.ptr<int32_t>(row);
     const int32_t* below = row + 1 < labels.rows ? labels.ptr<int32_t>(row + 1) : nullptr;
     const float* colour = cylinder.ptr<float>(row);
-    for (int col = 0; col < labels.cols; ++col) {
+    // Runs of one label along the row: box and area once per run, sums per pixel.
+    for (int col = 0; col < labels.cols;) {
       const int r = label[col];
-      if (r < 0) continue;
-      RegionStats& region = (*regions)[r];
-      ++region.area;
-      const float* c = colour + 3 * col;
-      double* sum = &sums[4 * static_cast<size_t>(r)];
-      sum[0] += c[0];
-      sum[1] += c[1];
-      sum[2] += c[2];
-      sum[3] += std::sqrt(c[0] * c[0] + c[1] * c[1]);
-      low[r].x = std::min(low[r].x, col);
-      low[r].y = std::min(low[r].y, row);
-      high[r].x = std::max(high[r].x, col);
-      high[r].y = std::max(high[r].y, row);
-      if (col + 1 < labels.cols && label[col + 1] >= 0 && label[col + 1] != r) {
-        boundary(r, label[col + 1]);
+      if (r < 0) {
+        ++col;
+        continue;
       }
-      if (below != nullptr && below[col] >= 0 && below[col] != r) boundary(r, below[col]);
+      const int start = col;
+      float s0 = 0.f, s1 = 0.f, s2 = 0.f, s3 = 0.f;
+      for (; col < labels.cols && label[col] == r; ++col) {
+        const float* c = colour + 3 * col;
+        s0 += c[0];
+        s1 += c[1];
+        s2 += c[2];
+        s3 += std::sqrt(c[0] * c[0] + c[1] * c[1]);
+        if (below != nullptr && below[col] >= 0 && below[col] != r) boundary(r, below[col]);
+      }
+      RegionStats& region = (*regions)[r];
+      region.area += col - start;
+      double* sum = &sums[4 * static_cast<size_t>(r)];
+      sum[0] += s0;
+      sum[1] += s1;
+      sum[2] += s2;
+      sum[3] += s3;
+      low[r].x = std::min(low[r].x, start);
+      low[r].y = std::min(low[r].y, row);
+      high[r].x = std::max(high[r].x, col - 1);
+      high[r].y = std::max(high[r].y, row);
+      if (col < labels.cols && label[col] >= 0) boundary(r, label[col]);
     }
   }
   if (run_length > 0) {
