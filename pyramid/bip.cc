@@ -117,6 +117,8 @@ void BipBuilder::BuildLevel(int l, float threshold) {
   up.edges.clear();
 
   const float t2 = threshold * threshold;
+  linked_.clear();
+  NeighbourDistances(l);
   RegularDecimation(l, t2);  // stage 1
   BuildAdjacency(l);
   RegularOrphans(l, t2);  // stage 2
@@ -125,26 +127,90 @@ void BipBuilder::BuildLevel(int l, float threshold) {
   IntraLevelEdges(l);  // stage 4
 }
 
+enum Direction { kEast = 0, kSouth = 1, kSouthEast = 2, kSouthWest = 3 };
+
+void BipBuilder::NeighbourDistances(int l) {
+  const BipLevel& cur = levels_[l];
+  const int cols = cur.cols, rows = cur.rows;
+  const size_t cells = static_cast<size_t>(cols) * rows;
+  constexpr float kFar = std::numeric_limits<float>::infinity();
+  for (auto& plane : distance_) plane.resize(cells);
+  if (cells == 0) return;  // a 1-wide level halves to 0 columns
+  // One plane per feature component, so that the loops below vectorise.
+  for (auto& plane : planes_) plane.resize(cells);
+  float* p0 = planes_[0].data();
+  float* p1 = planes_[1].data();
+  float* p2 = planes_[2].data();
+  const float* f = cur.feature.data();
+  for (size_t i = 0; i < cells; ++i) {
+    p0[i] = f[3 * i];
+    p1[i] = f[3 * i + 1];
+    p2[i] = f[3 * i + 2];
+  }
+  // d[i] = |f(i) - f(i + offset)|^2 for i in [begin, end).
+  auto distances = [&](float* d, size_t begin, size_t end, size_t offset) {
+    for (size_t i = begin; i < end; ++i) {
+      const float a = p0[i] - p0[i + offset], b = p1[i] - p1[i + offset],
+                  c = p2[i] - p2[i + offset];
+      d[i] = a * a + b * b + c * c;
+    }
+  };
+  float* east = distance_[kEast].data();
+  float* south = distance_[kSouth].data();
+  float* south_east = distance_[kSouthEast].data();
+  float* south_west = distance_[kSouthWest].data();
+  // Whole-plane passes; the entries that wrap around a row end are overwritten below.
+  distances(east, 0, cells - 1, 1);
+  east[cells - 1] = kFar;
+  const size_t last_row = cells - cols;
+  distances(south, 0, last_row, cols);
+  if (last_row > 0) {
+    distances(south_east, 0, last_row - 1, cols + 1);
+    distances(south_west, 1, last_row, cols - 1);
+  }
+  std::fill(south + last_row, south + cells, kFar);
+  std::fill(south_east + (last_row > 0 ? last_row - 1 : 0), south_east + cells, kFar);
+  std::fill(south_west + last_row, south_west + cells, kFar);
+  for (int row = 0; row < rows; ++row) {
+    const size_t first = static_cast<size_t>(row) * cols;
+    east[first + cols - 1] = kFar;
+    south_east[first + cols - 1] = kFar;
+    south_west[first] = kFar;
+  }
+}
+
 // Stage 1: (i, j, l+1) is a regular vertex iff its four sons are regular and pairwise similar.
+// Its area and (not yet divided) feature sum are accumulated here.
 void BipBuilder::RegularDecimation(int l, float t2) {
   BipLevel& cur = levels_[l];
   BipLevel& up = levels_[l + 1];
+  const float* east = distance_[kEast].data();
+  const float* south = distance_[kSouth].data();
+  const float* south_east = distance_[kSouthEast].data();
+  const float* south_west = distance_[kSouthWest].data();
   for (int row = 0; row < up.rows; ++row) {
     for (int col = 0; col < up.cols; ++col) {
       const int a = 2 * row * cur.cols + 2 * col;
-      const int sons[4] = {a, a + 1, a + cur.cols, a + cur.cols + 1};
-      bool homogeneous = true;
-      for (int s = 0; s < 4 && homogeneous; ++s) homogeneous = cur.hom[sons[s]] != 0;
-      for (int s = 0; s < 4 && homogeneous; ++s) {
-        for (int t = s + 1; t < 4 && homogeneous; ++t) {
-          homogeneous = Distance2(cur.Feature(sons[s]), cur.Feature(sons[t])) < t2;
-        }
+      const int b = a + 1, c = a + cur.cols, d = c + 1;
+      if ((cur.hom[a] & cur.hom[b] & cur.hom[c] & cur.hom[d]) == 0) continue;
+      // The six pairs of the 2x2 window.
+      if (!(east[a] < t2 && east[c] < t2 && south[a] < t2 && south[b] < t2 && south_east[a] < t2 &&
+            south_west[b] < t2)) {
+        continue;
       }
-      if (!homogeneous) continue;
       const int id = row * up.cols + col;
       up.hom[id] = 1;
       ++up.num_regular;
-      for (int s : sons) cur.parent[s] = id;
+      float* sum = &up.feature[3 * static_cast<size_t>(id)];
+      for (int son : {a, b, c, d}) {
+        cur.parent[son] = id;
+        const float weight = static_cast<float>(cur.area[son]);
+        const float* f = cur.Feature(son);
+        sum[0] += weight * f[0];
+        sum[1] += weight * f[1];
+        sum[2] += weight * f[2];
+        up.area[id] += cur.area[son];
+      }
     }
   }
 }
@@ -170,7 +236,9 @@ void BipBuilder::BuildAdjacency(int l) {
 int BipBuilder::NewVirtual(BipLevel* up) {
   const int id = up->num_cells() + up->num_virtual;
   ++up->num_virtual;
-  up->feature.insert(up->feature.end(), 3, 0.f);
+  up->feature.push_back(0.f);
+  up->feature.push_back(0.f);
+  up->feature.push_back(0.f);
   up->area.push_back(0);
   up->parent.push_back(-1);
   return id;
@@ -182,31 +250,36 @@ void BipBuilder::RegularOrphans(int l, float t2) {
   BipLevel& cur = levels_[l];
   BipLevel& up = levels_[l + 1];
   const bool across = options_.link_across_kinds;
+  const float* east = distance_[kEast].data();
+  const float* south = distance_[kSouth].data();
+  const float* south_east = distance_[kSouthEast].data();
+  const float* south_west = distance_[kSouthWest].data();
   for (int row = 0; row < cur.rows; ++row) {
     for (int col = 0; col < cur.cols; ++col) {
       const int id = row * cur.cols + col;
       if (cur.hom[id] == 0 || cur.parent[id] >= 0) continue;
-      const float* colour = cur.Feature(id);
       Best parented, orphan;
-      auto offer = [&](int n) {
+      auto offer = [&](int n, float d2) {
         if (cur.hom[n] == 0) return;
-        const float d2 = Distance2(colour, cur.Feature(n));
         if (cur.parent[n] >= 0) {
           parented.Offer(n, d2);
         } else {
           orphan.Offer(n, d2);
         }
       };
-      if (row > 0 && col > 0 && row + 1 < cur.rows && col + 1 < cur.cols) {
-        // Inside the array: no bounds to check.
-        for (int k = 0; k < 8; ++k) offer(id + kDy[k] * cur.cols + kDx[k]);
-      } else {
-        for (int k = 0; k < 8; ++k) {
-          const int x = col + kDx[k], y = row + kDy[k];
-          if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) offer(y * cur.cols + x);
-        }
-      }
+      const int cols = cur.cols;
+      const bool inside = row > 0 && col > 0 && row + 1 < cur.rows && col + 1 < cols;
+      // In raster order of the neighbours, so that ties go to the first.
+      if (inside || (row > 0 && col > 0)) offer(id - cols - 1, south_east[id - cols - 1]);
+      if (inside || row > 0) offer(id - cols, south[id - cols]);
+      if (inside || (row > 0 && col + 1 < cols)) offer(id - cols + 1, south_west[id - cols + 1]);
+      if (inside || col > 0) offer(id - 1, east[id - 1]);
+      if (inside || col + 1 < cols) offer(id + 1, east[id]);
+      if (inside || (row + 1 < cur.rows && col > 0)) offer(id + cols - 1, south_west[id]);
+      if (inside || row + 1 < cur.rows) offer(id + cols, south[id]);
+      if (inside || (row + 1 < cur.rows && col + 1 < cols)) offer(id + cols + 1, south_east[id]);
       if (across) {
+        const float* colour = cur.Feature(id);
         for (int e = adjacency_offsets_[id]; e < adjacency_offsets_[id + 1]; ++e) {
           const int n = adjacency_[e];
           if (!cur.IsVirtual(n)) continue;
@@ -220,10 +293,13 @@ void BipBuilder::RegularOrphans(int l, float t2) {
       }
       if (parented.distance2 < t2) {
         cur.parent[id] = cur.parent[parented.id];
+        linked_.push_back(id);
       } else if (orphan.distance2 < t2) {
         const int fresh = NewVirtual(&up);
         cur.parent[id] = fresh;
         cur.parent[orphan.id] = fresh;
+        linked_.push_back(id);
+        linked_.push_back(orphan.id);
       }
     }
   }
@@ -251,21 +327,24 @@ void BipBuilder::VirtualOrphans(int l, float t2) {
     }
     if (parented.distance2 < t2) {
       cur.parent[id] = cur.parent[parented.id];
+      linked_.push_back(id);
     } else if (orphan.distance2 < t2) {
       const int fresh = NewVirtual(&up);
       cur.parent[id] = fresh;
       cur.parent[orphan.id] = fresh;
+      linked_.push_back(id);
+      linked_.push_back(orphan.id);
     }
   }
 }
 
-// Area-weighted means of the sons: the parents' features and areas.
+// Area-weighted means of the sons: the parents' features and areas. Decimation already
+// summed the regular parents' four sons; the sons linked in stages 2 and 3 are added here.
 void BipBuilder::UpdateParents(int l) {
   const BipLevel& cur = levels_[l];
   BipLevel& up = levels_[l + 1];
-  for (int id = 0; id < cur.num_ids(); ++id) {
+  for (int id : linked_) {
     const int p = cur.parent[id];
-    if (p < 0) continue;
     const float weight = static_cast<float>(cur.area[id]);
     const float* son = cur.Feature(id);
     float* sum = &up.feature[3 * static_cast<size_t>(p)];
@@ -290,17 +369,22 @@ void BipBuilder::IntraLevelEdges(int l) {
   const BipLevel& cur = levels_[l];
   BipLevel& up = levels_[l + 1];
   edge_scratch_.clear();
-  // Regular sons, adjacent in the array, whose parents differ and one of which is virtual.
-  for (int row = 0; row < cur.rows; ++row) {
+  // Regular sons, adjacent in the array, whose parents differ and one of which is virtual:
+  // found from the sons with a virtual parent.
+  uint64_t last = ~uint64_t{0};
+  auto add = [&](int p, int q) {
+    if (q < 0 || q == p) return;
+    const uint64_t key = EdgeKey(p, q);
+    if (key != last) edge_scratch_.push_back(last = key);  // skips most repeats cheaply
+  };
+  for (int row = 0; row < cur.rows && up.num_virtual > 0; ++row) {
     for (int col = 0; col < cur.cols; ++col) {
       const int id = row * cur.cols + col;
       const int p = cur.parent[id];
       if (p < 0 || !up.IsVirtual(p)) continue;
       for (int k = 0; k < 8; ++k) {
         const int x = col + kDx[k], y = row + kDy[k];
-        if (x < 0 || y < 0 || x >= cur.cols || y >= cur.rows) continue;
-        const int q = cur.parent[y * cur.cols + x];
-        if (q >= 0 && q != p) edge_scratch_.push_back(EdgeKey(p, q));
+        if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) add(p, cur.parent[y * cur.cols + x]);
       }
     }
   }

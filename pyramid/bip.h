@@ -126,6 +126,7 @@ class BipBuilder {
 
  private:
   void BuildLevel(int l, float threshold);
+  void NeighbourDistances(int l);
   void RegularDecimation(int l, float t2);
   void RegularOrphans(int l, float t2);
   void VirtualOrphans(int l, float t2);
@@ -141,6 +142,12 @@ class BipBuilder {
   std::vector<int32_t> adjacency_offsets_;
   std::vector<int32_t> adjacency_;
   std::vector<uint64_t> edge_scratch_;
+  // Squared distances between each cell of the current level and its east, south, south-east
+  // and south-west neighbours: computed once, read by decimation and by the orphans.
+  std::vector<float> distance_[4];
+  std::vector<float> planes_[3];  // the current level's features, one plane per component
+  // Vertices of the current level linked to a parent by stages 2 and 3.
+  std::vector<int32_t> linked_;
 };
 
 }  // namespace attend
