@@ -45,6 +45,7 @@ int MergeSmallRegions(int min_area, cv::Mat* labels, std::vector<RegionStats>* r
   std::vector<int> parent(count), area(count);
   std::vector<std::array<double, 4>> sum(count);  // sx, sy, v, saturation times area
   std::vector<std::vector<int>> neighbours(count);
+  std::vector<size_t> compact_size(count, 0);
   for (int r = 0; r < count; ++r) {
     const RegionStats& region = (*regions)[r];
     parent[r] = r;
@@ -94,8 +95,19 @@ int MergeSmallRegions(int min_area, cv::Mat* labels, std::vector<RegionStats>* r
     parent[r] = best;
     area[best] += area[r];
     for (int k = 0; k < 4; ++k) sum[best][k] += sum[r][k];
-    neighbours[best].insert(neighbours[best].end(), neighbours[r].begin(), neighbours[r].end());
+    std::vector<int>& joined = neighbours[best];
+    joined.insert(joined.end(), neighbours[r].begin(), neighbours[r].end());
     neighbours[r].clear();
+    neighbours[r].shrink_to_fit();
+    // A region that swallows many small ones would collect their lists again and again:
+    // compact it to its distinct current neighbours whenever it has doubled.
+    if (joined.size() > 32 && joined.size() > 2 * compact_size[best]) {
+      for (int& n : joined) n = find(n);
+      std::sort(joined.begin(), joined.end());
+      joined.erase(std::unique(joined.begin(), joined.end()), joined.end());
+      joined.erase(std::remove(joined.begin(), joined.end(), best), joined.end());
+      compact_size[best] = joined.size();
+    }
     if (area[best] < min_area) queue.push({area[best], best});
   }
   if (!merged_any) return count;

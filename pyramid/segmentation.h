@@ -43,8 +43,11 @@ struct RegionStats {
 struct RegionBoundary {
   int length = 0;
 };
-using RegionGraph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS,
-                                          boost::no_property, RegionBoundary>;
+// Edges are kept in a vector (not Boost's default list), so building the graph of a frame
+// costs a few allocations rather than one per edge.
+using RegionGraph =
+    boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
+                          RegionBoundary, boost::no_property, boost::vecS>;
 
 struct Segmentation {
   // CV_32SC1: region index per pixel, -1 outside the mask. Every region is 8-connected.
