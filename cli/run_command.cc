@@ -71,16 +71,6 @@ void ParseFrameRange(const std::string& text, SequenceOptions* sequence) {
   }
 }
 
-std::string SequenceName(const SequenceOptions& s) {
-  std::string path = !s.folder.empty()               ? s.folder
-                     : !s.left_video.empty()         ? s.left_video
-                     : !s.side_by_side_video.empty() ? s.side_by_side_video
-                                                     : s.video;
-  while (path.size() > 1 && path.back() == '/') path.pop_back();
-  const std::filesystem::path p(path);
-  return p.has_extension() ? p.stem().string() : p.filename().string();
-}
-
 void PrintProgress(const RunProgress& progress) {
   // Ten updates a second are enough to read; more would slow a fast run down.
   static Stopwatch since_last;
@@ -127,10 +117,8 @@ int Run(const RunArguments& args) {
   request.overwrite = args.overwrite;
   request.config_path = config_path;
   request.command_line = args.command_line;
-  request.out_dir = !args.out.empty() ? args.out
-                    : !options.output.dir.empty()
-                        ? options.output.dir
-                        : DefaultRunFolder("runs", config_path, SequenceName(sequence));
+  // Empty: the run loop names a folder under runs/ once it knows the sequence's name.
+  request.out_dir = !args.out.empty() ? args.out : options.output.dir;
   request.stop = &g_stop_requested;
   const bool show_progress = !args.quiet && isatty(STDERR_FILENO);
   if (show_progress) request.on_progress = PrintProgress;

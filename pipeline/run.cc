@@ -99,7 +99,10 @@ RunSummary RunSequence(const RunRequest& request) {
   const SequenceInfo& info = source->info();
   CheckFeaturesFitSource(options, info);
 
-  RunFolder folder(request.out_dir, request.overwrite);
+  const std::string out_dir = request.out_dir.empty()
+                                  ? DefaultRunFolder("runs", request.config_path, info.name)
+                                  : request.out_dir;
+  RunFolder folder(out_dir, request.overwrite);
   folder.WriteConfig(OptionsToYaml(options));
   const std::string started = LocalTime("%Y-%m-%dT%H:%M:%S%z");
 
