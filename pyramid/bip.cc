@@ -225,11 +225,11 @@ void BipBuilder::BuildAdjacency(int l) {
   }
   for (int i = 0; i < ids; ++i) adjacency_offsets_[i + 1] += adjacency_offsets_[i];
   adjacency_.resize(2 * cur.edges.size());
-  edge_scratch_.assign(adjacency_offsets_.begin(), adjacency_offsets_.end() - 1);  // fill cursor
+  stamp_.assign(adjacency_offsets_.begin(), adjacency_offsets_.end() - 1);  // fill cursor
   for (uint64_t key : cur.edges) {
     const auto a = static_cast<int32_t>(key >> 32), b = static_cast<int32_t>(key & 0xffffffffu);
-    adjacency_[edge_scratch_[a]++] = b;
-    adjacency_[edge_scratch_[b]++] = a;
+    adjacency_[stamp_[a]++] = b;
+    adjacency_[stamp_[b]++] = a;
   }
 }
 
@@ -364,39 +364,61 @@ void BipBuilder::UpdateParents(int l) {
 }
 
 // Stage 4: two vertices of l + 1 are neighbours iff their reduction windows are adjacent at l.
-// Only pairs with a virtual end are stored; regular pairs are implicit in the array.
+// Only pairs with a virtual end are stored; regular pairs are implicit in the array. Each
+// virtual parent visits its sons' neighbours once, and a stamp per parent skips repeats, so no
+// sorting is needed: a virtual-virtual pair is emitted by its smaller id, a virtual-regular
+// pair by the virtual end.
 void BipBuilder::IntraLevelEdges(int l) {
   const BipLevel& cur = levels_[l];
   BipLevel& up = levels_[l + 1];
-  edge_scratch_.clear();
-  // Regular sons, adjacent in the array, whose parents differ and one of which is virtual:
-  // found from the sons with a virtual parent.
-  uint64_t last = ~uint64_t{0};
-  auto add = [&](int p, int q) {
-    if (q < 0 || q == p) return;
-    const uint64_t key = EdgeKey(p, q);
-    if (key != last) edge_scratch_.push_back(last = key);  // skips most repeats cheaply
-  };
-  for (int row = 0; row < cur.rows && up.num_virtual > 0; ++row) {
-    for (int col = 0; col < cur.cols; ++col) {
-      const int id = row * cur.cols + col;
+  up.edges.clear();
+  if (up.num_virtual == 0) return;
+  // The sons of each parent, grouped (counting sort by parent).
+  const int parents = up.num_ids();
+  son_offsets_.assign(parents + 1, 0);
+  for (int id = 0; id < cur.num_ids(); ++id) {
+    if (cur.parent[id] >= 0) ++son_offsets_[cur.parent[id] + 1];
+  }
+  for (int p = 0; p < parents; ++p) son_offsets_[p + 1] += son_offsets_[p];
+  sons_.resize(son_offsets_[parents]);
+  son_cells_.resize(son_offsets_[parents]);
+  stamp_.assign(son_offsets_.begin(), son_offsets_.end() - 1);  // fill cursor
+  // Regular sons keep their array position (col | row << 16), so no division is needed later.
+  for (int row = 0, id = 0; row < cur.rows; ++row) {
+    for (int col = 0; col < cur.cols; ++col, ++id) {
       const int p = cur.parent[id];
-      if (p < 0 || !up.IsVirtual(p)) continue;
-      for (int k = 0; k < 8; ++k) {
-        const int x = col + kDx[k], y = row + kDy[k];
-        if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) add(p, cur.parent[y * cur.cols + x]);
+      if (p < 0) continue;
+      const int slot = stamp_[p]++;
+      sons_[slot] = id;
+      son_cells_[slot] = static_cast<uint32_t>(col) | (static_cast<uint32_t>(row) << 16);
+    }
+  }
+  for (int id = cur.num_cells(); id < cur.num_ids(); ++id) {
+    if (cur.parent[id] >= 0) sons_[stamp_[cur.parent[id]]++] = id;
+  }
+  stamp_.assign(parents, -1);
+  for (int p = up.num_cells(); p < parents; ++p) {
+    auto visit = [&](int neighbour) {
+      const int q = cur.parent[neighbour];
+      if (q < 0 || q == p || stamp_[q] == p) return;
+      stamp_[q] = p;
+      if (!up.IsVirtual(q) || q > p) up.edges.push_back(EdgeKey(p, q));
+    };
+    for (int k = son_offsets_[p]; k < son_offsets_[p + 1]; ++k) {
+      const int son = sons_[k];
+      if (!cur.IsVirtual(son)) {
+        const int col = static_cast<int>(son_cells_[k] & 0xffffu);
+        const int row = static_cast<int>(son_cells_[k] >> 16);
+        for (int d = 0; d < 8; ++d) {
+          const int x = col + kDx[d], y = row + kDy[d];
+          if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) visit(y * cur.cols + x);
+        }
+      }
+      for (int e = adjacency_offsets_[son]; e < adjacency_offsets_[son + 1]; ++e) {
+        visit(adjacency_[e]);
       }
     }
   }
-  // Sons joined by an explicit edge.
-  for (uint64_t key : cur.edges) {
-    const int p = cur.parent[key >> 32], q = cur.parent[key & 0xffffffffu];
-    if (p < 0 || q < 0 || p == q) continue;
-    if (up.IsVirtual(p) || up.IsVirtual(q)) edge_scratch_.push_back(EdgeKey(p, q));
-  }
-  std::sort(edge_scratch_.begin(), edge_scratch_.end());
-  edge_scratch_.erase(std::unique(edge_scratch_.begin(), edge_scratch_.end()), edge_scratch_.end());
-  up.edges.assign(edge_scratch_.begin(), edge_scratch_.end());
 }
 
 int Bip::CountRoots() const {

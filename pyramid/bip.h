@@ -48,8 +48,8 @@ struct BipLevel {
   std::vector<float> feature;   // 3 per vertex
   std::vector<int32_t> area;    // per vertex, level-0 pixels (0 for holes)
   std::vector<int32_t> parent;  // per vertex, id in level l + 1, or -1
-  // Explicit intra-level edges with at least one virtual end, as (min id, max id), sorted,
-  // unique. Regular-regular adjacency is implicit in the array.
+  // Explicit intra-level edges with at least one virtual end, as (min id, max id), each pair
+  // once, in no particular order. Regular-regular adjacency is implicit in the array.
   std::vector<uint64_t> edges;
 
   int num_cells() const { return cols * rows; }
@@ -141,11 +141,15 @@ class BipBuilder {
   // CSR adjacency of the current level's explicit edges, over all ids.
   std::vector<int32_t> adjacency_offsets_;
   std::vector<int32_t> adjacency_;
-  std::vector<uint64_t> edge_scratch_;
   // Squared distances between each cell of the current level and its east, south, south-east
   // and south-west neighbours: computed once, read by decimation and by the orphans.
   std::vector<float> distance_[4];
   std::vector<float> planes_[3];  // the current level's features, one plane per component
+  // The sons of each vertex of the level being built (CSR), and a stamp per vertex.
+  std::vector<int32_t> son_offsets_;
+  std::vector<int32_t> sons_;
+  std::vector<uint32_t> son_cells_;  // array position of regular sons: col | row << 16
+  std::vector<int32_t> stamp_;
   // Vertices of the current level linked to a parent by stages 2 and 3.
   std::vector<int32_t> linked_;
 };

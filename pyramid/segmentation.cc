@@ -152,19 +152,21 @@ int MergeSmallRegions(int min_area, cv::Mat* labels, std::vector<RegionStats>* r
     pairs.emplace_back(key, (*graph)[*e].length);
   }
   std::sort(pairs.begin(), pairs.end());
-  graph->clear();
-  for (int r = 0; r < next; ++r) boost::add_vertex(*graph);
+  std::vector<std::pair<int, int>> edge_ends;
+  std::vector<RegionBoundary> lengths;
   for (size_t i = 0; i < pairs.size();) {
     size_t j = i;
     int length = 0;
     while (j < pairs.size() && pairs[j].first == pairs[i].first) length += pairs[j++].second;
     const int a = static_cast<int>(pairs[i].first >> 32);
     const int b = static_cast<int>(pairs[i].first & 0xffffffffu);
-    boost::add_edge(a, b, RegionBoundary{length}, *graph);
+    edge_ends.emplace_back(a, b);
+    lengths.push_back({length});
     merged[a].perimeter += length;
     merged[b].perimeter += length;
     i = j;
   }
+  *graph = RegionGraph(edge_ends.begin(), edge_ends.end(), lengths.begin(), next);
   *regions = std::move(merged);
   return next;
 }
@@ -249,23 +251,35 @@ void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& c
     region.saturation = static_cast<float>(sum[3] / region.area);
     region.bbox = cv::Rect(low[r], high[r] + cv::Point(1, 1));
   }
-  // Merge the runs by pair into graph edges.
+  // Merge the runs by pair into graph edges without sorting: group the runs by their smaller
+  // region (counting sort), then add up each group's lengths per neighbour with a slot index.
   const size_t runs = scratch->size() / 2;
-  std::vector<std::pair<uint64_t, uint32_t>> pairs(runs);
+  std::vector<int> offsets(num_regions + 1, 0);
+  for (size_t i = 0; i < runs; ++i) ++offsets[((*scratch)[2 * i] >> 32) + 1];
+  for (int r = 0; r < num_regions; ++r) offsets[r + 1] += offsets[r];
+  std::vector<std::pair<int, int>> grouped(runs);  // (other region, length)
+  std::vector<int> cursor(offsets.begin(), offsets.end() - 1);
   for (size_t i = 0; i < runs; ++i) {
-    pairs[i] = {(*scratch)[2 * i], static_cast<uint32_t>((*scratch)[2 * i + 1])};
+    const uint64_t key = (*scratch)[2 * i];
+    grouped[cursor[key >> 32]++] = {static_cast<int>(key & 0xffffffffu),
+                                    static_cast<int>((*scratch)[2 * i + 1])};
   }
-  std::sort(pairs.begin(), pairs.end());
-  graph->clear();
-  for (int r = 0; r < num_regions; ++r) boost::add_vertex(*graph);
-  for (size_t i = 0; i < pairs.size();) {
-    size_t j = i;
-    int length = 0;
-    while (j < pairs.size() && pairs[j].first == pairs[i].first) length += pairs[j++].second;
-    boost::add_edge(static_cast<int>(pairs[i].first >> 32),
-                    static_cast<int>(pairs[i].first & 0xffffffffu), RegionBoundary{length}, *graph);
-    i = j;
+  using EdgePair = std::pair<int, int>;
+  std::vector<EdgePair> edge_ends;
+  std::vector<RegionBoundary> lengths;
+  std::vector<int> slot(num_regions, -1);  // index in edge_ends of (a, b) for the current a
+  for (int a = 0; a < num_regions; ++a) {
+    for (int k = offsets[a]; k < offsets[a + 1]; ++k) {
+      const auto [b, length] = grouped[k];
+      if (slot[b] < 0 || edge_ends[slot[b]].first != a) {
+        slot[b] = static_cast<int>(edge_ends.size());
+        edge_ends.emplace_back(a, b);
+        lengths.push_back({0});
+      }
+      lengths[slot[b]].length += length;
+    }
   }
+  *graph = RegionGraph(edge_ends.begin(), edge_ends.end(), lengths.begin(), num_regions);
 }
 
 cv::Mat FalseColour(const cv::Mat& labels) {
