@@ -134,10 +134,15 @@ void BipBuilder::NeighbourDistances(int l) {
   const int cols = cur.cols, rows = cur.rows;
   const size_t cells = static_cast<size_t>(cols) * rows;
   constexpr float kFar = std::numeric_limits<float>::infinity();
-  for (auto& plane : distance_) plane.resize(cells);
+  // Grow only: resizing back up after a smaller level would zero-fill every frame.
+  for (auto& plane : distance_) {
+    if (plane.size() < cells) plane.resize(cells);
+  }
   if (cells == 0) return;  // a 1-wide level halves to 0 columns
   // One plane per feature component, so that the loops below vectorise.
-  for (auto& plane : planes_) plane.resize(cells);
+  for (auto& plane : planes_) {
+    if (plane.size() < cells) plane.resize(cells);
+  }
   float* p0 = planes_[0].data();
   float* p1 = planes_[1].data();
   float* p2 = planes_[2].data();
@@ -217,6 +222,11 @@ void BipBuilder::RegularDecimation(int l, float t2) {
 
 void BipBuilder::BuildAdjacency(int l) {
   const BipLevel& cur = levels_[l];
+  if (cur.edges.empty()) {  // level 0, and levels without virtual vertices
+    adjacency_offsets_.clear();
+    adjacency_.clear();
+    return;
+  }
   const int ids = cur.num_ids();
   adjacency_offsets_.assign(ids + 1, 0);
   for (uint64_t key : cur.edges) {
@@ -280,7 +290,7 @@ void BipBuilder::RegularOrphans(int l, float t2) {
       if (inside || (row + 1 < cur.rows && col + 1 < cols)) offer(id + cols + 1, south_east[id]);
       if (across) {
         const float* colour = cur.Feature(id);
-        for (int e = adjacency_offsets_[id]; e < adjacency_offsets_[id + 1]; ++e) {
+        for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) {
           const int n = adjacency_[e];
           if (!cur.IsVirtual(n)) continue;
           const float d2 = Distance2(colour, cur.Feature(n));
@@ -314,7 +324,7 @@ void BipBuilder::VirtualOrphans(int l, float t2) {
     if (cur.parent[id] >= 0) continue;
     const float* colour = cur.Feature(id);
     Best parented, orphan;
-    for (int e = adjacency_offsets_[id]; e < adjacency_offsets_[id + 1]; ++e) {
+    for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) {
       const int n = adjacency_[e];
       const bool is_virtual = cur.IsVirtual(n);
       if (!is_virtual && !across) continue;
@@ -373,28 +383,20 @@ void BipBuilder::IntraLevelEdges(int l) {
   BipLevel& up = levels_[l + 1];
   up.edges.clear();
   if (up.num_virtual == 0) return;
-  // The sons of each parent, grouped (counting sort by parent).
+  // The sons of each virtual parent, grouped (counting sort by parent). Only stages 2 and 3
+  // give a vertex a virtual parent, so the linked sons are all there is to look at.
+  const int first_virtual = up.num_cells();
   const int parents = up.num_ids();
-  son_offsets_.assign(parents + 1, 0);
-  for (int id = 0; id < cur.num_ids(); ++id) {
-    if (cur.parent[id] >= 0) ++son_offsets_[cur.parent[id] + 1];
+  son_offsets_.assign(up.num_virtual + 1, 0);
+  for (int id : linked_) {
+    if (cur.parent[id] >= first_virtual) ++son_offsets_[cur.parent[id] - first_virtual + 1];
   }
-  for (int p = 0; p < parents; ++p) son_offsets_[p + 1] += son_offsets_[p];
-  sons_.resize(son_offsets_[parents]);
-  son_cells_.resize(son_offsets_[parents]);
+  for (int v = 0; v < up.num_virtual; ++v) son_offsets_[v + 1] += son_offsets_[v];
+  sons_.resize(son_offsets_[up.num_virtual]);
   stamp_.assign(son_offsets_.begin(), son_offsets_.end() - 1);  // fill cursor
-  // Regular sons keep their array position (col | row << 16), so no division is needed later.
-  for (int row = 0, id = 0; row < cur.rows; ++row) {
-    for (int col = 0; col < cur.cols; ++col, ++id) {
-      const int p = cur.parent[id];
-      if (p < 0) continue;
-      const int slot = stamp_[p]++;
-      sons_[slot] = id;
-      son_cells_[slot] = static_cast<uint32_t>(col) | (static_cast<uint32_t>(row) << 16);
-    }
-  }
-  for (int id = cur.num_cells(); id < cur.num_ids(); ++id) {
-    if (cur.parent[id] >= 0) sons_[stamp_[cur.parent[id]]++] = id;
+  for (int id : linked_) {
+    const int p = cur.parent[id];
+    if (p >= first_virtual) sons_[stamp_[p - first_virtual]++] = id;
   }
   stamp_.assign(parents, -1);
   for (int p = up.num_cells(); p < parents; ++p) {
@@ -404,17 +406,16 @@ void BipBuilder::IntraLevelEdges(int l) {
       stamp_[q] = p;
       if (!up.IsVirtual(q) || q > p) up.edges.push_back(EdgeKey(p, q));
     };
-    for (int k = son_offsets_[p]; k < son_offsets_[p + 1]; ++k) {
+    for (int k = son_offsets_[p - first_virtual]; k < son_offsets_[p - first_virtual + 1]; ++k) {
       const int son = sons_[k];
       if (!cur.IsVirtual(son)) {
-        const int col = static_cast<int>(son_cells_[k] & 0xffffu);
-        const int row = static_cast<int>(son_cells_[k] >> 16);
+        const int row = son / cur.cols, col = son - row * cur.cols;
         for (int d = 0; d < 8; ++d) {
           const int x = col + kDx[d], y = row + kDy[d];
           if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) visit(y * cur.cols + x);
         }
       }
-      for (int e = adjacency_offsets_[son]; e < adjacency_offsets_[son + 1]; ++e) {
+      for (int e = AdjacencyBegin(son); e < AdjacencyEnd(son); ++e) {
         visit(adjacency_[e]);
       }
     }

@@ -134,6 +134,9 @@ class BipBuilder {
   void IntraLevelEdges(int l);
   void BuildAdjacency(int l);
   int NewVirtual(BipLevel* up);
+  // The range in adjacency_ of a vertex's explicit neighbours (empty when the level has none).
+  int AdjacencyBegin(int id) const { return adjacency_.empty() ? 0 : adjacency_offsets_[id]; }
+  int AdjacencyEnd(int id) const { return adjacency_.empty() ? 0 : adjacency_offsets_[id + 1]; }
 
   BipOptions options_;
   std::vector<BipLevel> levels_;
@@ -145,10 +148,9 @@ class BipBuilder {
   // and south-west neighbours: computed once, read by decimation and by the orphans.
   std::vector<float> distance_[4];
   std::vector<float> planes_[3];  // the current level's features, one plane per component
-  // The sons of each vertex of the level being built (CSR), and a stamp per vertex.
+  // The sons of each virtual vertex of the level being built (CSR), and a stamp per vertex.
   std::vector<int32_t> son_offsets_;
   std::vector<int32_t> sons_;
-  std::vector<uint32_t> son_cells_;  // array position of regular sons: col | row << 16
   std::vector<int32_t> stamp_;
   // Vertices of the current level linked to a parent by stages 2 and 3.
   std::vector<int32_t> linked_;
