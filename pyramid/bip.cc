@@ -254,11 +254,28 @@ int BipBuilder::NewVirtual(BipLevel* up) {
   return id;
 }
 
+// The decision shared by stages 2 and 3: the parent of the most similar neighbour that has
+// one (conditions 1 and 3), else a new virtual parent shared with the most similar orphan
+// neighbour (conditions 2 and 3), each only below the threshold.
+void BipBuilder::Link(int l, int id, int parented, float parented_d2, int orphan, float orphan_d2,
+                      float t2) {
+  BipLevel& cur = levels_[l];
+  if (parented_d2 < t2) {
+    cur.parent[id] = cur.parent[parented];
+    linked_.push_back(id);
+  } else if (orphan_d2 < t2) {
+    const int fresh = NewVirtual(&levels_[l + 1]);
+    cur.parent[id] = fresh;
+    cur.parent[orphan] = fresh;
+    linked_.push_back(id);
+    linked_.push_back(orphan);
+  }
+}
+
 // Stage 2, in raster order: parent search (condition 1), else intra-level twining
 // (condition 2).
 void BipBuilder::RegularOrphans(int l, float t2) {
   BipLevel& cur = levels_[l];
-  BipLevel& up = levels_[l + 1];
   const bool across = options_.link_across_kinds;
   const float* east = distance_[kEast].data();
   const float* south = distance_[kSouth].data();
@@ -301,16 +318,7 @@ void BipBuilder::RegularOrphans(int l, float t2) {
           }
         }
       }
-      if (parented.distance2 < t2) {
-        cur.parent[id] = cur.parent[parented.id];
-        linked_.push_back(id);
-      } else if (orphan.distance2 < t2) {
-        const int fresh = NewVirtual(&up);
-        cur.parent[id] = fresh;
-        cur.parent[orphan.id] = fresh;
-        linked_.push_back(id);
-        linked_.push_back(orphan.id);
-      }
+      Link(l, id, parented.id, parented.distance2, orphan.id, orphan.distance2, t2);
     }
   }
 }
@@ -318,7 +326,6 @@ void BipBuilder::RegularOrphans(int l, float t2) {
 // Stage 3, in order of creation: virtual parent search, else virtual linking (condition 3).
 void BipBuilder::VirtualOrphans(int l, float t2) {
   BipLevel& cur = levels_[l];
-  BipLevel& up = levels_[l + 1];
   const bool across = options_.link_across_kinds;
   for (int id = cur.num_cells(); id < cur.num_ids(); ++id) {
     if (cur.parent[id] >= 0) continue;
@@ -335,16 +342,7 @@ void BipBuilder::VirtualOrphans(int l, float t2) {
         orphan.Offer(n, d2);  // a regular orphan only with link_across_kinds
       }
     }
-    if (parented.distance2 < t2) {
-      cur.parent[id] = cur.parent[parented.id];
-      linked_.push_back(id);
-    } else if (orphan.distance2 < t2) {
-      const int fresh = NewVirtual(&up);
-      cur.parent[id] = fresh;
-      cur.parent[orphan.id] = fresh;
-      linked_.push_back(id);
-      linked_.push_back(orphan.id);
-    }
+    Link(l, id, parented.id, parented.distance2, orphan.id, orphan.distance2, t2);
   }
 }
 

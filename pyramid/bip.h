@@ -134,6 +134,7 @@ class BipBuilder {
   void IntraLevelEdges(int l);
   void BuildAdjacency(int l);
   int NewVirtual(BipLevel* up);
+  void Link(int l, int id, int parented, float parented_d2, int orphan, float orphan_d2, float t2);
   // The range in adjacency_ of a vertex's explicit neighbours (empty when the level has none).
   int AdjacencyBegin(int id) const { return adjacency_.empty() ? 0 : adjacency_offsets_[id]; }
   int AdjacencyEnd(int id) const { return adjacency_.empty() ? 0 : adjacency_offsets_[id + 1]; }
