@@ -27,153 +27,42 @@ void Segmenter::Segment(const cv::Mat& bgr, Segmentation* out) {
   SegmentCylinder(cylinder_, out);
 }
 
-void Segmenter::SegmentCylinder(const cv::Mat& cylinder, Segmentation* out, const cv::Mat& mask) {
-  const Stopwatch watch;
-  const Bip& bip = builder_.Build(cylinder, policy_, mask);
-  const int regions = bip.LabelRoots(&out->labels);
-  out->pyramid_levels = bip.num_levels();
-  ComputeRegionStats(out->labels, regions, cylinder, &out->regions, &out->graph, &boundary_runs_);
-  if (options_.min_region_area > 1) {
-    MergeSmallRegions(options_.min_region_area, &out->labels, &out->regions, &out->graph);
+namespace {
+
+// A pair of adjacent regions (a < b) and the number of 4-neighbour pixel edges between them.
+struct RegionEdge {
+  int a = 0;
+  int b = 0;
+  int length = 0;
+};
+
+// Adds up the lengths of repeated pairs without sorting: the pairs are grouped by their first
+// region (counting sort), then each group's lengths are summed per second region.
+void CombinePairs(int num_regions, const std::vector<RegionEdge>& pairs,
+                  std::vector<RegionEdge>* edges) {
+  std::vector<int> offsets(num_regions + 1, 0);
+  for (const RegionEdge& pair : pairs) ++offsets[pair.a + 1];
+  for (int r = 0; r < num_regions; ++r) offsets[r + 1] += offsets[r];
+  std::vector<RegionEdge> grouped(pairs.size());
+  std::vector<int> cursor(offsets.begin(), offsets.end() - 1);
+  for (const RegionEdge& pair : pairs) grouped[cursor[pair.a]++] = pair;
+  edges->clear();
+  std::vector<int> slot(num_regions, -1);  // index in edges of (a, b) for the current a
+  for (int a = 0; a < num_regions; ++a) {
+    for (int k = offsets[a]; k < offsets[a + 1]; ++k) {
+      const RegionEdge& pair = grouped[k];
+      if (slot[pair.b] < 0 || (*edges)[slot[pair.b]].a != a) {
+        slot[pair.b] = static_cast<int>(edges->size());
+        edges->push_back({a, pair.b, 0});
+      }
+      (*edges)[slot[pair.b]].length += pair.length;
+    }
   }
-  out->milliseconds = watch.ElapsedMs();
 }
 
-int MergeSmallRegions(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions,
-                      RegionGraph* graph) {
-  const int count = static_cast<int>(regions->size());
-  std::vector<int> parent(count), area(count);
-  std::vector<std::array<double, 4>> sum(count);  // sx, sy, v, saturation times area
-  std::vector<std::vector<int>> neighbours(count);
-  std::vector<size_t> compact_size(count, 0);
-  for (int r = 0; r < count; ++r) {
-    const RegionStats& region = (*regions)[r];
-    parent[r] = r;
-    area[r] = region.area;
-    const double a = region.area;
-    sum[r] = {region.colour.sx * a, region.colour.sy * a, region.colour.v * a,
-              region.saturation * a};
-  }
-  for (auto [e, end] = boost::edges(*graph); e != end; ++e) {
-    const int a = static_cast<int>(boost::source(*e, *graph));
-    const int b = static_cast<int>(boost::target(*e, *graph));
-    neighbours[a].push_back(b);
-    neighbours[b].push_back(a);
-  }
-  auto find = [&](int r) {
-    while (parent[r] != r) r = parent[r] = parent[parent[r]];
-    return r;
-  };
-  // Smallest first; an entry whose area is stale was merged since it was queued.
-  using Entry = std::pair<int, int>;  // (area, region)
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  for (int r = 0; r < count; ++r) {
-    if (area[r] < min_area) queue.push({area[r], r});
-  }
-  bool merged_any = false;
-  while (!queue.empty()) {
-    const auto [queued_area, r] = queue.top();
-    queue.pop();
-    if (find(r) != r || area[r] != queued_area) continue;
-    int best = -1;
-    double best_distance = std::numeric_limits<double>::infinity();
-    for (int n : neighbours[r]) {
-      const int m = find(n);
-      if (m == r) continue;
-      double distance = 0.0;
-      for (int k = 0; k < 3; ++k) {
-        const double d = sum[r][k] / area[r] - sum[m][k] / area[m];
-        distance += d * d;
-      }
-      if (distance < best_distance) {
-        best_distance = distance;
-        best = m;
-      }
-    }
-    if (best < 0) continue;  // an isolated region (inside a mask) stays
-    merged_any = true;
-    parent[r] = best;
-    area[best] += area[r];
-    for (int k = 0; k < 4; ++k) sum[best][k] += sum[r][k];
-    std::vector<int>& joined = neighbours[best];
-    joined.insert(joined.end(), neighbours[r].begin(), neighbours[r].end());
-    neighbours[r].clear();
-    neighbours[r].shrink_to_fit();
-    // A region that swallows many small ones would collect their lists again and again:
-    // compact it to its distinct current neighbours whenever it has doubled.
-    if (joined.size() > 32 && joined.size() > 2 * compact_size[best]) {
-      for (int& n : joined) n = find(n);
-      std::sort(joined.begin(), joined.end());
-      joined.erase(std::unique(joined.begin(), joined.end()), joined.end());
-      joined.erase(std::remove(joined.begin(), joined.end(), best), joined.end());
-      compact_size[best] = joined.size();
-    }
-    if (area[best] < min_area) queue.push({area[best], best});
-  }
-  if (!merged_any) return count;
-
-  // Relabel, numbering the surviving regions by first appearance.
-  std::vector<int> renumber(count, -1);
-  int next = 0;
-  for (int row = 0; row < labels->rows; ++row) {
-    int32_t* label = labels->ptr<int32_t>(row);
-    for (int col = 0; col < labels->cols; ++col) {
-      if (label[col] < 0) continue;
-      const int root = find(label[col]);
-      if (renumber[root] < 0) renumber[root] = next++;
-      label[col] = renumber[root];
-    }
-  }
-  // Statistics of the merged regions: sums add, boxes join, and a perimeter is the length of
-  // the boundaries that remain between different regions.
-  std::vector<RegionStats> merged(next);
-  for (int r = 0; r < count; ++r) {
-    const int target = renumber[find(r)];
-    const RegionStats& source = (*regions)[r];
-    RegionStats& region = merged[target];
-    region.bbox = region.area == 0 ? source.bbox : (region.bbox | source.bbox);
-    region.area += source.area;
-  }
-  for (int r = 0; r < count; ++r) {
-    if (find(r) != r) continue;
-    RegionStats& region = merged[renumber[r]];
-    region.colour = {static_cast<float>(sum[r][0] / area[r]),
-                     static_cast<float>(sum[r][1] / area[r]),
-                     static_cast<float>(sum[r][2] / area[r])};
-    region.intensity = region.colour.v;
-    region.saturation = static_cast<float>(sum[r][3] / area[r]);
-  }
-  std::vector<std::pair<uint64_t, int>> pairs;
-  for (auto [e, end] = boost::edges(*graph); e != end; ++e) {
-    const int a = renumber[find(static_cast<int>(boost::source(*e, *graph)))];
-    const int b = renumber[find(static_cast<int>(boost::target(*e, *graph)))];
-    if (a == b) continue;
-    const uint64_t key = (static_cast<uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-    pairs.emplace_back(key, (*graph)[*e].length);
-  }
-  std::sort(pairs.begin(), pairs.end());
-  std::vector<std::pair<int, int>> edge_ends;
-  std::vector<RegionBoundary> lengths;
-  for (size_t i = 0; i < pairs.size();) {
-    size_t j = i;
-    int length = 0;
-    while (j < pairs.size() && pairs[j].first == pairs[i].first) length += pairs[j++].second;
-    const int a = static_cast<int>(pairs[i].first >> 32);
-    const int b = static_cast<int>(pairs[i].first & 0xffffffffu);
-    edge_ends.emplace_back(a, b);
-    lengths.push_back({length});
-    merged[a].perimeter += length;
-    merged[b].perimeter += length;
-    i = j;
-  }
-  *graph = RegionGraph(edge_ends.begin(), edge_ends.end(), lengths.begin(), next);
-  *regions = std::move(merged);
-  return next;
-}
-
-void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
-                        std::vector<RegionStats>* regions, RegionGraph* graph,
-                        std::vector<uint64_t>* scratch) {
+// One pass over the pixels: areas, sums, boxes, perimeters and the adjacent pairs.
+void AccumulateRegions(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
+                       std::vector<RegionStats>* regions, std::vector<RegionEdge>* edges) {
   ATTEND_CHECK(labels.type() == CV_32SC1 && cylinder.type() == CV_32FC3 &&
                labels.size() == cylinder.size())
       << "labels and cylinder image must match";
@@ -182,24 +71,17 @@ void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& c
   std::vector<double> sums(4 * static_cast<size_t>(num_regions), 0.0);
   std::vector<cv::Point> low(num_regions, cv::Point(labels.cols, labels.rows));
   std::vector<cv::Point> high(num_regions, cv::Point(-1, -1));
-  scratch->clear();
-  // Consecutive boundary pixels mostly separate the same pair of regions: count runs.
-  uint64_t run_key = 0;
-  uint32_t run_length = 0;
+  // Consecutive boundary pixels mostly separate the same pair of regions: store runs.
+  std::vector<RegionEdge> runs;
   auto boundary = [&](int a, int b) {
     ++(*regions)[a].perimeter;
     ++(*regions)[b].perimeter;
-    const uint64_t key = (static_cast<uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-    if (run_length > 0 && key == run_key) {
-      ++run_length;
-      return;
+    if (a > b) std::swap(a, b);
+    if (!runs.empty() && runs.back().a == a && runs.back().b == b) {
+      ++runs.back().length;
+    } else {
+      runs.push_back({a, b, 1});
     }
-    if (run_length > 0) {
-      scratch->push_back(run_key);
-      scratch->push_back(run_length);
-    }
-    run_key = key;
-    run_length = 1;
   };
   for (int row = 0; row < labels.rows; ++row) {
     const int32_t* label = labels.ptr<int32_t>(row);
@@ -236,10 +118,6 @@ void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& c
       if (col < labels.cols && label[col] >= 0) boundary(r, label[col]);
     }
   }
-  if (run_length > 0) {
-    scratch->push_back(run_key);
-    scratch->push_back(run_length);
-  }
   for (int r = 0; r < num_regions; ++r) {
     RegionStats& region = (*regions)[r];
     ATTEND_CHECK(region.area > 0) << "region " << r << " has no pixel";
@@ -251,35 +129,180 @@ void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& c
     region.saturation = static_cast<float>(sum[3] / region.area);
     region.bbox = cv::Rect(low[r], high[r] + cv::Point(1, 1));
   }
-  // Merge the runs by pair into graph edges without sorting: group the runs by their smaller
-  // region (counting sort), then add up each group's lengths per neighbour with a slot index.
-  const size_t runs = scratch->size() / 2;
-  std::vector<int> offsets(num_regions + 1, 0);
-  for (size_t i = 0; i < runs; ++i) ++offsets[((*scratch)[2 * i] >> 32) + 1];
-  for (int r = 0; r < num_regions; ++r) offsets[r + 1] += offsets[r];
-  std::vector<std::pair<int, int>> grouped(runs);  // (other region, length)
-  std::vector<int> cursor(offsets.begin(), offsets.end() - 1);
-  for (size_t i = 0; i < runs; ++i) {
-    const uint64_t key = (*scratch)[2 * i];
-    grouped[cursor[key >> 32]++] = {static_cast<int>(key & 0xffffffffu),
-                                    static_cast<int>((*scratch)[2 * i + 1])};
-  }
-  using EdgePair = std::pair<int, int>;
-  std::vector<EdgePair> edge_ends;
+  CombinePairs(num_regions, runs, edges);
+}
+
+void BuildGraph(int num_regions, const std::vector<RegionEdge>& edges, RegionGraph* graph) {
+  std::vector<std::pair<int, int>> ends;
   std::vector<RegionBoundary> lengths;
-  std::vector<int> slot(num_regions, -1);  // index in edge_ends of (a, b) for the current a
-  for (int a = 0; a < num_regions; ++a) {
-    for (int k = offsets[a]; k < offsets[a + 1]; ++k) {
-      const auto [b, length] = grouped[k];
-      if (slot[b] < 0 || edge_ends[slot[b]].first != a) {
-        slot[b] = static_cast<int>(edge_ends.size());
-        edge_ends.emplace_back(a, b);
-        lengths.push_back({0});
-      }
-      lengths[slot[b]].length += length;
+  ends.reserve(edges.size());
+  lengths.reserve(edges.size());
+  for (const RegionEdge& edge : edges) {
+    ends.emplace_back(edge.a, edge.b);
+    lengths.push_back({edge.length});
+  }
+  *graph = RegionGraph(ends.begin(), ends.end(), lengths.begin(), num_regions);
+}
+
+std::vector<RegionEdge> EdgesOf(const RegionGraph& graph) {
+  std::vector<RegionEdge> edges;
+  for (auto [e, end] = boost::edges(graph); e != end; ++e) {
+    const int a = static_cast<int>(boost::source(*e, graph));
+    const int b = static_cast<int>(boost::target(*e, graph));
+    edges.push_back({std::min(a, b), std::max(a, b), graph[*e].length});
+  }
+  return edges;
+}
+
+// Merges small regions on the flat statistics and edges; see MergeSmallRegions.
+int MergeFlat(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions,
+              std::vector<RegionEdge>* edges) {
+  const int count = static_cast<int>(regions->size());
+  // Adjacency of the original regions (CSR); a merged region's neighbours are those of its
+  // members, which a linked list per region keeps.
+  std::vector<int> offsets(count + 1, 0), adjacent(2 * edges->size());
+  for (const RegionEdge& edge : *edges) {
+    ++offsets[edge.a + 1];
+    ++offsets[edge.b + 1];
+  }
+  for (int r = 0; r < count; ++r) offsets[r + 1] += offsets[r];
+  {
+    std::vector<int> cursor(offsets.begin(), offsets.end() - 1);
+    for (const RegionEdge& edge : *edges) {
+      adjacent[cursor[edge.a]++] = edge.b;
+      adjacent[cursor[edge.b]++] = edge.a;
     }
   }
-  *graph = RegionGraph(edge_ends.begin(), edge_ends.end(), lengths.begin(), num_regions);
+  std::vector<int> parent(count), area(count), next_member(count, -1), last_member(count);
+  std::vector<std::array<double, 4>> sum(count);  // sx, sy, v, saturation times area
+  for (int r = 0; r < count; ++r) {
+    const RegionStats& region = (*regions)[r];
+    parent[r] = r;
+    last_member[r] = r;
+    area[r] = region.area;
+    const double a = region.area;
+    sum[r] = {region.colour.sx * a, region.colour.sy * a, region.colour.v * a,
+              region.saturation * a};
+  }
+  auto find = [&](int r) {
+    while (parent[r] != r) r = parent[r] = parent[parent[r]];
+    return r;
+  };
+  // Smallest first; an entry whose area is stale was merged since it was queued.
+  using Entry = std::pair<int, int>;  // (area, region)
+  std::vector<Entry> heap;
+  for (int r = 0; r < count; ++r) {
+    if (area[r] < min_area) heap.push_back({area[r], r});
+  }
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue(std::greater<Entry>(),
+                                                                            std::move(heap));
+  bool merged_any = false;
+  while (!queue.empty()) {
+    const auto [queued_area, r] = queue.top();
+    queue.pop();
+    if (find(r) != r || area[r] != queued_area) continue;
+    int best = -1;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (int member = r; member >= 0; member = next_member[member]) {
+      for (int k = offsets[member]; k < offsets[member + 1]; ++k) {
+        const int m = find(adjacent[k]);
+        if (m == r) continue;
+        double distance = 0.0;
+        for (int c = 0; c < 3; ++c) {
+          const double d = sum[r][c] / area[r] - sum[m][c] / area[m];
+          distance += d * d;
+        }
+        if (distance < best_distance) {
+          best_distance = distance;
+          best = m;
+        }
+      }
+    }
+    if (best < 0) continue;  // an isolated region (inside a mask) stays
+    merged_any = true;
+    parent[r] = best;
+    area[best] += area[r];
+    for (int c = 0; c < 4; ++c) sum[best][c] += sum[r][c];
+    next_member[last_member[best]] = r;
+    last_member[best] = last_member[r];
+    if (area[best] < min_area) queue.push({area[best], best});
+  }
+  if (!merged_any) return count;
+
+  // Relabel, numbering the surviving regions by first appearance.
+  std::vector<int> renumber(count, -1);
+  int next = 0;
+  for (int row = 0; row < labels->rows; ++row) {
+    int32_t* label = labels->ptr<int32_t>(row);
+    for (int col = 0; col < labels->cols; ++col) {
+      if (label[col] < 0) continue;
+      const int root = find(label[col]);
+      if (renumber[root] < 0) renumber[root] = next++;
+      label[col] = renumber[root];
+    }
+  }
+  // Statistics of the merged regions: sums add, boxes join, and a perimeter is the length of
+  // the boundaries that remain between different regions.
+  std::vector<RegionStats> merged(next);
+  for (int r = 0; r < count; ++r) {
+    const RegionStats& source = (*regions)[r];
+    RegionStats& region = merged[renumber[find(r)]];
+    region.bbox = region.area == 0 ? source.bbox : (region.bbox | source.bbox);
+    region.area += source.area;
+  }
+  for (int r = 0; r < count; ++r) {
+    if (find(r) != r) continue;
+    RegionStats& region = merged[renumber[r]];
+    region.colour = {static_cast<float>(sum[r][0] / area[r]),
+                     static_cast<float>(sum[r][1] / area[r]),
+                     static_cast<float>(sum[r][2] / area[r])};
+    region.intensity = region.colour.v;
+    region.saturation = static_cast<float>(sum[r][3] / area[r]);
+  }
+  std::vector<RegionEdge> pairs;
+  pairs.reserve(edges->size());
+  for (const RegionEdge& edge : *edges) {
+    const int a = renumber[find(edge.a)], b = renumber[find(edge.b)];
+    if (a != b) pairs.push_back({std::min(a, b), std::max(a, b), edge.length});
+  }
+  CombinePairs(next, pairs, edges);
+  for (const RegionEdge& edge : *edges) {
+    merged[edge.a].perimeter += edge.length;
+    merged[edge.b].perimeter += edge.length;
+  }
+  *regions = std::move(merged);
+  return next;
+}
+
+}  // namespace
+
+void Segmenter::SegmentCylinder(const cv::Mat& cylinder, Segmentation* out, const cv::Mat& mask) {
+  const Stopwatch watch;
+  const Bip& bip = builder_.Build(cylinder, policy_, mask);
+  int regions = bip.LabelRoots(&out->labels);
+  out->pyramid_levels = bip.num_levels();
+  std::vector<RegionEdge> edges;
+  AccumulateRegions(out->labels, regions, cylinder, &out->regions, &edges);
+  if (options_.min_region_area > 1) {
+    regions = MergeFlat(options_.min_region_area, &out->labels, &out->regions, &edges);
+  }
+  BuildGraph(regions, edges, &out->graph);
+  out->milliseconds = watch.ElapsedMs();
+}
+
+int MergeSmallRegions(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions,
+                      RegionGraph* graph) {
+  std::vector<RegionEdge> edges = EdgesOf(*graph);
+  const int count = MergeFlat(min_area, labels, regions, &edges);
+  BuildGraph(count, edges, graph);
+  return count;
+}
+
+void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
+                        std::vector<RegionStats>* regions, RegionGraph* graph) {
+  std::vector<RegionEdge> edges;
+  AccumulateRegions(labels, num_regions, cylinder, regions, &edges);
+  BuildGraph(num_regions, edges, graph);
 }
 
 cv::Mat FalseColour(const cv::Mat& labels) {

@@ -78,14 +78,12 @@ class Segmenter {
   HsvSimilarity policy_;
   BipBuilder builder_;
   cv::Mat cylinder_;
-  std::vector<uint64_t> boundary_runs_;
 };
 
 // Region statistics and adjacency from a label image and the cylinder image it came from.
 // Exposed so that tests and other segmentations can share it.
 void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
-                        std::vector<RegionStats>* regions, RegionGraph* graph,
-                        std::vector<uint64_t>* scratch);
+                        std::vector<RegionStats>* regions, RegionGraph* graph);
 
 // Merges every region smaller than `min_area` pixels into its adjacent region of closest mean
 // colour, smallest first, until none is left that has a neighbour. Relabels `labels` (regions
