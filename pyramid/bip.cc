@@ -281,10 +281,20 @@ void BipBuilder::RegularOrphans(int l, float t2) {
   const float* south = distance_[kSouth].data();
   const float* south_east = distance_[kSouthEast].data();
   const float* south_west = distance_[kSouthWest].data();
+  row_orphans_.resize(cur.cols);
   for (int row = 0; row < cur.rows; ++row) {
+    // The row's orphans, gathered without a branch per cell: whether a cell is an orphan
+    // alternates unpredictably in textured areas.
+    const int first = row * cur.cols;
+    int count = 0;
     for (int col = 0; col < cur.cols; ++col) {
-      const int id = row * cur.cols + col;
-      if (cur.hom[id] == 0 || cur.parent[id] >= 0) continue;
+      row_orphans_[count] = col;
+      count += (cur.hom[first + col] != 0) & (cur.parent[first + col] < 0);
+    }
+    for (int k = 0; k < count; ++k) {
+      const int col = row_orphans_[k];
+      const int id = first + col;
+      if (cur.parent[id] >= 0) continue;  // twinned earlier in this row
       Best parented, orphan;
       auto offer = [&](int n, float d2) {
         if (cur.hom[n] == 0) return;

@@ -153,6 +153,8 @@ class BipBuilder {
   std::vector<int32_t> son_offsets_;
   std::vector<int32_t> sons_;
   std::vector<int32_t> stamp_;
+  // Columns of the orphans of one row, for stage 2.
+  std::vector<int32_t> row_orphans_;
   // Vertices of the current level linked to a parent by stages 2 and 3.
   std::vector<int32_t> linked_;
 };
