@@ -64,7 +64,13 @@ cv::Mat ReadImage(const std::string& path) {
   }
   // IMREAD_COLOR gives 8-bit BGR whatever the file holds: grey is replicated to three
   // channels and 16-bit samples are scaled to 8 bits.
-  cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
+  cv::Mat bgr;
+  try {
+    bgr = cv::imread(path, cv::IMREAD_COLOR);
+  } catch (const cv::Exception& e) {
+    // OpenCV refuses images beyond its pixel limit, among others, by throwing.
+    throw InputError(path + ": cannot be decoded: " + e.err);
+  }
   if (bgr.empty()) {
     throw InputError(path + ": cannot read as an image (empty, corrupt or unsupported format)");
   }

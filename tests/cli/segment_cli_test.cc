@@ -183,6 +183,27 @@ TEST(SegmentCommand, MetricsAddFQAndShiftVariance) {
   EXPECT_TRUE(Contains(tiny["shift_variance_note"].get<std::string>(), "24x16")) << tiny;
 }
 
+// The signature and IHDR chunk of an 8-bit RGB PNG of the given size, and nothing else.
+std::string HugePngHeader(uint32_t width, uint32_t height) {
+  auto be32 = [](uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                       static_cast<char>(v >> 8), static_cast<char>(v)};
+  };
+  const std::string chunk = "IHDR" + be32(width) + be32(height) + std::string("\x08\x02\0\0\0", 5);
+  uint32_t crc = 0xffffffffu;  // CRC-32 of the chunk type and data, as PNG requires
+  for (unsigned char byte : chunk) {
+    crc ^= byte;
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  // A tiny IDAT and the IEND chunk (fixed bytes): with them OpenCV reads the header and stops
+  // at its pixel limit rather than at a missing chunk.
+  const std::string tail(
+      "\x00\x00\x00\x0c" "IDAT" "\x78\x9c\x63\x60\xa0\x3d\x00\x00\x00\x64\x00\x01"
+      "\x86\x64\x3c\x35" "\x00\x00\x00\x00" "IEND" "\xae\x42\x60\x82",
+      36);
+  return std::string("\x89PNG\r\n\x1a\n", 8) + be32(13) + chunk + be32(~crc) + tail;
+}
+
 TEST(SegmentCommand, UnreadableImagesExitThreeNamingThePath) {
   testing::TempDir dir;
   const std::string good = WriteFourRectangles(dir, "rects.png");
@@ -199,6 +220,13 @@ TEST(SegmentCommand, UnreadableImagesExitThreeNamingThePath) {
   r = Attend(dir, {"segment", "missing.png", "--out", "out"});
   EXPECT_EQ(r.status, 3);
   EXPECT_TRUE(Contains(r.err, "attend: error: missing.png")) << r.err;
+
+  // A PNG whose header claims 100000 x 100000 pixels: OpenCV refuses it by throwing, which must
+  // come out as bad input, not as an internal error.
+  dir.Write("huge.png", HugePngHeader(100000, 100000));
+  r = Attend(dir, {"segment", "huge.png", "--out", "out"});
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_TRUE(Contains(r.err, "attend: error: huge.png: cannot be decoded")) << r.err;
 }
 
 TEST(SegmentCommand, UsageAndConfigurationErrorsExitTwo) {

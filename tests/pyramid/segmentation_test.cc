@@ -85,8 +85,11 @@ TEST(Segmentation, FaithfulRulesKeepEachRectangleButMaySplitTheBackground) {
   // around odd-placed rectangles stays in pieces; the rectangles are still exact.
   std::vector<cv::Rect> boxes;
   const cv::Mat image = FourRectangles(&boxes);
-  const Segmentation s = SegmentImage(image);
-  EXPECT_GE(s.regions.size(), 5u);
+  SegmentationOptions options;
+  options.min_region_area = 0;  // the pyramid's own roots
+  const Segmentation s = SegmentImage(image, options);
+  // Each rectangle exact, and the background in three pieces (docs/PYRAMID.md).
+  EXPECT_EQ(s.regions.size(), 7u);
   ExpectEachBoxIsOneRegion(s, boxes);
   ExpectNoRegionCrossesAColourEdge(image, s);
 }
@@ -269,6 +272,47 @@ TEST(Segmentation, AfterMergingEveryRegionIsLargeEnoughAndConnected) {
     EXPECT_GE(s.regions[r].area, 25) << "region " << r;
     EXPECT_EQ(Components(s.labels == static_cast<int>(r)), 1) << "region " << r;
   }
+}
+
+TEST(SegmentationOptions, DefaultsAreValidAndCheckNamesTheField) {
+  EXPECT_EQ(SegmentationOptions().Check(), "");
+  EXPECT_EQ(BipOptions().Check(), "");
+  SegmentationOptions options;
+  options.t_max = 0.f;
+  EXPECT_NE(options.Check().find("t_max"), std::string::npos);
+  options = SegmentationOptions();
+  options.min_region_area = -1;
+  EXPECT_NE(options.Check().find("min_region_area"), std::string::npos);
+  options = SegmentationOptions();
+  options.bip.max_levels = 0;
+  EXPECT_NE(options.Check().find("max_levels"), std::string::npos);
+}
+
+TEST(Segmentation, TinyImagesAndEmptyMasks) {
+  // Degenerate shapes: one pixel, one row, one column, 2x2; every pixel gets a label, and a
+  // flat image is one region whatever its shape.
+  for (const cv::Size size : {cv::Size(1, 1), cv::Size(7, 1), cv::Size(1, 7), cv::Size(2, 2),
+                              cv::Size(3, 64), cv::Size(65, 3)}) {
+    const Segmentation flat = SegmentImage(cv::Mat(size, CV_8UC3, cv::Scalar(10, 90, 200)));
+    EXPECT_EQ(flat.regions.size(), 1u) << size;
+    EXPECT_EQ(flat.regions[0].area, size.area()) << size;
+    cv::Mat noise(size, CV_8UC3);
+    cv::randu(noise, 0, 256);
+    const Segmentation random = SegmentImage(noise);
+    long area = 0;
+    for (const RegionStats& r : random.regions) area += r.area;
+    EXPECT_EQ(area, size.area()) << size;
+    EXPECT_EQ(cv::countNonZero(random.labels < 0), 0) << size;
+  }
+  // A mask that takes every pixel out leaves no region and no label.
+  cv::Mat image(20, 30, CV_8UC3, cv::Scalar(1, 2, 3)), cylinder;
+  BgrToCylinder(image, &cylinder);
+  Segmenter segmenter;
+  Segmentation s;
+  segmenter.SegmentCylinder(cylinder, &s, cv::Mat::zeros(20, 30, CV_8UC1));
+  EXPECT_TRUE(s.regions.empty());
+  EXPECT_EQ(cv::countNonZero(s.labels >= 0), 0);
+  EXPECT_EQ(boost::num_vertices(s.graph), 0u);
 }
 
 }  // namespace
