@@ -319,7 +319,6 @@ void BipBuilder::RegularOrphans(int l, float t2) {
         const float* colour = cur.Feature(id);
         for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) {
           const int n = adjacency_[e];
-          if (!cur.IsVirtual(n)) continue;
           const float d2 = Distance2(colour, cur.Feature(n));
           if (cur.parent[n] >= 0) {
             parented.Offer(n, d2);
@@ -381,6 +380,39 @@ void BipBuilder::UpdateParents(int l) {
   }
 }
 
+// Variant only: two regular vertices of l + 1 whose reduction windows touch although their
+// cells are not adjacent in the array. Parent search grows a regular parent's window past its
+// 2x2 block, so this happens; the thesis leaves such pairs implicit, that is unconnected.
+void BipBuilder::DistantRegularEdges(int l) {
+  const BipLevel& cur = levels_[l];
+  BipLevel& up = levels_[l + 1];
+  const int first_virtual = up.num_cells();
+  auto add = [&](int p, int q) {
+    if (p < 0 || q < 0 || p == q || p >= first_virtual || q >= first_virtual) return;
+    const int pr = p / up.cols, pc = p - pr * up.cols, qr = q / up.cols, qc = q - qr * up.cols;
+    if (std::abs(pr - qr) <= 1 && std::abs(pc - qc) <= 1) return;  // implicit in the array
+    up.edges.push_back(EdgeKey(p, q));
+  };
+  // Sons that joined a regular parent by parent search, with their grid and explicit
+  // neighbours; decimation sons of two parents are only ever array neighbours.
+  for (int id : linked_) {
+    const int p = cur.parent[id];
+    if (p >= first_virtual) continue;
+    if (!cur.IsVirtual(id)) {
+      const int row = id / cur.cols, col = id - row * cur.cols;
+      for (int d = 0; d < 8; ++d) {
+        const int x = col + kDx[d], y = row + kDy[d];
+        if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) add(p, cur.parent[y * cur.cols + x]);
+      }
+    }
+    for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) add(p, cur.parent[adjacency_[e]]);
+  }
+  // Explicit edges of level l between any two sons.
+  for (uint64_t key : cur.edges) add(cur.parent[key >> 32], cur.parent[key & 0xffffffffu]);
+  std::sort(up.edges.begin(), up.edges.end());
+  up.edges.erase(std::unique(up.edges.begin(), up.edges.end()), up.edges.end());
+}
+
 // Stage 4: two vertices of l + 1 are neighbours iff their reduction windows are adjacent at l.
 // Only pairs with a virtual end are stored; regular pairs are implicit in the array. Each
 // virtual parent visits its sons' neighbours once, and a stamp per parent skips repeats, so no
@@ -390,6 +422,7 @@ void BipBuilder::IntraLevelEdges(int l) {
   const BipLevel& cur = levels_[l];
   BipLevel& up = levels_[l + 1];
   up.edges.clear();
+  if (options_.link_across_kinds) DistantRegularEdges(l);
   if (up.num_virtual == 0) return;
   // The sons of each virtual parent, grouped (counting sort by parent). Only stages 2 and 3
   // give a vertex a virtual parent, so the linked sons are all there is to look at.

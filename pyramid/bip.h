@@ -29,7 +29,9 @@ struct BipOptions {
   // for parent search (a regular orphan takes a virtual neighbour's parent, a virtual orphan a
   // regular neighbour's) and for twining (a regular and a virtual orphan make a new virtual
   // vertex). It lets the regular and irregular parts of one homogeneous region meet, which the
-  // faithful rules cannot do. docs/PYRAMID.md measures it.
+  // faithful rules cannot do. It also connects two regular vertices whose reduction windows
+  // touch although their cells are not array neighbours, which the thesis leaves implicit.
+  // docs/PYRAMID.md measures it.
   bool link_across_kinds = false;
   // Safety bound on the number of levels; the stop rule ends far earlier in practice.
   int max_levels = 64;
@@ -49,7 +51,9 @@ struct BipLevel {
   std::vector<int32_t> area;    // per vertex, level-0 pixels (0 for holes)
   std::vector<int32_t> parent;  // per vertex, id in level l + 1, or -1
   // Explicit intra-level edges with at least one virtual end, as (min id, max id), each pair
-  // once, in no particular order. Regular-regular adjacency is implicit in the array.
+  // once, in no particular order. Regular-regular adjacency is implicit in the array; with
+  // BipOptions::link_across_kinds, regular pairs whose windows touch although their cells are
+  // not array neighbours are stored too.
   std::vector<uint64_t> edges;
 
   int num_cells() const { return cols * rows; }
@@ -132,6 +136,7 @@ class BipBuilder {
   void VirtualOrphans(int l, float t2);
   void UpdateParents(int l);
   void IntraLevelEdges(int l);
+  void DistantRegularEdges(int l);
   void BuildAdjacency(int l);
   int NewVirtual(BipLevel* up);
   void Link(int l, int id, int parented, float parented_d2, int orphan, float orphan_d2, float t2);
