@@ -387,25 +387,55 @@ void BipBuilder::DistantRegularEdges(int l) {
   const BipLevel& cur = levels_[l];
   BipLevel& up = levels_[l + 1];
   const int first_virtual = up.num_cells();
+  // Row and column of every cell of l + 1, so that the test below needs no division.
+  cell_row_.resize(first_virtual);
+  cell_col_.resize(first_virtual);
+  for (int row = 0, id = 0; row < up.rows; ++row) {
+    for (int col = 0; col < up.cols; ++col, ++id) {
+      cell_row_[id] = row;
+      cell_col_[id] = col;
+    }
+  }
   auto add = [&](int p, int q) {
     if (p < 0 || q < 0 || p == q || p >= first_virtual || q >= first_virtual) return;
-    const int pr = p / up.cols, pc = p - pr * up.cols, qr = q / up.cols, qc = q - qr * up.cols;
-    if (std::abs(pr - qr) <= 1 && std::abs(pc - qc) <= 1) return;  // implicit in the array
+    if (std::abs(cell_row_[p] - cell_row_[q]) <= 1 && std::abs(cell_col_[p] - cell_col_[q]) <= 1) {
+      return;  // implicit in the array
+    }
     up.edges.push_back(EdgeKey(p, q));
   };
   // Sons that joined a regular parent by parent search, with their grid and explicit
-  // neighbours; decimation sons of two parents are only ever array neighbours.
+  // neighbours; decimation sons of two parents are only ever array neighbours. The sons are
+  // grouped by parent (counting sort) and a stamp per neighbour parent skips repeats, so each
+  // pair is pushed at most once from each side.
+  son_offsets_.assign(first_virtual + 1, 0);
   for (int id : linked_) {
-    const int p = cur.parent[id];
-    if (p >= first_virtual) continue;
-    if (!cur.IsVirtual(id)) {
-      const int row = id / cur.cols, col = id - row * cur.cols;
-      for (int d = 0; d < 8; ++d) {
-        const int x = col + kDx[d], y = row + kDy[d];
-        if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) add(p, cur.parent[y * cur.cols + x]);
+    if (cur.parent[id] < first_virtual) ++son_offsets_[cur.parent[id] + 1];
+  }
+  for (int p = 0; p < first_virtual; ++p) son_offsets_[p + 1] += son_offsets_[p];
+  sons_.resize(son_offsets_[first_virtual]);
+  stamp_.assign(son_offsets_.begin(), son_offsets_.end() - 1);  // fill cursor
+  for (int id : linked_) {
+    if (cur.parent[id] < first_virtual) sons_[stamp_[cur.parent[id]]++] = id;
+  }
+  stamp_.assign(first_virtual, -1);
+  for (int p = 0; p < first_virtual; ++p) {
+    auto visit = [&](int neighbour) {
+      const int q = cur.parent[neighbour];
+      if (q < 0 || q == p || q >= first_virtual || stamp_[q] == p) return;
+      stamp_[q] = p;
+      add(p, q);
+    };
+    for (int k = son_offsets_[p]; k < son_offsets_[p + 1]; ++k) {
+      const int id = sons_[k];
+      if (!cur.IsVirtual(id)) {
+        const int row = id / cur.cols, col = id - row * cur.cols;
+        for (int d = 0; d < 8; ++d) {
+          const int x = col + kDx[d], y = row + kDy[d];
+          if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) visit(y * cur.cols + x);
+        }
       }
+      for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) visit(adjacency_[e]);
     }
-    for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) add(p, cur.parent[adjacency_[e]]);
   }
   // Explicit edges of level l between any two sons.
   for (uint64_t key : cur.edges) add(cur.parent[key >> 32], cur.parent[key & 0xffffffffu]);

@@ -158,6 +158,9 @@ class BipBuilder {
   std::vector<int32_t> son_offsets_;
   std::vector<int32_t> sons_;
   std::vector<int32_t> stamp_;
+  // Row and column of each cell of the level being built (variant edges).
+  std::vector<int32_t> cell_row_;
+  std::vector<int32_t> cell_col_;
   // Columns of the orphans of one row, for stage 2.
   std::vector<int32_t> row_orphans_;
   // Vertices of the current level linked to a parent by stages 2 and 3.
