@@ -144,17 +144,10 @@ void BuildGraph(int num_regions, const std::vector<RegionEdge>& edges, RegionGra
   *graph = RegionGraph(ends.begin(), ends.end(), lengths.begin(), num_regions);
 }
 
-std::vector<RegionEdge> EdgesOf(const RegionGraph& graph) {
-  std::vector<RegionEdge> edges;
-  for (auto [e, end] = boost::edges(graph); e != end; ++e) {
-    const int a = static_cast<int>(boost::source(*e, graph));
-    const int b = static_cast<int>(boost::target(*e, graph));
-    edges.push_back({std::min(a, b), std::max(a, b), graph[*e].length});
-  }
-  return edges;
-}
-
-// Merges small regions on the flat statistics and edges; see MergeSmallRegions.
+// Merges every region smaller than `min_area` pixels into its adjacent region of closest mean
+// colour, smallest first, until none is left that has a neighbour. Relabels `labels` (regions
+// numbered by first appearance) and updates `regions` and `edges` exactly, without another
+// pass over the pixels. Merged regions stay connected. Returns the new number of regions.
 int MergeFlat(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions,
               std::vector<RegionEdge>* edges) {
   const int count = static_cast<int>(regions->size());
@@ -288,21 +281,6 @@ void Segmenter::SegmentCylinder(const cv::Mat& cylinder, Segmentation* out, cons
   }
   BuildGraph(regions, edges, &out->graph);
   out->milliseconds = watch.ElapsedMs();
-}
-
-int MergeSmallRegions(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions,
-                      RegionGraph* graph) {
-  std::vector<RegionEdge> edges = EdgesOf(*graph);
-  const int count = MergeFlat(min_area, labels, regions, &edges);
-  BuildGraph(count, edges, graph);
-  return count;
-}
-
-void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
-                        std::vector<RegionStats>* regions, RegionGraph* graph) {
-  std::vector<RegionEdge> edges;
-  AccumulateRegions(labels, num_regions, cylinder, regions, &edges);
-  BuildGraph(num_regions, edges, graph);
 }
 
 cv::Mat FalseColour(const cv::Mat& labels) {

@@ -80,19 +80,6 @@ class Segmenter {
   cv::Mat cylinder_;
 };
 
-// Region statistics and adjacency from a label image and the cylinder image it came from.
-// Exposed so that tests and other segmentations can share it.
-void ComputeRegionStats(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
-                        std::vector<RegionStats>* regions, RegionGraph* graph);
-
-// Merges every region smaller than `min_area` pixels into its adjacent region of closest mean
-// colour, smallest first, until none is left that has a neighbour. Relabels `labels` (regions
-// numbered by first appearance in raster order) and updates `regions` and `graph` exactly,
-// without another pass over the pixels. Merged regions stay connected. Returns the new number
-// of regions.
-int MergeSmallRegions(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions,
-                      RegionGraph* graph);
-
 // Paints each region with a distinct colour (hashing its index), black outside the mask.
 cv::Mat FalseColour(const cv::Mat& labels);
 

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "tests/cli/attend_cli.h"
 #include "tests/support/attend_process.h"
 #include "tests/support/sequence_maker.h"
 #include "tests/support/temp_dir.h"
@@ -27,14 +28,8 @@ using testing::Contains;
 using testing::ReadText;
 using testing::Result;
 
-pid_t Start(const testing::TempDir& dir, const std::vector<std::string>& args) {
-  return testing::Start(ATTEND_BINARY, dir, args);
-}
-
-
-Result Attend(const testing::TempDir& dir, const std::vector<std::string>& args) {
-  return testing::Run(ATTEND_BINARY, dir, args);
-}
+using testing::Attend;
+using testing::StartAttend;
 
 TEST(Cli, VersionHelpAndUsageErrors) {
   testing::TempDir dir;
@@ -133,8 +128,8 @@ TEST(Cli, CtrlCFinishesTheFrameAndWritesAnInterruptedSummary) {
   testing::TempDir dir;
   testing::MakeFolderSequence(dir.File("seq"), 300, 32, 24);
   // Large overlays make each frame slow enough to interrupt in the middle.
-  const pid_t pid = Start(dir, {"run", "--sequence", "seq", "--out", "run", "--set",
-                                "sequence.width=1600", "--set", "sequence.height=1200"});
+  const pid_t pid = StartAttend(dir, {"run", "--sequence", "seq", "--out", "run", "--set",
+                                      "sequence.width=1600", "--set", "sequence.height=1200"});
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   while (std::chrono::steady_clock::now() < deadline &&
          (!fs::exists(dir.File("run/frames.jsonl")) ||
@@ -174,11 +169,11 @@ TEST(Cli, MalformedOverridesAndConfigPathsAreUsageErrors) {
 
 TEST(Cli, SynthWritesASequenceAndRefusesBadOutputs) {
   testing::TempDir dir;
-  const std::string scene = dir.Write(
-      "scene.yaml",
-      "name: tiny\nwidth: 48\nheight: 32\nframes: 3\n"
-      "objects:\n  - {id: 1, size: [0.1, 0.1], colour: [200, 30, 30], "
-      "path: [{frame: 0, x: 20, y: 16, depth: 2}]}\n");
+  const std::string scene =
+      dir.Write("scene.yaml",
+                "name: tiny\nwidth: 48\nheight: 32\nframes: 3\n"
+                "objects:\n  - {id: 1, size: [0.1, 0.1], colour: [200, 30, 30], "
+                "path: [{frame: 0, x: 20, y: 16, depth: 2}]}\n");
   Result r = Attend(dir, {"synth", "scene.yaml", "--out", "seq"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir.File("seq/left/000002.png")));

@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 #include <set>
 
+#include "tests/cli/attend_cli.h"
 #include "tests/support/attend_process.h"
 #include "tests/support/temp_dir.h"
 
@@ -22,9 +23,7 @@ using testing::Contains;
 using testing::ReadText;
 using testing::Result;
 
-Result Attend(const testing::TempDir& dir, const std::vector<std::string>& args) {
-  return testing::Run(ATTEND_BINARY, dir, args);
-}
+using testing::Attend;
 
 // The variant links the regular and irregular parts of the background, so that the four
 // rectangles below are exactly five regions (tests/pyramid/segmentation_test.cc).
@@ -198,8 +197,13 @@ std::string HugePngHeader(uint32_t width, uint32_t height) {
   // A tiny IDAT and the IEND chunk (fixed bytes): with them OpenCV reads the header and stops
   // at its pixel limit rather than at a missing chunk.
   const std::string tail(
-      "\x00\x00\x00\x0c" "IDAT" "\x78\x9c\x63\x60\xa0\x3d\x00\x00\x00\x64\x00\x01"
-      "\x86\x64\x3c\x35" "\x00\x00\x00\x00" "IEND" "\xae\x42\x60\x82",
+      "\x00\x00\x00\x0c"
+      "IDAT"
+      "\x78\x9c\x63\x60\xa0\x3d\x00\x00\x00\x64\x00\x01"
+      "\x86\x64\x3c\x35"
+      "\x00\x00\x00\x00"
+      "IEND"
+      "\xae\x42\x60\x82",
       36);
   return std::string("\x89PNG\r\n\x1a\n", 8) + be32(13) + chunk + be32(~crc) + tail;
 }
