@@ -1,0 +1,80 @@
+// Feature plugins (thesis 5.1.1, SPEC 2.3): each turns a frame context into a float map of the
+// left image's size. Plugins are created by name from the registry, configured from their
+// entry of the `features:` list, and may run concurrently on the same context.
+//
+// Writing one: derive from FeatureMap, read parameters in the factory through the ParamBlock
+// (then call params.CheckNoUnknownKeys()), and register the factory, either in
+// features/builtin.cc or from a shared library (features/plugin_api.h, docs/PLUGINS.md).
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "config/feature_list.h"
+#include "config/param_block.h"
+#include "features/frame_context.h"
+
+namespace attend {
+
+class FeatureMap {
+ public:
+  virtual ~FeatureMap() = default;
+  // Fills `out` with a CV_32FC1 map of context.size(): larger is more interesting. Called once
+  // a frame, frames in order; other plugins may be computing on the same context at the same
+  // time, so a plugin only reads the context. Any scale: saliency normalises every map.
+  virtual void Compute(const FrameContext& context, cv::Mat* out) = 0;
+};
+
+// What a factory may need to know about the run besides its own parameters.
+struct FeatureSetup {
+  bool stereo = true;  // the sequence has right images
+  // Folder of the bundled files (configs/, sequences/); relative data paths in a plugin's
+  // parameters are looked up in the current folder first, then here.
+  std::string home;
+
+  // `path` as given if absolute or present below the current folder, else below `home`. A path
+  // found in neither place: ConfigError at `params.Where(key)` naming both places tried.
+  std::string ResolvePath(const ParamBlock& params, const std::string& key,
+                          const std::string& path) const;
+};
+
+// Reads the plugin's parameters from `params` (throwing ConfigError on bad values) and returns
+// the plugin.
+using FeatureFactory =
+    std::function<std::unique_ptr<FeatureMap>(const ParamBlock& params, const FeatureSetup& setup)>;
+
+class FeatureRegistry {
+ public:
+  struct Entry {
+    std::string name;
+    std::string summary;  // one line, for `attend features` style listings and messages
+    FeatureFactory factory;
+    std::string origin;   // "built-in" or the shared library that registered it
+  };
+
+  // Adds a plugin. A name already taken: ConfigError naming both origins.
+  void Add(const std::string& name, const std::string& summary, FeatureFactory factory);
+  // Origin given to plugins added from now on (the plugin loader sets the library path).
+  void SetOrigin(const std::string& origin) { origin_ = origin; }
+
+  const Entry* Find(const std::string& name) const;
+  std::vector<std::string> Names() const;
+
+  // Creates the plugin of `spec` and checks that it read all of its parameters. An unknown
+  // name: ConfigError at the entry's `name`, with the closest known name and the full list.
+  std::unique_ptr<FeatureMap> Create(const FeatureSpec& spec, const FeatureSetup& setup) const;
+
+ private:
+  std::map<std::string, Entry> entries_;
+  std::string origin_ = "built-in";
+};
+
+// Checks a plugin's output: CV_32FC1, the frame's size, finite values. A violation is a
+// ConfigError naming the plugin and its origin (a broken plugin was configured).
+void CheckFeatureOutput(const FeatureRegistry::Entry& entry, const cv::Mat& map, cv::Size size);
+
+}  // namespace attend

@@ -1,0 +1,61 @@
+// The per-frame context that feature plugins read (SPEC 1, 2.3). It holds the frame and
+// lazily computes, once per frame, what several plugins share: the HSV cylinder and TSL
+// images and the frame's BIP colour segmentation with its region adjacency graph. The lazy
+// getters are safe to call from several plugins at once; the first caller computes, the
+// others wait and then share the result.
+//
+// One context serves a whole stream of frames: Reset() starts a frame and keeps every buffer,
+// so after the first frame nothing is allocated.
+#pragma once
+
+#include <mutex>
+#include <opencv2/core.hpp>
+
+#include "pyramid/segmentation.h"
+
+namespace attend {
+
+class FrameContext {
+ public:
+  explicit FrameContext(const SegmentationOptions& segmentation = {});
+  FrameContext(const FrameContext&) = delete;
+  FrameContext& operator=(const FrameContext&) = delete;
+
+  // Starts a frame: `left` (and `right`, empty when monocular) are 8-bit BGR images of the
+  // same size. The images are referenced, not copied; they must outlive the frame.
+  void Reset(int frame_index, const cv::Mat& left, const cv::Mat& right = cv::Mat());
+
+  int frame_index() const { return frame_index_; }
+  const cv::Mat& left() const { return left_; }
+  const cv::Mat& right() const { return right_; }
+  bool stereo() const { return !right_.empty(); }
+  cv::Size size() const { return left_.size(); }
+
+  // The left image as HSV cylinder (CV_32FC3: S cos H, S sin H, V) and as TSL (CV_32FC3: T,
+  // S, L); colour/colour.h.
+  const cv::Mat& Cylinder() const;
+  const cv::Mat& Tsl() const;
+  // The BIP colour segmentation of the left image: labels, region statistics, adjacency graph.
+  const Segmentation& Regions() const;
+
+ private:
+  // One lazily computed value: `ready` is guarded by `mutex`.
+  struct Slot {
+    std::mutex mutex;
+    bool ready = false;
+  };
+
+  int frame_index_ = -1;
+  cv::Mat left_;
+  cv::Mat right_;
+
+  mutable Slot cylinder_slot_;
+  mutable Slot tsl_slot_;
+  mutable Slot regions_slot_;
+  mutable cv::Mat cylinder_;
+  mutable cv::Mat tsl_;
+  mutable Segmenter segmenter_;
+  mutable Segmentation regions_;
+};
+
+}  // namespace attend

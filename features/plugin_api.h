@@ -1,0 +1,43 @@
+// The entry point of out-of-tree feature plugins (docs/PLUGINS.md). A plugin is a shared
+// library that exports one C function, `attend_plugin`, returning a description of itself:
+// the ABI version it was built against and a function that registers its features.
+//
+//   #include "features/plugin_api.h"
+//   static void Register(attend::FeatureRegistry* registry) {
+//     registry->Add("my_feature", "what it measures", &CreateMyFeature);
+//   }
+//   ATTEND_PLUGIN("my_plugin", Register)
+//
+// `attend` loads the libraries named in `plugins:` at start, checks the ABI version and calls
+// the register function; any failure is a configuration error (exit status 2) naming the file.
+// The version changes whenever the classes a plugin sees (FeatureMap, FeatureRegistry,
+// FrameContext, ParamBlock, Segmentation) change in a way that breaks binary compatibility.
+#pragma once
+
+#include "features/feature_map.h"
+
+#define ATTEND_PLUGIN_ABI_VERSION 1
+
+extern "C" {
+
+struct AttendPluginInfo {
+  int abi_version;    // ATTEND_PLUGIN_ABI_VERSION of the headers the plugin was built with
+  const char* name;   // the plugin library's name, for messages
+  void (*register_features)(attend::FeatureRegistry* registry);
+};
+
+// The one symbol attend looks up.
+typedef const AttendPluginInfo* (*AttendPluginEntry)();
+
+}  // extern "C"
+
+#define ATTEND_PLUGIN_ENTRY_SYMBOL "attend_plugin"
+
+// Defines the entry point of a plugin library.
+#define ATTEND_PLUGIN(NAME, REGISTER_FUNCTION)                                      \
+  extern "C" __attribute__((visibility("default"))) const AttendPluginInfo*         \
+  attend_plugin() {                                                                 \
+    static const AttendPluginInfo info{ATTEND_PLUGIN_ABI_VERSION, NAME,             \
+                                       REGISTER_FUNCTION};                          \
+    return &info;                                                                   \
+  }
