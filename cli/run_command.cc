@@ -117,6 +117,7 @@ int Run(const RunArguments& args) {
   request.overwrite = args.overwrite;
   request.config_path = config_path;
   request.command_line = args.command_line;
+  request.home = AttendHome();
   // Empty: the run loop names a folder under runs/ once it knows the sequence's name.
   request.out_dir = !args.out.empty() ? args.out : options.output.dir;
   request.stop = &g_stop_requested;

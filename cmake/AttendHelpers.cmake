@@ -19,3 +19,18 @@ function(attend_add_test name)
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
     PROPERTIES ENVIRONMENT "ATTEND_HOME=${PROJECT_SOURCE_DIR}")
 endfunction()
+
+# attend_export_plugin_api(TARGET)
+# Makes an executable able to load feature plugins (features/plugin_api.h): it exports its
+# symbols, and links the libraries whose functions a plugin may call in whole, so that every
+# function of that API is present even when the program itself does not use it.
+function(attend_export_plugin_api target)
+  set_target_properties(${target} PROPERTIES ENABLE_EXPORTS ON)
+  set(archives)
+  foreach(library attend_features attend_config attend_pyramid attend_colour attend_util)
+    list(APPEND archives "$<TARGET_FILE:${library}>")
+  endforeach()
+  target_link_options(${target} PRIVATE "LINKER:--whole-archive" ${archives}
+                      "LINKER:--no-whole-archive")
+  add_dependencies(${target} attend_features)
+endfunction()

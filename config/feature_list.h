@@ -14,8 +14,11 @@ namespace attend {
 struct FeatureSpec {
   std::string name;     // plugin name, unique within the list
   double weight = 1.0;  // weight in the saliency sum, >= 0
-  // The whole entry; `name` and `weight` are already marked as read, so a plugin reads its
-  // own keys and then calls params.CheckNoUnknownKeys().
+  // A disabled feature is still created (so its parameters are checked) but never computed:
+  // it leaves no map, no dump and no time.
+  bool enabled = true;
+  // The whole entry; `name`, `weight` and `enabled` are already marked as read, so a plugin reads
+  // its own keys and then calls params.CheckNoUnknownKeys().
   ParamBlock params;
 };
 

@@ -1,1 +1,79 @@
+#include "features/feature_map.h"
 
+#include <filesystem>
+
+#include "util/error.h"
+#include "util/strings.h"
+
+namespace fs = std::filesystem;
+
+namespace attend {
+
+std::string FeatureSetup::ResolvePath(const ParamBlock& params, const std::string& key,
+                                      const std::string& path) const {
+  if (path.empty()) params.Fail(key, "must not be empty");
+  const fs::path given(path);
+  if (given.is_absolute()) {
+    if (!fs::exists(given)) params.Fail(key, "no such file: " + path);
+    return path;
+  }
+  if (fs::exists(given)) return path;
+  if (!home.empty() && fs::exists(fs::path(home) / given)) return (fs::path(home) / given).string();
+  params.Fail(key, "no such file: " + path + " (looked in the current folder" +
+                       (home.empty() ? std::string() : " and in " + home) + ")");
+}
+
+void FeatureRegistry::Add(const std::string& name, const std::string& summary,
+                          FeatureFactory factory) {
+  if (name.empty()) throw ConfigError(origin_ + ": registers a feature with an empty name");
+  const auto found = entries_.find(name);
+  if (found != entries_.end()) {
+    throw ConfigError(origin_ + ": registers feature '" + name + "', which " +
+                      found->second.origin + " already registered");
+  }
+  entries_[name] = Entry{name, summary, std::move(factory), origin_};
+}
+
+const FeatureRegistry::Entry* FeatureRegistry::Find(const std::string& name) const {
+  const auto found = entries_.find(name);
+  return found == entries_.end() ? nullptr : &found->second;
+}
+
+std::vector<std::string> FeatureRegistry::Names() const {
+  std::vector<std::string> names;
+  for (const auto& [name, entry] : entries_) names.push_back(name);
+  return names;
+}
+
+std::unique_ptr<FeatureMap> FeatureRegistry::Create(const FeatureSpec& spec,
+                                                    const FeatureSetup& setup) const {
+  const Entry* entry = Find(spec.name);
+  if (entry == nullptr) {
+    spec.params.Fail("name", "unknown feature '" + spec.name + "'" +
+                                 DidYouMean(spec.name, Names()) +
+                                 "; known: " + Join(Names(), ", ") +
+                                 " (out-of-tree features need their library in `plugins:`)");
+  }
+  std::unique_ptr<FeatureMap> feature = entry->factory(spec.params, setup);
+  if (feature == nullptr) {
+    throw ConfigError(spec.params.Where() + ": feature '" + spec.name + "' (" + entry->origin +
+                      ") returned no plugin");
+  }
+  spec.params.CheckNoUnknownKeys();
+  return feature;
+}
+
+void CheckFeatureOutput(const FeatureRegistry::Entry& entry, const cv::Mat& map, cv::Size size) {
+  const std::string who = "feature '" + entry.name + "' (" + entry.origin + ")";
+  if (map.type() != CV_32FC1 || map.size() != size) {
+    throw ConfigError(who + " returned a map of " + std::to_string(map.cols) + "x" +
+                      std::to_string(map.rows) + " type " + std::to_string(map.type()) +
+                      "; a feature map must be CV_32FC1 of the frame's size " +
+                      std::to_string(size.width) + "x" + std::to_string(size.height));
+  }
+  if (!cv::checkRange(map, true)) {
+    throw ConfigError(who + " returned a map with NaN or infinite values");
+  }
+}
+
+}  // namespace attend

@@ -1,1 +1,55 @@
+#include "features/feature_set.h"
 
+#include <exception>
+#include <opencv2/core/utility.hpp>
+
+#include "util/timer.h"
+
+namespace attend {
+
+struct FeatureSet::Member {
+  const FeatureRegistry::Entry* entry;
+  std::unique_ptr<FeatureMap> feature;
+};
+
+FeatureSet::FeatureSet(const std::vector<FeatureSpec>& specs, const FeatureRegistry& registry,
+                       const FeatureSetup& setup) {
+  for (const FeatureSpec& spec : specs) {
+    std::unique_ptr<FeatureMap> feature = registry.Create(spec, setup);
+    if (!spec.enabled) continue;
+    members_.push_back({registry.Find(spec.name), std::move(feature)});
+    results_.push_back({spec.name, spec.weight, cv::Mat(), 0.0});
+  }
+}
+
+FeatureSet::~FeatureSet() = default;
+
+void FeatureSet::Compute(const FrameContext& context, bool concurrent) {
+  const int count = static_cast<int>(members_.size());
+  std::vector<std::exception_ptr> errors(count);
+  auto compute = [&](int i) {
+    try {
+      const Stopwatch stopwatch;
+      members_[i].feature->Compute(context, &results_[i].map);
+      results_[i].milliseconds = stopwatch.ElapsedMs();
+      CheckFeatureOutput(*members_[i].entry, results_[i].map, context.size());
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  };
+  if (concurrent && count > 1) {
+    cv::parallel_for_(
+        cv::Range(0, count),
+        [&](const cv::Range& range) {
+          for (int i = range.start; i < range.end; ++i) compute(i);
+        },
+        count);
+  } else {
+    for (int i = 0; i < count; ++i) compute(i);
+  }
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+}
+
+}  // namespace attend

@@ -8,6 +8,7 @@
 #include "config/feature_list.h"
 #include "io/sequence.h"
 #include "pyramid/segmentation.h"
+#include "saliency/saliency.h"
 
 namespace attend {
 
@@ -17,14 +18,19 @@ struct OutputOptions {
   std::string dir;
   // Per-frame dumps (SPEC 3.3); each must be one of DumpKinds().
   std::vector<std::string> dump = {"overlay"};
+  // Files written for each dumped float map (saliency, features): "pfm" the map itself
+  // (lossless), "png" an 8-bit preview of its normalised values.
+  std::vector<std::string> map_formats = {"pfm", "png"};
   // Also write the overlays as RUN/overlay.avi (Motion-JPEG).
   bool video = false;
 
   // The dumps this build can write.
   static const std::vector<std::string>& DumpKinds();
+  static const std::vector<std::string>& MapFormats();
   // Empty when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
   bool Dumps(const std::string& kind) const;
+  bool WritesMapFormat(const std::string& format) const;
 };
 
 struct AttendOptions {
@@ -34,8 +40,13 @@ struct AttendOptions {
   SegmentationOptions segmentation;
   // Feature plugins with their weights and own parameters (SPEC 2.3, 3.4).
   std::vector<FeatureSpec> features;
+  // How the feature maps become the saliency map.
+  SaliencyOptions saliency;
   // Out-of-tree plugin libraries loaded at start.
   std::vector<std::string> plugins;
+  // Threads for the stages that can share a frame's work (the feature plugins): 0 = one per
+  // core, 1 = everything on the calling thread. Results do not depend on it.
+  int threads = 0;
 };
 
 }  // namespace attend

@@ -41,11 +41,19 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.BeginSection("output");
   v.Field("dir", &o->output.dir);
   v.ChoiceList("dump", &o->output.dump, OutputOptions::DumpKinds());
+  v.ChoiceList("map_formats", &o->output.map_formats, OutputOptions::MapFormats());
   v.Field("video", &o->output.video);
   v.EndSection([o] { return o->output.Check(); });
 
   v.Features("features", &o->features);
   v.Field("plugins", &o->plugins);
+
+  v.BeginSection("saliency");
+  v.Choice("normalisation", &o->saliency.normalisation, SaliencyOptions::Normalisations());
+  v.Field("local_maxima_window", &o->saliency.local_maxima_window, Range::Closed(3, 1001));
+  v.EndSection([o] { return o->saliency.Check(); });
+
+  v.Field("threads", &o->threads, Range::Closed(0, 256));
 }
 
 // Reads keys from a ParamBlock, starting from the values already in the struct.
@@ -121,14 +129,16 @@ class Writer {
   void Features(const std::string& key, std::vector<FeatureSpec>* specs) {
     out_ << YAML::Key << key << YAML::Value << YAML::BeginSeq;
     for (const FeatureSpec& spec : *specs) {
-      // The plugin's own keys as given; name and weight first and with their parsed values.
+      // The plugin's own keys as given; name, weight (and enabled: false) first and with their
+      // parsed values.
       out_ << YAML::Flow << YAML::BeginMap;
       out_ << YAML::Key << "name" << YAML::Value << spec.name;
       out_ << YAML::Key << "weight" << YAML::Value << spec.weight;
+      if (!spec.enabled) out_ << YAML::Key << "enabled" << YAML::Value << false;
       const YAML::Node node = NodeOf(spec.params);
       for (auto it = node.begin(); it != node.end(); ++it) {
         const std::string name = it->first.Scalar();
-        if (name == "name" || name == "weight") continue;
+        if (name == "name" || name == "weight" || name == "enabled") continue;
         out_ << YAML::Key << name << YAML::Value << it->second;
       }
       out_ << YAML::EndMap;
@@ -184,20 +194,37 @@ class KeyLister {
 }  // namespace
 
 const std::vector<std::string>& OutputOptions::DumpKinds() {
-  static const std::vector<std::string> kinds = {"overlay"};
+  static const std::vector<std::string> kinds = {"overlay", "regions", "features", "saliency"};
   return kinds;
+}
+
+const std::vector<std::string>& OutputOptions::MapFormats() {
+  static const std::vector<std::string> formats = {"pfm", "png"};
+  return formats;
 }
 
 std::string OutputOptions::Check() const {
   for (const std::string& kind : dump) {
     if (std::count(dump.begin(), dump.end(), kind) > 1) return "dump lists '" + kind + "' twice";
   }
+  for (const std::string& format : map_formats) {
+    if (std::count(map_formats.begin(), map_formats.end(), format) > 1) {
+      return "map_formats lists '" + format + "' twice";
+    }
+  }
   if (video && !Dumps("overlay")) return "video needs 'overlay' in dump";
+  if ((Dumps("features") || Dumps("saliency")) && map_formats.empty()) {
+    return "map_formats is empty, so the features and saliency dumps would write nothing";
+  }
   return "";
 }
 
 bool OutputOptions::Dumps(const std::string& kind) const {
   return std::find(dump.begin(), dump.end(), kind) != dump.end();
+}
+
+bool OutputOptions::WritesMapFormat(const std::string& format) const {
+  return std::find(map_formats.begin(), map_formats.end(), format) != map_formats.end();
 }
 
 AttendOptions ReadOptions(const ParamBlock& root) {

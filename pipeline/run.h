@@ -19,11 +19,12 @@ struct RunProgress {
 };
 
 struct RunRequest {
-  AttendOptions options;                                // sequence source already resolved
-  std::string out_dir;                                  // the run folder
-  bool overwrite = false;                               // replace a previous run in out_dir
-  std::string config_path;                              // recorded in the summary
-  std::string command_line;                             // recorded in the summary
+  AttendOptions options;     // sequence source already resolved
+  std::string out_dir;       // the run folder
+  bool overwrite = false;    // replace a previous run in out_dir
+  std::string config_path;   // recorded in the summary
+  std::string command_line;  // recorded in the summary
+  std::string home;          // the folder of bundled files, for plugins' relative data paths
   const std::atomic<bool>* stop = nullptr;              // finish the frame, then stop
   std::function<void(const RunProgress&)> on_progress;  // after every frame
 };

@@ -5,6 +5,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "io/ground_truth.h"
+#include "io/pfm.h"
 #include "util/error.h"
 #include "util/output_folder.h"
 
@@ -13,9 +14,9 @@ namespace fs = std::filesystem;
 namespace attend {
 
 const std::vector<std::string>& RunFolder::OwnEntries() {
-  static const std::vector<std::string> entries = {"config.yaml", "frames.jsonl", "summary.json",
-                                                   "overlay.avi", "saliency",     "inhibition",
-                                                   "inhibited",   "features",     "overlay"};
+  static const std::vector<std::string> entries = {
+      "config.yaml", "frames.jsonl", "summary.json", "overlay.avi", "saliency",
+      "inhibition",  "inhibited",    "features",     "overlay",     "regions"};
   return entries;
 }
 
@@ -54,6 +55,21 @@ void RunFolder::WriteImage(const std::string& kind, int frame, const cv::Mat& im
   fs::create_directories(folder, error);
   const std::string path = (folder / (FrameStem(frame) + ".png")).string();
   if (error || !cv::imwrite(path, image)) throw OutputError(path + ": cannot write the image");
+}
+
+void RunFolder::WriteMap(const std::string& kind, int frame, const cv::Mat& map,
+                         const cv::Mat& preview, bool pfm, bool png) {
+  const fs::path folder = fs::path(dir_) / kind;
+  std::error_code error;
+  fs::create_directories(folder, error);
+  if (error) throw OutputError(folder.string() + ": cannot create the folder");
+  if (pfm) WritePfm((folder / (FrameStem(frame) + ".pfm")).string(), map);
+  if (png) {
+    cv::Mat image;
+    preview.convertTo(image, CV_8U, 255.0);
+    const std::string path = (folder / (FrameStem(frame) + ".png")).string();
+    if (!cv::imwrite(path, image)) throw OutputError(path + ": cannot write the image");
+  }
 }
 
 void RunFolder::AppendVideoFrame(const std::string& name, const cv::Mat& image, double fps) {

@@ -31,6 +31,11 @@ class RunFolder {
   void AppendFrame(const FrameRecord& record);
   // RUN/<kind>/NNNNNN.png
   void WriteImage(const std::string& kind, int frame, const cv::Mat& image);
+  // RUN/<kind>/NNNNNN.pfm (the map itself, `pfm`) and RUN/<kind>/NNNNNN.png (an 8-bit preview:
+  // `preview`, a map in [0, 1], times 255, with `png`). `kind` may hold a slash
+  // ("features/skin").
+  void WriteMap(const std::string& kind, int frame, const cv::Mat& map, const cv::Mat& preview,
+                bool pfm, bool png);
   // Appends a frame to RUN/<name>.avi (Motion-JPEG), opened on first use.
   void AppendVideoFrame(const std::string& name, const cv::Mat& image, double fps);
   // Written to a temporary file and renamed, so summary.json is never half-written.

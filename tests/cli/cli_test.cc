@@ -94,10 +94,11 @@ TEST(Cli, BadInputExitsThreeNamingTheCulprit) {
   EXPECT_EQ(summary["frames"], 2);
   EXPECT_EQ(summary["interrupted"], true);
 
-  testing::MakeFolderSequence(dir.File("mono"), 2, 16, 16, false);
-  r = Attend(dir, {"run", "--sequence", "mono", "--out", "run2"});
+  r = Attend(dir, {"run", "--sequence", "seq", "--out", "run3", "--set",
+                   "features.colour_contrast.name=colour_contrst"});
   EXPECT_EQ(r.status, 2);
-  EXPECT_TRUE(Contains(r.err, "the disparity feature needs a stereo sequence")) << r.err;
+  EXPECT_TRUE(Contains(r.err, "did you mean 'colour_contrast'")) << r.err;
+  EXPECT_FALSE(fs::exists(dir.File("run3")));
 }
 
 TEST(Cli, RunWritesTheFolderAndRefusesToOverwriteIt) {
@@ -207,6 +208,8 @@ TEST(Cli, RunWithNoArgumentsUsesTheBundledSequenceAndDefaultConfig) {
   fs::create_directories(dir.path() / "home" / "sequences");
   fs::copy_file(testing::ProjectRoot() + "/configs/default.yaml",
                 dir.path() / "home" / "configs" / "default.yaml");
+  fs::copy_file(testing::ProjectRoot() + "/configs/skin_tsl.yaml",
+                dir.path() / "home" / "configs" / "skin_tsl.yaml");
   fs::copy_file(testing::ProjectRoot() + "/sequences/lab.yaml",
                 dir.path() / "home" / "sequences" / "lab.yaml");
   setenv("ATTEND_HOME", dir.File("home").c_str(), 1);

@@ -6,6 +6,7 @@
 #include <functional>
 #include <sstream>
 
+#include "features/builtin.h"
 #include "tests/support/error_message.h"
 #include "tests/support/temp_dir.h"
 #include "util/error.h"
@@ -46,9 +47,9 @@ TEST(OptionsIo, DefaultYamlSetsEveryKeyToTheStructDefault) {
   // The file and the struct agree: a reader of either sees the same defaults.
   EXPECT_EQ(OptionsToYaml(options).substr(0, OptionsToYaml(options).find("features:")),
             OptionsToYaml(defaults).substr(0, OptionsToYaml(defaults).find("features:")));
-  ASSERT_EQ(options.features.size(), 4u);
+  ASSERT_EQ(options.features.size(), 3u);
   EXPECT_EQ(options.features[0].name, "colour_contrast");
-  EXPECT_EQ(options.features[3].name, "disparity");
+  EXPECT_EQ(options.features[2].name, "skin");
 }
 
 TEST(OptionsIo, EveryKeyIsDocumentedInConfigsReadme) {
@@ -60,10 +61,38 @@ TEST(OptionsIo, EveryKeyIsDocumentedInConfigsReadme) {
   }
 }
 
+// Each built-in feature's parameters, as the plugin asks for them, are documented as
+// `features.<name>.<key>` and set in the default configuration when it lists the feature.
+TEST(OptionsIo, EveryBuiltinFeatureParameterIsDocumentedAndSet) {
+  const std::string readme = ReadText(testing::ProjectRoot() + "/configs/README.md");
+  const AttendOptions defaults = LoadOptions(DefaultConfig(), {});
+  const FeatureRegistry registry = BuiltinFeatures();
+  FeatureSetup setup;
+  setup.home = testing::ProjectRoot();
+  for (const std::string& name : registry.Names()) {
+    EXPECT_NE(readme.find("`features." + name + "`"), std::string::npos) << name;
+    FeatureSpec spec;
+    spec.name = name;
+    registry.Create(spec, setup);
+    const FeatureSpec* listed = nullptr;
+    for (const FeatureSpec& entry : defaults.features) {
+      if (entry.name == name) listed = &entry;
+    }
+    for (const std::string& key : spec.params.KnownKeys()) {
+      if (key == "name" || key == "weight" || key == "enabled") continue;
+      EXPECT_NE(readme.find("`features." + name + "." + key + "`"), std::string::npos)
+          << name << "." << key << " is not documented in configs/README.md";
+      if (listed != nullptr) {
+        EXPECT_TRUE(listed->params.Has(key)) << name << "." << key << " is not in default.yaml";
+      }
+    }
+  }
+}
+
 TEST(OptionsIo, EffectiveConfigurationRoundTrips) {
   const AttendOptions options =
       LoadOptions(DefaultConfig(), {"sequence.stride=3", "output.dump=[]", "sequence.resize=native",
-                                    "features.skin.weight=0.25", "features.disparity.window=7"});
+                                    "features.skin.weight=0.25", "features.skin.output=soft"});
   EXPECT_EQ(options.sequence.stride, 3);
   EXPECT_TRUE(options.output.dump.empty());
   const std::string yaml = OptionsToYaml(options);
@@ -71,7 +100,7 @@ TEST(OptionsIo, EffectiveConfigurationRoundTrips) {
   EXPECT_EQ(OptionsToYaml(again), yaml);
   EXPECT_EQ(again.sequence.resize, "native");
   EXPECT_DOUBLE_EQ(again.features[2].weight, 0.25);
-  EXPECT_EQ(again.features[3].params.GetInt("window", 0), 7);  // plugin keys survive
+  EXPECT_EQ(again.features[2].params.GetString("output", ""), "soft");  // plugin keys survive
 }
 
 TEST(OptionsIo, ErrorsNameKeyLineAndClosestKey) {
@@ -90,8 +119,9 @@ TEST(OptionsIo, ErrorsNameKeyLineAndClosestKey) {
 
   path = dir.Write("c.yaml", "sequence:\n  stride: 0\n");
   message = ConfigErrorOf([&] { LoadOptions(path, {}); });
-  EXPECT_NE(message.find(path + ":2: sequence.stride: value 0 out of range: must be in [1, 1000000]"),
-            std::string::npos)
+  EXPECT_NE(
+      message.find(path + ":2: sequence.stride: value 0 out of range: must be in [1, 1000000]"),
+      std::string::npos)
       << message;
 
   path = dir.Write("d.yaml", "output:\n  dump: [overlay, salience]\n");

@@ -115,19 +115,18 @@ TEST(RunSequence, BadSourceFailsBeforeCreatingTheRunFolder) {
   EXPECT_FALSE(fs::exists(dir.File("run")));
 }
 
-TEST(RunSequence, DisparityOnAMonocularSourceIsAConfigurationError) {
+TEST(RunSequence, UnknownFeatureIsAConfigurationErrorBeforeTheRunFolder) {
   testing::TempDir dir;
   RunRequest request;
   request.options = ReadOptions(ParamBlock::Parse(
-      "features:\n  - {name: colour_contrast}\n  - {name: disparity}\n", "c.yaml"));
+      "features:\n  - {name: colour_contrast}\n  - {name: disparty}\n", "c.yaml"));
   request.options.sequence.folder = testing::MakeFolderSequence(dir.File("mono"), 2, 16, 16, false);
   request.out_dir = dir.File("run");
   try {
     RunSequence(request);
-    FAIL() << "disparity needs a stereo source";
+    FAIL() << "an unknown feature must stop the run";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("c.yaml:3: features.1.name: the disparity feature needs a "
-                                         "stereo sequence"),
+    EXPECT_NE(std::string(e.what()).find("c.yaml:3: features.1.name: unknown feature 'disparty'"),
               std::string::npos)
         << e.what();
   }

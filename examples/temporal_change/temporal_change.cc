@@ -1,0 +1,57 @@
+// An out-of-tree feature plugin for attend: temporal change. Where the left image changed
+// since the previous frame, something moved or appeared, which draws attention (Itti's
+// flicker channel). The map is the absolute difference of the luminance of consecutive frames,
+// averaged over a `window` x `window` box; the first frame's map is zero.
+//
+// Build it with the project (it is built as build/examples/libattend_temporal_change.so) or on
+// its own against attend's headers (docs/PLUGINS.md), then enable it in the configuration:
+//   plugins: [build/examples/libattend_temporal_change.so]
+//   features:
+//     - {name: temporal_change, weight: 1.0, window: 5}
+#include <opencv2/imgproc.hpp>
+
+#include "features/plugin_api.h"
+
+namespace {
+
+class TemporalChange : public attend::FeatureMap {
+ public:
+  explicit TemporalChange(int window) : window_(window) {}
+
+  void Compute(const attend::FrameContext& context, cv::Mat* out) override {
+    cv::cvtColor(context.left(), luminance_, cv::COLOR_BGR2GRAY);
+    luminance_.convertTo(current_, CV_32F);
+    // A frame that does not follow the previous one (a new sequence, a skipped range) starts
+    // afresh, like the first frame.
+    if (previous_.size() != current_.size() || context.frame_index() <= previous_index_) {
+      out->create(current_.size(), CV_32FC1);
+      out->setTo(0.f);
+    } else {
+      cv::absdiff(current_, previous_, difference_);
+      cv::boxFilter(difference_, *out, CV_32F, cv::Size(window_, window_));
+    }
+    std::swap(previous_, current_);
+    previous_index_ = context.frame_index();
+  }
+
+ private:
+  int window_;
+  int previous_index_ = -1;
+  cv::Mat luminance_, current_, previous_, difference_;
+};
+
+std::unique_ptr<attend::FeatureMap> Create(const attend::ParamBlock& params,
+                                           const attend::FeatureSetup&) {
+  const int window = params.GetInt("window", 5, attend::Range::Closed(1, 101));
+  if (window % 2 == 0) params.Fail("window", "must be odd");
+  return std::make_unique<TemporalChange>(window);
+}
+
+void Register(attend::FeatureRegistry* registry) {
+  registry->Add("temporal_change", "luminance change since the previous frame (example plugin)",
+                &Create);
+}
+
+}  // namespace
+
+ATTEND_PLUGIN("temporal_change", Register)

@@ -1,0 +1,49 @@
+// The per-frame stages of SPEC 1 that turn a stereo frame into maps: the colour conversions and
+// BIP segmentation (shared through the frame context), the feature plugins and the saliency
+// map. `attend run` drives it frame by frame and writes what it produced.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "features/feature_map.h"
+#include "features/feature_set.h"
+#include "features/frame_context.h"
+#include "io/sequence.h"
+#include "pipeline/attend_options.h"
+#include "pipeline/frame_record.h"
+
+namespace attend {
+
+// The built-in features plus those of the libraries in `plugins` (ConfigError naming the
+// library that cannot be used).
+FeatureRegistry LoadFeatureRegistry(const std::vector<std::string>& plugins);
+
+class FramePipeline {
+ public:
+  // Creates the feature plugins (ConfigError for unknown names or bad parameters).
+  FramePipeline(const AttendOptions& options, const FeatureRegistry& registry,
+                const FeatureSetup& setup);
+
+  // Runs the stages on `frame`, adding their times to record->timings: `segment` (colour
+  // conversion and BIP segmentation), `features` (all plugins, wall time), `feature.<name>`
+  // (each plugin's own time) and `saliency`.
+  void Process(const StereoFrame& frame, FrameRecord* record);
+
+  // Results of the last frame.
+  const FrameContext& context() const { return context_; }
+  const std::vector<FeatureResult>& features() const { return features_.results(); }
+  // Each feature's map normalised to [0, 1], in the order of features().
+  const std::vector<cv::Mat>& normalised() const { return normalised_; }
+  const cv::Mat& saliency() const { return saliency_; }
+
+ private:
+  const AttendOptions options_;
+  FrameContext context_;
+  FeatureSet features_;
+  std::vector<cv::Mat> normalised_;
+  std::vector<double> weights_;
+  cv::Mat saliency_;
+};
+
+}  // namespace attend

@@ -1,0 +1,36 @@
+// The saliency map (thesis 5.1.1.2, SPEC 2.3): every feature map is normalised to [0, 1],
+// multiplied by its weight, summed, and divided by the sum of weights.
+//
+// Normalisations:
+// - minmax (SPEC, default): (F - min) / (max - min) over the frame; a constant map becomes 0.
+// - local_maxima: Itti, Koch and Niebur's N(.) (PAMI 20(11), 1998): the min-max map times
+//   (1 - m)^2, with m the mean of the map's local maxima other than the global one. A map with
+//   one strong peak keeps it; a map with many comparable peaks is suppressed. A local maximum
+//   is a connected plateau of pixels that equal the maximum of their window, counted once
+//   whatever its area (region-based features are piecewise constant).
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+namespace attend {
+
+struct SaliencyOptions {
+  std::string normalisation = "minmax";  // one of Normalisations()
+  int local_maxima_window = 15;          // odd window side in pixels, for local_maxima
+
+  static const std::vector<std::string>& Normalisations();
+  // "" when valid; otherwise names the field and the broken constraint.
+  std::string Check() const;
+};
+
+// Normalises `map` (CV_32FC1) into `out` (CV_32FC1, [0, 1]).
+void NormaliseMap(const cv::Mat& map, const SaliencyOptions& options, cv::Mat* out);
+
+// sum_i weights[i] * normalised[i] / sum_i weights[i], CV_32FC1. No maps, or weights summing to
+// 0, give a zero map of `size`.
+void CombineMaps(const std::vector<cv::Mat>& normalised, const std::vector<double>& weights,
+                 cv::Size size, cv::Mat* out);
+
+}  // namespace attend

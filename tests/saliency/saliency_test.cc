@@ -1,0 +1,106 @@
+#include "saliency/saliency.h"
+
+#include <gtest/gtest.h>
+
+namespace attend {
+namespace {
+
+cv::Mat Row(std::initializer_list<float> values) {
+  return cv::Mat(std::vector<float>(values), true).reshape(1, 1);
+}
+
+TEST(Saliency, MinMaxMapsTheRangeOntoUnit) {
+  cv::Mat out;
+  NormaliseMap(Row({2.f, 4.f, 6.f, 3.f}), {}, &out);
+  EXPECT_FLOAT_EQ(out.at<float>(0), 0.f);
+  EXPECT_FLOAT_EQ(out.at<float>(1), 0.5f);
+  EXPECT_FLOAT_EQ(out.at<float>(2), 1.f);
+  EXPECT_FLOAT_EQ(out.at<float>(3), 0.25f);
+}
+
+TEST(Saliency, ConstantMapBecomesZero) {
+  cv::Mat out;
+  NormaliseMap(cv::Mat(5, 7, CV_32FC1, cv::Scalar(3.5f)), {}, &out);
+  EXPECT_EQ(out.size(), cv::Size(7, 5));
+  EXPECT_EQ(cv::countNonZero(out), 0);
+}
+
+// Peaks drawn as single pixels (or plateaus) on a zero map, far apart.
+cv::Mat Peaks(const std::vector<std::pair<cv::Rect, float>>& peaks) {
+  cv::Mat map(60, 80, CV_32FC1, cv::Scalar(0.f));
+  for (const auto& [box, value] : peaks) map(box).setTo(value);
+  return map;
+}
+
+TEST(Saliency, LocalMaximaKeepsASinglePeak) {
+  SaliencyOptions options;
+  options.normalisation = "local_maxima";
+  cv::Mat out;
+  NormaliseMap(Peaks({{{10, 10, 5, 5}, 8.f}}), options, &out);
+  EXPECT_FLOAT_EQ(out.at<float>(12, 12), 1.f);
+  EXPECT_EQ(cv::countNonZero(out), 25);
+}
+
+TEST(Saliency, LocalMaximaScalesByTheOtherPeaks) {
+  SaliencyOptions options;
+  options.normalisation = "local_maxima";
+  options.local_maxima_window = 5;
+  cv::Mat out;
+  // Global peak 4 (a plateau counted once), others 2 and 1: after min-max 0.5 and 0.25, mean
+  // 0.375, factor (1 - 0.375)^2.
+  NormaliseMap(Peaks({{{5, 5, 10, 10}, 4.f}, {{40, 10, 1, 1}, 2.f}, {{60, 40, 3, 2}, 1.f}}),
+               options, &out);
+  const float factor = 0.625f * 0.625f;
+  EXPECT_NEAR(out.at<float>(7, 7), factor, 1e-6);
+  EXPECT_NEAR(out.at<float>(10, 40), 0.5f * factor, 1e-6);
+  EXPECT_NEAR(out.at<float>(40, 61), 0.25f * factor, 1e-6);
+}
+
+TEST(Saliency, LocalMaximaSuppressesTwoEqualPeaks) {
+  SaliencyOptions options;
+  options.normalisation = "local_maxima";
+  cv::Mat out;
+  NormaliseMap(Peaks({{{5, 5, 3, 3}, 1.f}, {{50, 40, 3, 3}, 1.f}}), options, &out);
+  EXPECT_EQ(cv::countNonZero(out), 0);
+}
+
+TEST(Saliency, CombineIsTheWeightedMean) {
+  const cv::Mat a = Row({0.f, 1.f, 0.5f});
+  const cv::Mat b = Row({1.f, 1.f, 0.f});
+  cv::Mat out;
+  CombineMaps({a, b}, {1.0, 3.0}, a.size(), &out);
+  EXPECT_FLOAT_EQ(out.at<float>(0), 0.75f);
+  EXPECT_FLOAT_EQ(out.at<float>(1), 1.f);
+  EXPECT_FLOAT_EQ(out.at<float>(2), 0.125f);
+}
+
+TEST(Saliency, ZeroWeightLeavesNoTrace) {
+  const cv::Mat a = Row({0.f, 1.f, 0.5f});
+  const cv::Mat b = Row({1.f, 1.f, 0.f});
+  cv::Mat alone, with_zero;
+  CombineMaps({a}, {2.0}, a.size(), &alone);
+  CombineMaps({a, b}, {2.0, 0.0}, a.size(), &with_zero);
+  EXPECT_EQ(cv::norm(alone, with_zero, cv::NORM_INF), 0.0);
+}
+
+TEST(Saliency, NoWeightGivesZero) {
+  cv::Mat out;
+  CombineMaps({}, {}, cv::Size(4, 3), &out);
+  EXPECT_EQ(out.size(), cv::Size(4, 3));
+  EXPECT_EQ(cv::countNonZero(out), 0);
+  CombineMaps({Row({1.f, 2.f})}, {0.0}, cv::Size(2, 1), &out);
+  EXPECT_EQ(cv::countNonZero(out), 0);
+}
+
+TEST(Saliency, OptionsAreChecked) {
+  SaliencyOptions options;
+  EXPECT_EQ(options.Check(), "");
+  options.normalisation = "itti";
+  EXPECT_NE(options.Check().find("itti"), std::string::npos);
+  options = {};
+  options.local_maxima_window = 4;
+  EXPECT_NE(options.Check().find("odd"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace attend
