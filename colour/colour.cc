@@ -27,23 +27,58 @@ inline void Cylinder(float r, float g, float b, float* out) {
   out[2] = maximum;
 }
 
-inline void Tsl(float r, float g, float b, float* out) {
+// atan(z) for any z, written without branches so that the image loop vectorises. Two range
+// reductions bring the argument to |u| <= tan(pi/8): atan(z) = pi/2 - atan(1/z) for z > 1, and
+// atan(w) = pi/4 + atan((w - 1)/(w + 1)); there the Taylor series to u^17 is within 2e-8.
+inline float Atan(float z) {
+  constexpr float kPi = 3.14159265358979f;
+  constexpr float kTanPiOver8 = 0.414213562373095f;
+  const float a = std::fabs(z);
+  const bool large = a > 1.f;
+  const float w = std::min(a, 1.f / a);
+  const bool middle = w > kTanPiOver8;
+  const float reduced = (w - 1.f) / (w + 1.f);
+  const float u = middle ? reduced : w;
+  const float u2 = u * u;
+  float series = 1.f / 17.f;
+  series = 1.f / 15.f - u2 * series;
+  series = 1.f / 13.f - u2 * series;
+  series = 1.f / 11.f - u2 * series;
+  series = 1.f / 9.f - u2 * series;
+  series = 1.f / 7.f - u2 * series;
+  series = 1.f / 5.f - u2 * series;
+  series = 1.f / 3.f - u2 * series;
+  series = 1.f - u2 * series;
+  float angle = (middle ? kPi / 4.f : 0.f) + u * series;
+  angle = large ? kPi / 2.f - angle : angle;
+  return z < 0.f ? -angle : angle;
+}
+
+// T = atan(r'/g') / 2 pi + 1/4 (g' > 0) or + 3/4 (g' < 0), 0 when g' = 0; S = sqrt(9/5 (r'^2 +
+// g'^2)) scaled to [0, 255]; r' = r/(r+g+b) - 1/3, g' likewise; L = 0.299 R + 0.587 G +
+// 0.114 B. Black gives T = S = 0. Every value is computed, then selected: no branches.
+inline void Tsl(float r, float g, float b, float* t, float* s, float* l) {
   constexpr float kTwoPi = 6.283185307179586f;
   const float sum = r + g + b;
-  float t = 0.f, s = 0.f;
-  if (sum > 0.f) {
-    const float rp = r / sum - 1.f / 3.f;
-    const float gp = g / sum - 1.f / 3.f;
-    s = 255.f * std::sqrt(9.f / 5.f * (rp * rp + gp * gp));
-    if (gp > 0.f) {
-      t = std::atan(rp / gp) / kTwoPi + 0.25f;
-    } else if (gp < 0.f) {
-      t = std::atan(rp / gp) / kTwoPi + 0.75f;
-    }
-  }
-  out[0] = t;
-  out[1] = s;
-  out[2] = 0.299f * r + 0.587f * g + 0.114f * b;
+  const float inverse = 1.f / std::max(sum, 1.f);
+  const float rp = r * inverse - 1.f / 3.f;
+  const float gp = g * inverse - 1.f / 3.f;
+  const float saturation = 255.f * std::sqrt(9.f / 5.f * (rp * rp + gp * gp));
+  // gp = 0 makes the quotient infinite or NaN; its T is 0 whatever Atan returns.
+  const float tint = Atan(rp / gp) / kTwoPi + (gp > 0.f ? 0.25f : 0.75f);
+  // g' = 0 exactly when 3G = R + G + B, which is exact for 8-bit channels; the rounded g' of
+  // such a colour may not be exactly 0.
+  *t = (sum > 0.f) & (3.f * g != sum) ? tint : 0.f;
+  *s = sum > 0.f ? saturation : 0.f;
+  *l = 0.299f * r + 0.587f * g + 0.114f * b;
+}
+
+// One row of planar R, G, B to planar T, S, L; the arrays do not overlap.
+// Not inlined: the caller's pointers into one buffer would hide that the arrays are distinct.
+__attribute__((noinline)) void TslRow(const float* __restrict r, const float* __restrict g,
+                                      const float* __restrict b, float* __restrict t,
+                                      float* __restrict s, float* __restrict l, int count) {
+  for (int i = 0; i < count; ++i) Tsl(r[i], g[i], b[i], &t[i], &s[i], &l[i]);
 }
 
 template <void (*Convert)(float, float, float, float*)>
@@ -70,14 +105,41 @@ CylinderColour CylinderFromRgb(float r, float g, float b) {
 }
 
 cv::Vec2f TslChrominance(float r, float g, float b) {
-  float out[3];
-  Tsl(r, g, b, out);
-  return {out[0], out[1]};
+  float t, s, l;
+  Tsl(r, g, b, &t, &s, &l);
+  return {t, s};
 }
 
 void BgrToCylinder(const cv::Mat& bgr, cv::Mat* out) { ConvertImage<Cylinder>(bgr, out); }
 
-void BgrToTsl(const cv::Mat& bgr, cv::Mat* out) { ConvertImage<Tsl>(bgr, out); }
+void BgrToTsl(const cv::Mat& bgr, cv::Mat* out) {
+  ATTEND_CHECK(bgr.type() == CV_8UC3) << "expected an 8-bit BGR image, got type " << bgr.type();
+  out->create(bgr.size(), CV_32FC3);
+  // Row by row through planar buffers, so that the arithmetic runs on whole vectors.
+  const int cols = bgr.cols;
+  cv::AutoBuffer<float> buffer(6 * cols);
+  float* const r = buffer.data();
+  float* const g = r + cols;
+  float* const b = g + cols;
+  float* const t = b + cols;
+  float* const s = t + cols;
+  float* const l = s + cols;
+  for (int row = 0; row < bgr.rows; ++row) {
+    const uchar* in = bgr.ptr<uchar>(row);
+    for (int col = 0; col < cols; ++col) {
+      b[col] = in[3 * col];
+      g[col] = in[3 * col + 1];
+      r[col] = in[3 * col + 2];
+    }
+    TslRow(r, g, b, t, s, l, cols);
+    float* result = out->ptr<float>(row);
+    for (int col = 0; col < cols; ++col) {
+      result[3 * col] = t[col];
+      result[3 * col + 1] = s[col];
+      result[3 * col + 2] = l[col];
+    }
+  }
+}
 
 cv::Vec3f RgbFromCylinder(const CylinderColour& c) {
   // Invert: V = max, S = 1 - 3 min / sum, and the hue direction (x, y) fixes the differences.

@@ -6,7 +6,10 @@
 // the mean of colours is the (area-weighted) mean of the vectors.
 //
 // TSL (Terrillon and Akamatsu), used by the skin model: T (tint) in [0, 1), S (saturation) and
-// L (luma) in [0, 255].
+// L (luma) in [0, 255]. As SPEC 2.1 says, T is 0 where g' = 0; that is the limit only for
+// greys: chromatic colours with 3G = R + G + B (g' = 0) would have T = 1/2 (r' > 0) or 0/1
+// (r' < 0) as limits (docs/SKIN.md measures what this costs the skin model). g' = 0 is tested
+// exactly, as 3G = R + G + B.
 #pragma once
 
 #include <cmath>

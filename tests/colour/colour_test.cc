@@ -83,6 +83,42 @@ TEST(Colour, TslOfKnownColours) {
   EXPECT_NEAR(ts[0], std::atan(-0.5) / (2 * M_PI) + 0.25, 1e-5);
 }
 
+// The conversion uses its own arctangent (a series after two range reductions, so that it
+// vectorises); it must agree with the double-precision formula on every colour of a grid.
+TEST(Colour, TslMatchesTheDoublePrecisionFormula) {
+  cv::Mat bgr(1, 52 * 52 * 52, CV_8UC3);
+  int i = 0;
+  for (int r = 0; r < 256; r += 5) {
+    for (int g = 0; g < 256; g += 5) {
+      for (int b = 0; b < 256; b += 5) bgr.at<cv::Vec3b>(0, i++) = cv::Vec3b(b, g, r);
+    }
+  }
+  cv::Mat tsl;
+  BgrToTsl(bgr, &tsl);
+  double worst_t = 0.0, worst_s = 0.0;
+  for (int k = 0; k < bgr.cols; ++k) {
+    const cv::Vec3b p = bgr.at<cv::Vec3b>(0, k);
+    const double sum = p[0] + p[1] + p[2];
+    double t = 0.0, s = 0.0;
+    if (sum > 0) {
+      const double rp = p[2] / sum - 1.0 / 3.0, gp = p[1] / sum - 1.0 / 3.0;
+      s = 255.0 * std::sqrt(9.0 / 5.0 * (rp * rp + gp * gp));
+      if (gp != 0.0) t = std::atan(rp / gp) / (2 * M_PI) + (gp > 0 ? 0.25 : 0.75);
+    }
+    const cv::Vec3f got = tsl.at<cv::Vec3f>(0, k);
+    // Where g' is 0 in exact arithmetic (3G = R + G + B), T is 0 by definition but jumps to
+    // 0.5 or 1 for a rounding residue of either sign, in float as in double: skip those.
+    if (3 * p[1] != sum) {
+      worst_t = std::max(worst_t, std::abs(got[0] - t));
+    } else {
+      EXPECT_EQ(got[0], 0.f) << "SPEC 2.1: T = 0 where g' = 0";
+    }
+    worst_s = std::max(worst_s, std::abs(got[1] - s));
+  }
+  EXPECT_LT(worst_t, 2e-6);
+  EXPECT_LT(worst_s, 1e-3);
+}
+
 TEST(Colour, RgbFromCylinderInvertsTheConversion) {
   std::mt19937 random(3);
   std::uniform_int_distribution<int> channel(0, 255);
