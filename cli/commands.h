@@ -13,6 +13,7 @@ using CommandAction = std::function<int()>;
 void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 void AddSynthCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 void AddSegmentCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
+void AddDisparityCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 void AddSkinTrainCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 
 }  // namespace attend

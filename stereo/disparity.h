@@ -1,0 +1,91 @@
+// Dense disparity by zero-mean normalised cross-correlation and Sun's two-stage dynamic
+// programming (thesis 5.1.1 "Disparity"; SPEC 2.3; C. Sun, "Fast stereo matching using
+// rectangular subregioning and 3D maximum-surface techniques", IJCV 47, 2002).
+//
+// For every disparity d in 0..D-1 the ZNCC of the window around (x, y) in the left image and
+// around (x - d, y) in the right image is computed with box filters, so its cost per voxel does
+// not depend on the window. The disparity map is the maximum surface of that M x N x D volume
+// under |d(x) - d(x-1)| <= 1 along rows:
+//   stage 1, every row: Y(x, d) = C(x, d) + max_{t in -1..1} Y(x - 1, d + t), with the argmax
+//            kept in 2 bits a voxel;
+//   stage 2: the same recursion along y over the rows' last columns Y(M - 1, y, d), which picks
+//            for each row an end disparity consistent with its neighbours;
+//   then every row is backtracked from its end disparity.
+// Rectified pairs are assumed: a left pixel (x, y) matches the right pixel (x - d, y).
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+namespace attend {
+
+struct DisparityOptions {
+  // D: disparities 0..D-1 are searched. Must be below the image width.
+  int max_disparity = 32;
+  // Side of the square ZNCC window, odd.
+  int window = 9;
+  // Parabola through the correlation peak and its two neighbours: disparities in fractions of a
+  // pixel (within half a pixel of the integer one).
+  bool subpixel = false;
+  // Left-right consistency: the right image's disparity map is computed too, and a left pixel
+  // whose match disagrees by more than `lr_tolerance` pixels is invalid; invalid pixels are
+  // then filled from the nearest valid pixel on their row, taking the farther (smaller)
+  // disparity of the two sides, as occlusions are background.
+  bool left_right_check = false;
+  int lr_tolerance = 1;
+
+  // "" when valid; otherwise names the field and the broken constraint.
+  std::string Check() const;
+};
+
+// Computes disparity maps; keeps its buffers between calls, so a stream of frames of one size
+// allocates nothing after the first.
+class DisparityEstimator {
+ public:
+  explicit DisparityEstimator(DisparityOptions options = {});
+  ~DisparityEstimator();
+  DisparityEstimator(const DisparityEstimator&) = delete;
+  DisparityEstimator& operator=(const DisparityEstimator&) = delete;
+
+  // `left` and `right`: 8-bit images of one size, grey or BGR (converted to grey). The result
+  // is CV_32FC1 in pixels, >= 0 everywhere (the method is dense). InputError when the sizes
+  // differ or D is not below the width.
+  void Compute(const cv::Mat& left, const cv::Mat& right, cv::Mat* disparity);
+
+  // Milliseconds of the last Compute (conversion to grey included).
+  double milliseconds() const { return milliseconds_; }
+  const DisparityOptions& options() const { return options_; }
+
+  // Bytes held in buffers after the last Compute (the cost volume, back-pointers and the rest).
+  size_t buffer_bytes() const;
+
+ private:
+  struct Buffers;
+  void Estimate(const cv::Mat& left, const cv::Mat& right, cv::Mat* disparity);
+
+  DisparityOptions options_;
+  Buffers* buffers_;
+  double milliseconds_ = 0.0;
+};
+
+// The ZNCC of the window around left (x, y) and right (x - d, y), both CV_8UC1, computed
+// directly from its definition (for tests): window x window pixels, borders replicated. 0 when
+// either window is flat.
+double DirectZncc(const cv::Mat& left, const cv::Mat& right, int x, int y, int d, int window);
+
+// The ZNCC slice of disparity d for every pixel (CV_32FC1), by box filtering, as the estimator
+// computes it; pixels whose right window would leave the image (x - d < 0) get -1.
+void ZnccSlice(const cv::Mat& left, const cv::Mat& right, int d, int window, cv::Mat* out);
+
+// Bad-pixel rates of SPEC 4 (Middlebury): the share of pixels with known ground truth
+// (`ground_truth` > 0 and finite, CV_32FC1 in pixels) where |d - d_gt| > 1 and > 2; invalid
+// estimates (negative or not finite) count as bad.
+struct BadPixelRates {
+  double bad1 = 0.0;
+  double bad2 = 0.0;
+  int known = 0;
+};
+BadPixelRates EvaluateDisparity(const cv::Mat& disparity, const cv::Mat& ground_truth);
+
+}  // namespace attend
