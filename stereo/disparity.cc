@@ -44,6 +44,101 @@ void ReversedRow(const float* row, int width, int depth, float* out) {
   for (int m = 0; m < width + depth; ++m) out[m] = row[std::max(0, width - 1 - m)];
 }
 
+// The loops over d below are compiled twice, for AVX2 and for the baseline x86-64 (SSE2), and
+// the processor picks one at run time: the same operations in the same order, so the same
+// results, on every machine.
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ATTEND_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define ATTEND_VECTOR_CLONES
+#endif
+
+// column_sums[x][d] += L_in(x) R_in(x - d) - L_out(x) R_out(x - d): the window slides down by
+// one row. `reversed_*` are right rows laid out by ReversedRow(). Without a leaving row (the
+// first window), `left_out` is null.
+ATTEND_VECTOR_CLONES void SlideColumnSums(const float* left_in, const float* reversed_in,
+                                          const float* left_out, const float* reversed_out,
+                                          int width, int depth, float* column_sums) {
+  for (int x = 0; x < width; ++x) {
+    const float a = left_in[x];
+    const float* __restrict r_in = reversed_in + (width - 1 - x);
+    float* __restrict sums = column_sums + static_cast<size_t>(x) * depth;
+    if (left_out == nullptr) {
+      for (int d = 0; d < depth; ++d) sums[d] += a * r_in[d];
+    } else {
+      const float b = left_out[x];
+      const float* __restrict r_out = reversed_out + (width - 1 - x);
+      for (int d = 0; d < depth; ++d) sums[d] += a * r_in[d] - b * r_out[d];
+    }
+  }
+}
+
+// One row of ZNCC: slides the window along the row over the column sums and normalises.
+// `right_mean` and `right_inverse_sigma` are laid out by ReversedRow(); `window_sum` holds
+// depth floats of scratch.
+ATTEND_VECTOR_CLONES void ZnccRow(const float* column_sums, const float* left_mean,
+                                  const float* left_sigma, const float* right_mean,
+                                  const float* right_inverse_sigma, int width, int depth, int half,
+                                  float inverse_count, float* window_sum, float* costs) {
+  float* __restrict sums = window_sum;
+  std::fill(sums, sums + depth, 0.f);
+  for (int i = -half; i <= half; ++i) {
+    const float* __restrict column =
+        column_sums + static_cast<size_t>(std::clamp(i, 0, width - 1)) * depth;
+    for (int d = 0; d < depth; ++d) sums[d] += column[d];
+  }
+  for (int x = 0; x < width; ++x) {
+    if (x > 0) {
+      const float* __restrict in =
+          column_sums + static_cast<size_t>(std::min(x + half, width - 1)) * depth;
+      const float* __restrict out =
+          column_sums + static_cast<size_t>(std::max(x - half - 1, 0)) * depth;
+      for (int d = 0; d < depth; ++d) sums[d] += in[d] - out[d];
+    }
+    const float mean = left_mean[x];
+    const float inverse_sigma = left_sigma[x] > kFlatSigma ? 1.f / left_sigma[x] : 0.f;
+    const float* __restrict rm = right_mean + (width - 1 - x);
+    const float* __restrict ri = right_inverse_sigma + (width - 1 - x);
+    float* __restrict c = costs + static_cast<size_t>(x) * depth;
+    for (int d = 0; d < depth; ++d) {
+      const float covariance = sums[d] * inverse_count - mean * rm[d];
+      c[d] = std::clamp(covariance * inverse_sigma * ri[d], -1.f, 1.f);
+    }
+    for (int d = x + 1; d < depth; ++d) c[d] = -1.f;
+  }
+}
+
+// Stage 1 over one row of costs ([x][d]): leaves Y(width - 1, d) in `previous` and writes the
+// 2-bit back-pointers, `packed` bytes a column. `previous` and `current` point one past a -inf
+// pad and have one more -inf pad after depth floats; `codes` holds 4 * packed bytes.
+ATTEND_VECTOR_CLONES void MaximumSurfaceRow(const float* costs, int width, int depth, int packed,
+                                            float* previous, float* current, uint8_t* codes,
+                                            uint8_t* back) {
+  std::copy(costs, costs + depth, previous);
+  for (int x = 1; x < width; ++x) {
+    const float* __restrict cx = costs + static_cast<size_t>(x) * depth;
+    const float* __restrict p = previous;
+    float* __restrict out = current;
+    uint8_t* __restrict code = codes;
+    for (int d = 0; d < depth; ++d) {
+      // Ties keep the disparity, then take the smaller one.
+      const float same = p[d], below = p[d - 1], above = p[d + 1];
+      const float best = std::max(same, std::max(below, above));
+      code[d] = same == best ? kFromSame : (below == best ? kFromBelow : kFromAbove);
+      out[d] = cx[d] + best;
+    }
+    uint8_t* __restrict column = back + static_cast<size_t>(x) * packed;
+    for (int k = 0; k < packed; ++k) {
+      const uint8_t* q = codes + 4 * k;
+      column[k] = static_cast<uint8_t>(q[0] | (q[1] << 2) | (q[2] << 4) | (q[3] << 6));
+    }
+    std::swap(previous, current);
+  }
+  // After an odd number of swaps the result is in the caller's `current` array (which
+  // `previous` now points to): copy it to the caller's `previous` array.
+  if ((width - 1) % 2 == 1) std::copy(previous, previous + depth, current);
+}
+
 // The ZNCC volume, one row at a time. Window sums of L(x) R(x - d) are kept per column for
 // all d and slid down the image (add the entering row, subtract the leaving one), then slid
 // along the row; every sum is of integers below 2^24 for windows up to 15, so float holds it
@@ -73,13 +168,18 @@ class CostRows {
   template <typename Consumer>
   void ForEachRow(std::vector<float>* costs, Consumer consume) {
     costs->resize(static_cast<size_t>(width_) * depth_);
-    for (int j = -half_; j <= half_; ++j) AddRow(Clamp(j, height_), 1.f);
+    std::fill(column_sums_.begin(), column_sums_.end(), 0.f);
+    for (int j = -half_; j <= half_; ++j) SlideDown(Clamp(j, height_), -1);
     for (int y = 0; y < height_; ++y) {
-      if (y > 0) {
-        AddRow(Clamp(y + half_, height_), 1.f);
-        AddRow(Clamp(y - half_ - 1, height_), -1.f);
+      if (y > 0) SlideDown(Clamp(y + half_, height_), Clamp(y - half_ - 1, height_));
+      ReversedRow(right_mean_.ptr<float>(y), width_, depth_, right_mean_row_.data());
+      ReversedRow(right_sigma_.ptr<float>(y), width_, depth_, right_inverse_sigma_row_.data());
+      for (float& sigma : right_inverse_sigma_row_) {
+        sigma = sigma > kFlatSigma ? 1.f / sigma : 0.f;
       }
-      RowCosts(y, costs->data());
+      ZnccRow(column_sums_.data(), left_mean_.ptr<float>(y), left_sigma_.ptr<float>(y),
+              right_mean_row_.data(), right_inverse_sigma_row_.data(), width_, depth_, half_,
+              inverse_count_, window_sum_.data(), costs->data());
       consume(y, static_cast<const float*>(costs->data()));
     }
   }
@@ -89,52 +189,11 @@ class CostRows {
   float* ReversedRight(int y) {
     return reversed_right_.data() + static_cast<size_t>(y) * (width_ + depth_);
   }
-
-  // column_sums[x][d] += sign L(x, row) R(x - d, row).
-  void AddRow(int row, float sign) {
-    const float* left = left_.ptr<float>(row);
-    const float* reversed = ReversedRight(row);
-    for (int x = 0; x < width_; ++x) {
-      const float l = sign * left[x];
-      const float* __restrict r = reversed + (width_ - 1 - x);
-      float* __restrict sums = column_sums_.data() + static_cast<size_t>(x) * depth_;
-      for (int d = 0; d < depth_; ++d) sums[d] += l * r[d];
-    }
-  }
-
-  void RowCosts(int y, float* costs) {
-    const float* left_mean = left_mean_.ptr<float>(y);
-    const float* left_sigma = left_sigma_.ptr<float>(y);
-    // The right image's statistics at x - d, contiguous in d, with 0 inverse sigma when flat.
-    ReversedRow(right_mean_.ptr<float>(y), width_, depth_, right_mean_row_.data());
-    ReversedRow(right_sigma_.ptr<float>(y), width_, depth_, right_inverse_sigma_row_.data());
-    for (float& sigma : right_inverse_sigma_row_) sigma = sigma > kFlatSigma ? 1.f / sigma : 0.f;
-    // Slide the window along the row: window_sum = sum of column_sums over clamp(x + i).
-    std::fill(window_sum_.begin(), window_sum_.end(), 0.f);
-    for (int i = -half_; i <= half_; ++i) AddColumn(Clamp(i, width_), 1.f);
-    for (int x = 0; x < width_; ++x) {
-      if (x > 0) {
-        AddColumn(Clamp(x + half_, width_), 1.f);
-        AddColumn(Clamp(x - half_ - 1, width_), -1.f);
-      }
-      const float mean = left_mean[x];
-      const float inverse_sigma = left_sigma[x] > kFlatSigma ? 1.f / left_sigma[x] : 0.f;
-      const float* __restrict right_mean = right_mean_row_.data() + (width_ - 1 - x);
-      const float* __restrict right_inverse = right_inverse_sigma_row_.data() + (width_ - 1 - x);
-      const float* __restrict sums = window_sum_.data();
-      float* __restrict out = costs + static_cast<size_t>(x) * depth_;
-      for (int d = 0; d < depth_; ++d) {
-        const float covariance = sums[d] * inverse_count_ - mean * right_mean[d];
-        out[d] = std::clamp(covariance * inverse_sigma * right_inverse[d], -1.f, 1.f);
-      }
-      for (int d = x + 1; d < depth_; ++d) out[d] = -1.f;
-    }
-  }
-
-  void AddColumn(int x, float sign) {
-    const float* __restrict column = column_sums_.data() + static_cast<size_t>(x) * depth_;
-    float* __restrict sums = window_sum_.data();
-    for (int d = 0; d < depth_; ++d) sums[d] += sign * column[d];
+  // Adds row `in` to the column sums and, when `out` >= 0, removes row `out`.
+  void SlideDown(int in, int out) {
+    SlideColumnSums(left_.ptr<float>(in), ReversedRight(in),
+                    out >= 0 ? left_.ptr<float>(out) : nullptr,
+                    out >= 0 ? ReversedRight(out) : nullptr, width_, depth_, column_sums_.data());
   }
 
   int width_, height_, depth_, half_;
@@ -286,26 +345,8 @@ void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right
     }
     float* previous = b.previous.data() + 1;  // previous[-1] and previous[depth] stay -inf
     float* current = b.current.data() + 1;
-    std::copy(c, c + depth, previous);
-    uint8_t* codes = b.codes.data();
-    for (int x = 1; x < width; ++x) {
-      const float* __restrict cx = c + static_cast<size_t>(x) * depth;
-      const float* __restrict p = previous;
-      float* __restrict out = current;
-      for (int d = 0; d < depth; ++d) {
-        // Ties keep the disparity, then take the smaller one.
-        const float same = p[d], below = p[d - 1], above = p[d + 1];
-        const float best = std::max(same, std::max(below, above));
-        codes[d] = same == best ? kFromSame : (below == best ? kFromBelow : kFromAbove);
-        out[d] = cx[d] + best;
-      }
-      uint8_t* back = b.back.data() + (static_cast<size_t>(y) * width + x) * packed;
-      for (int k = 0; k < packed; ++k) {
-        const uint8_t* q = codes + 4 * k;
-        back[k] = static_cast<uint8_t>(q[0] | (q[1] << 2) | (q[2] << 4) | (q[3] << 6));
-      }
-      std::swap(previous, current);
-    }
+    MaximumSurfaceRow(c, width, depth, packed, previous, current, b.codes.data(),
+                      b.back.data() + static_cast<size_t>(y) * width * packed);
     std::copy(previous, previous + depth, b.row_ends.data() + static_cast<size_t>(y) * depth);
   });
 
