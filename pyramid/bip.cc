@@ -26,15 +26,17 @@ inline uint64_t EdgeKey(int a, int b) {
   return (lo << 32) | hi;
 }
 
-// Keeps the most similar candidate seen so far.
+constexpr float kFar = std::numeric_limits<float>::infinity();
+
+// Keeps the most similar candidate seen so far (the first of equals). Written without a
+// branch: which neighbour is closest is unpredictable in textured areas.
 struct Best {
   int id = -1;
-  float distance2 = std::numeric_limits<float>::infinity();
+  float distance2 = kFar;
   void Offer(int candidate, float d2) {
-    if (d2 < distance2) {
-      distance2 = d2;
-      id = candidate;
-    }
+    const bool closer = d2 < distance2;
+    distance2 = closer ? d2 : distance2;
+    id = closer ? candidate : id;
   }
 };
 
@@ -133,7 +135,6 @@ void BipBuilder::NeighbourDistances(int l) {
   const BipLevel& cur = levels_[l];
   const int cols = cur.cols, rows = cur.rows;
   const size_t cells = static_cast<size_t>(cols) * rows;
-  constexpr float kFar = std::numeric_limits<float>::infinity();
   // Grow only: resizing back up after a smaller level would zero-fill every frame.
   for (auto& plane : distance_) {
     if (plane.size() < cells) plane.resize(cells);
@@ -296,13 +297,12 @@ void BipBuilder::RegularOrphans(int l, float t2) {
       const int id = first + col;
       if (cur.parent[id] >= 0) continue;  // twinned earlier in this row
       Best parented, orphan;
+      // A neighbour that is not a vertex is offered as infinitely far, which never wins.
       auto offer = [&](int n, float d2) {
-        if (cur.hom[n] == 0) return;
-        if (cur.parent[n] >= 0) {
-          parented.Offer(n, d2);
-        } else {
-          orphan.Offer(n, d2);
-        }
+        const bool has_parent = cur.parent[n] >= 0;
+        const float d = cur.hom[n] != 0 ? d2 : kFar;
+        parented.Offer(n, has_parent ? d : kFar);
+        orphan.Offer(n, has_parent ? kFar : d);
       };
       const int cols = cur.cols;
       const bool inside = row > 0 && col > 0 && row + 1 < cur.rows && col + 1 < cols;
@@ -511,7 +511,7 @@ int Bip::LabelRoots(cv::Mat* labels, std::vector<VertexRef>* root_refs) const {
   std::vector<VertexRef>& found = root_scratch_;
   found.clear();
   int roots = 0;
-  for (int l = num_levels_ - 1; l >= 0; --l) {
+  for (int l = num_levels_ - 1; l >= 1; --l) {
     const BipLevel& level = (*levels_)[l];
     current.assign(level.num_ids(), -1);
     for (int id = 0; id < level.num_ids(); ++id) {
@@ -526,19 +526,28 @@ int Bip::LabelRoots(cv::Mat* labels, std::vector<VertexRef>* root_refs) const {
     }
     std::swap(above, current);
   }
-  // Number roots by first appearance in raster order, so labels do not depend on the order in
-  // which levels were visited.
+  // Level 0, whose ids are the pixels in raster order, in the same pass as numbering the roots
+  // by first appearance, so that labels do not depend on the order in which levels were
+  // visited.
+  const BipLevel& base = (*levels_)[0];
   labels->create(height_, width_, CV_32SC1);
   std::vector<int32_t>& renumber = label_scratch_[1];
-  renumber.assign(roots, -1);
+  renumber.assign(roots + base.num_regular, -1);  // level 0 adds at most num_regular roots
   int next = 0;
   for (int row = 0; row < height_; ++row) {
     int32_t* out = labels->ptr<int32_t>(row);
-    for (int col = 0; col < width_; ++col) {
-      const int root = above[static_cast<size_t>(row) * width_ + col];
-      if (root < 0) {
+    for (int col = 0, id = row * width_; col < width_; ++col, ++id) {
+      if (base.hom[id] == 0) {
         out[col] = -1;
         continue;
+      }
+      const int p = base.parent[id];
+      int root;
+      if (p >= 0) {
+        root = above[p];
+      } else {
+        root = roots++;
+        if (root_refs != nullptr) found.push_back({0, id});
       }
       if (renumber[root] < 0) renumber[root] = next++;
       out[col] = renumber[root];
