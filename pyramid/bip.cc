@@ -1,6 +1,7 @@
 #include "pyramid/bip.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -39,6 +40,15 @@ struct Best {
     id = closer ? candidate : id;
   }
 };
+
+// A neighbour of the 8-neighbourhood as one integer: its squared distance above its position
+// (0..7, raster order). The bits of non-negative floats order like their values, so the
+// smallest key is the most similar neighbour and, among equals, the first in raster order;
+// comparing integers lets the choice run without branches and with short dependency chains.
+constexpr uint64_t kNoNeighbour = ~uint64_t{0};
+inline uint64_t NeighbourKey(float d2, int position) {
+  return (uint64_t{std::bit_cast<uint32_t>(d2)} << 3) | static_cast<uint64_t>(position);
+}
 
 }  // namespace
 
@@ -282,13 +292,24 @@ void BipBuilder::RegularOrphans(int l, float t2) {
   const float* south = distance_[kSouth].data();
   const float* south_east = distance_[kSouthEast].data();
   const float* south_west = distance_[kSouthWest].data();
-  row_orphans_.resize(cur.cols);
+  const int cols = cur.cols;
+  const int grid[8] = {-cols - 1, -cols, -cols + 1, -1, 1, cols - 1, cols, cols + 1};
+  // The most similar neighbour among those of one kind, from its key.
+  auto best_of = [&](int id, uint64_t key) {
+    Best best;
+    if (key != kNoNeighbour) {
+      best.id = id + grid[key & 7];
+      best.distance2 = std::bit_cast<float>(static_cast<uint32_t>(key >> 3));
+    }
+    return best;
+  };
+  row_orphans_.resize(cols);
   for (int row = 0; row < cur.rows; ++row) {
     // The row's orphans, gathered without a branch per cell: whether a cell is an orphan
     // alternates unpredictably in textured areas.
-    const int first = row * cur.cols;
+    const int first = row * cols;
     int count = 0;
-    for (int col = 0; col < cur.cols; ++col) {
+    for (int col = 0; col < cols; ++col) {
       row_orphans_[count] = col;
       count += (cur.hom[first + col] != 0) & (cur.parent[first + col] < 0);
     }
@@ -297,24 +318,38 @@ void BipBuilder::RegularOrphans(int l, float t2) {
       const int id = first + col;
       if (cur.parent[id] >= 0) continue;  // twinned earlier in this row
       Best parented, orphan;
-      // A neighbour that is not a vertex is offered as infinitely far, which never wins.
-      auto offer = [&](int n, float d2) {
-        const bool has_parent = cur.parent[n] >= 0;
-        const float d = cur.hom[n] != 0 ? d2 : kFar;
-        parented.Offer(n, has_parent ? d : kFar);
-        orphan.Offer(n, has_parent ? kFar : d);
-      };
-      const int cols = cur.cols;
-      const bool inside = row > 0 && col > 0 && row + 1 < cur.rows && col + 1 < cols;
-      // In raster order of the neighbours, so that ties go to the first.
-      if (inside || (row > 0 && col > 0)) offer(id - cols - 1, south_east[id - cols - 1]);
-      if (inside || row > 0) offer(id - cols, south[id - cols]);
-      if (inside || (row > 0 && col + 1 < cols)) offer(id - cols + 1, south_west[id - cols + 1]);
-      if (inside || col > 0) offer(id - 1, east[id - 1]);
-      if (inside || col + 1 < cols) offer(id + 1, east[id]);
-      if (inside || (row + 1 < cur.rows && col > 0)) offer(id + cols - 1, south_west[id]);
-      if (inside || row + 1 < cur.rows) offer(id + cols, south[id]);
-      if (inside || (row + 1 < cur.rows && col + 1 < cols)) offer(id + cols + 1, south_east[id]);
+      if (row > 0 && col > 0 && row + 1 < cur.rows && col + 1 < cols) {
+        const float d2[8] = {south_east[id - cols - 1], south[id - cols], south_west[id - cols + 1],
+                             east[id - 1],  east[id],  south_west[id],  south[id],  south_east[id]};
+        uint64_t parented_key = kNoNeighbour, orphan_key = kNoNeighbour;
+        for (int k = 0; k < 8; ++k) {
+          const int n = id + grid[k];
+          const uint64_t key = cur.hom[n] != 0 ? NeighbourKey(d2[k], k) : kNoNeighbour;
+          const bool has_parent = cur.parent[n] >= 0;
+          parented_key = std::min(parented_key, has_parent ? key : kNoNeighbour);
+          orphan_key = std::min(orphan_key, has_parent ? kNoNeighbour : key);
+        }
+        parented = best_of(id, parented_key);
+        orphan = best_of(id, orphan_key);
+      } else {
+        // On the border, in raster order of the neighbours so that ties go to the first.
+        auto offer = [&](int n, float d2) {
+          if (cur.hom[n] == 0) return;
+          if (cur.parent[n] >= 0) {
+            parented.Offer(n, d2);
+          } else {
+            orphan.Offer(n, d2);
+          }
+        };
+        if (row > 0 && col > 0) offer(id - cols - 1, south_east[id - cols - 1]);
+        if (row > 0) offer(id - cols, south[id - cols]);
+        if (row > 0 && col + 1 < cols) offer(id - cols + 1, south_west[id - cols + 1]);
+        if (col > 0) offer(id - 1, east[id - 1]);
+        if (col + 1 < cols) offer(id + 1, east[id]);
+        if (row + 1 < cur.rows && col > 0) offer(id + cols - 1, south_west[id]);
+        if (row + 1 < cur.rows) offer(id + cols, south[id]);
+        if (row + 1 < cur.rows && col + 1 < cols) offer(id + cols + 1, south_east[id]);
+      }
       if (across) {
         const float* colour = cur.Feature(id);
         for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) {
@@ -469,26 +504,34 @@ void BipBuilder::IntraLevelEdges(int l) {
     const int p = cur.parent[id];
     if (p >= first_virtual) sons_[stamp_[p - first_virtual]++] = id;
   }
-  stamp_.assign(parents, -1);
-  for (int p = up.num_cells(); p < parents; ++p) {
+  // stamp_[q + 1] == p once p has seen parent q; slot 0 stands for "no parent" (q = -1).
+  stamp_.assign(parents + 1, -1);
+  const int cols = cur.cols, rows = cur.rows;
+  const int grid[8] = {-cols - 1, -cols, -cols + 1, -1, 1, cols - 1, cols, cols + 1};
+  for (int p = first_virtual; p < parents; ++p) {
+    // Marking "no parent" and p itself as seen leaves one test per neighbour.
+    stamp_[0] = p;
+    stamp_[p + 1] = p;
     auto visit = [&](int neighbour) {
       const int q = cur.parent[neighbour];
-      if (q < 0 || q == p || stamp_[q] == p) return;
-      stamp_[q] = p;
-      if (!up.IsVirtual(q) || q > p) up.edges.push_back(EdgeKey(p, q));
+      const bool seen = stamp_[q + 1] == p;
+      stamp_[q + 1] = p;
+      if (!seen && (q < first_virtual || q > p)) up.edges.push_back(EdgeKey(p, q));
     };
     for (int k = son_offsets_[p - first_virtual]; k < son_offsets_[p - first_virtual + 1]; ++k) {
       const int son = sons_[k];
       if (!cur.IsVirtual(son)) {
-        const int row = son / cur.cols, col = son - row * cur.cols;
-        for (int d = 0; d < 8; ++d) {
-          const int x = col + kDx[d], y = row + kDy[d];
-          if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) visit(y * cur.cols + x);
+        const int row = son / cols, col = son - row * cols;
+        if (row > 0 && col > 0 && row + 1 < rows && col + 1 < cols) {
+          for (int d = 0; d < 8; ++d) visit(son + grid[d]);
+        } else {
+          for (int d = 0; d < 8; ++d) {
+            const int x = col + kDx[d], y = row + kDy[d];
+            if (x >= 0 && y >= 0 && x < cols && y < rows) visit(y * cols + x);
+          }
         }
       }
-      for (int e = AdjacencyBegin(son); e < AdjacencyEnd(son); ++e) {
-        visit(adjacency_[e]);
-      }
+      for (int e = AdjacencyBegin(son); e < AdjacencyEnd(son); ++e) visit(adjacency_[e]);
     }
   }
 }
