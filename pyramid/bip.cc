@@ -453,20 +453,32 @@ void BipBuilder::DistantRegularEdges(int l) {
     if (cur.parent[id] < first_virtual) sons_[stamp_[cur.parent[id]]++] = id;
   }
   stamp_.assign(first_virtual, -1);
+  const int cols = cur.cols, rows = cur.rows;
+  const int grid[8] = {-cols - 1, -cols, -cols + 1, -1, 1, cols - 1, cols, cols + 1};
   for (int p = 0; p < first_virtual; ++p) {
+    if (son_offsets_[p] == son_offsets_[p + 1]) continue;
+    const int p_row = cell_row_[p], p_col = cell_col_[p];
+    // Cheapest and most selective tests first: most neighbours have no parent, a virtual one,
+    // p or an array neighbour of p, none of which makes an edge here.
     auto visit = [&](int neighbour) {
       const int q = cur.parent[neighbour];
-      if (q < 0 || q == p || q >= first_virtual || stamp_[q] == p) return;
+      if (static_cast<unsigned>(q) >= static_cast<unsigned>(first_virtual)) return;
+      if (std::abs(cell_row_[q] - p_row) <= 1 && std::abs(cell_col_[q] - p_col) <= 1) return;
+      if (stamp_[q] == p) return;
       stamp_[q] = p;
-      add(p, q);
+      up.edges.push_back(EdgeKey(p, q));
     };
     for (int k = son_offsets_[p]; k < son_offsets_[p + 1]; ++k) {
       const int id = sons_[k];
       if (!cur.IsVirtual(id)) {
-        const int row = id / cur.cols, col = id - row * cur.cols;
-        for (int d = 0; d < 8; ++d) {
-          const int x = col + kDx[d], y = row + kDy[d];
-          if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) visit(y * cur.cols + x);
+        const int row = id / cols, col = id - row * cols;
+        if (row > 0 && col > 0 && row + 1 < rows && col + 1 < cols) {
+          for (int d = 0; d < 8; ++d) visit(id + grid[d]);
+        } else {
+          for (int d = 0; d < 8; ++d) {
+            const int x = col + kDx[d], y = row + kDy[d];
+            if (x >= 0 && y >= 0 && x < cols && y < rows) visit(y * cols + x);
+          }
         }
       }
       for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) visit(adjacency_[e]);

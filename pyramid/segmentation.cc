@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <limits>
-#include <queue>
 
 #include "util/error.h"
 #include "util/timer.h"
