@@ -319,8 +319,16 @@ void BipBuilder::RegularOrphans(int l, float t2) {
       if (cur.parent[id] >= 0) continue;  // twinned earlier in this row
       Best parented, orphan;
       if (row > 0 && col > 0 && row + 1 < cur.rows && col + 1 < cols) {
-        const float d2[8] = {south_east[id - cols - 1], south[id - cols], south_west[id - cols + 1],
-                             east[id - 1],  east[id],  south_west[id],  south[id],  south_east[id]};
+        // The squared distances to the neighbours, in the order of `grid`.
+        float d2[8];
+        d2[0] = south_east[id - cols - 1];
+        d2[1] = south[id - cols];
+        d2[2] = south_west[id - cols + 1];
+        d2[3] = east[id - 1];
+        d2[4] = east[id];
+        d2[5] = south_west[id];
+        d2[6] = south[id];
+        d2[7] = south_east[id];
         uint64_t parented_key = kNoNeighbour, orphan_key = kNoNeighbour;
         for (int k = 0; k < 8; ++k) {
           const int n = id + grid[k];
