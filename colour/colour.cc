@@ -127,21 +127,6 @@ void CylinderRow(const uchar* bgr, int n, float* out) {
   }
 }
 
-template <void (*Convert)(float, float, float, float*)>
-void ConvertImage(const cv::Mat& bgr, cv::Mat* out) {
-  ATTEND_CHECK(bgr.type() == CV_8UC3) << "expected an 8-bit BGR image, got type " << bgr.type();
-  out->create(bgr.size(), CV_32FC3);
-  for (int row = 0; row < bgr.rows; ++row) {
-    const uchar* in = bgr.ptr<uchar>(row);
-    float* result = out->ptr<float>(row);
-    for (int col = 0; col < bgr.cols; ++col) {
-      Convert(in[2], in[1], in[0], result);
-      in += 3;
-      result += 3;
-    }
-  }
-}
-
 }  // namespace
 
 CylinderColour CylinderFromRgb(float r, float g, float b) {
