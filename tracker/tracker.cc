@@ -1,1 +1,585 @@
+#include "tracker/tracker.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <opencv2/imgproc.hpp>
+
+#include "colour/colour.h"
+#include "pyramid/bip.h"
+#include "pyramid/similarity.h"
+#include "util/error.h"
+#include "util/timer.h"
+
+namespace attend {
+
+namespace {
+
+// Pyramids are built over a crop of the frame whose origin is a multiple of this, so that a
+// cell of level l <= kMaxTemplateLevel has the same absolute position in every frame.
+constexpr int kMaxTemplateLevel = 6;
+constexpr int kAlignment = 1 << kMaxTemplateLevel;
+
+float SquaredDistance(const float* a, const float* b) {
+  const float d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
+  return d0 * d0 + d1 * d1 + d2 * d2;
+}
+
+// The cells of level l whose pixels lie inside `box` (level-0 pixels), in absolute cells.
+cv::Rect CellsInside(const cv::Rect& box, int l) {
+  const int size = 1 << l;
+  const int x0 = (box.x + size - 1) >> l, y0 = (box.y + size - 1) >> l;
+  const int x1 = (box.x + box.width) >> l, y1 = (box.y + box.height) >> l;
+  return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
+}
+
+// One level of a template: a window of absolute cells with each vertex's colour, area and
+// weight (weight 0: no vertex).
+struct TemplateLevel {
+  cv::Rect cells;  // absolute cell coordinates of the window
+  std::vector<float> colour;
+  std::vector<int> area;
+  std::vector<float> weight;
+
+  size_t Index(int x, int y) const {
+    return static_cast<size_t>(y - cells.y) * cells.width + (x - cells.x);
+  }
+  double TotalArea() const {
+    double total = 0.0;
+    for (size_t i = 0; i < weight.size(); ++i) total += weight[i] > 0.f ? area[i] : 0;
+    return total;
+  }
+  bool Empty() const {
+    return std::none_of(weight.begin(), weight.end(), [](float w) { return w > 0.f; });
+  }
+};
+
+// A pyramid built over a crop of the frame, with the region (root) of every vertex.
+struct Hierarchy {
+  cv::Point origin;  // the crop's top-left pixel in the frame, a multiple of kAlignment
+  cv::Size size;
+  BipBuilder builder;
+  const Bip* bip = nullptr;
+  std::vector<std::vector<int32_t>> region;  // per level, per vertex id: root index, -1 none
+  int regions = 0;
+
+  // Region of every vertex, from the top level down.
+  void LabelRegions() {
+    const int levels = bip->num_levels();
+    region.resize(levels);
+    regions = 0;
+    for (int l = levels - 1; l >= 0; --l) {
+      const BipLevel& level = bip->level(l);
+      std::vector<int32_t>& labels = region[l];
+      labels.assign(level.num_ids(), -1);
+      for (int id = 0; id < level.num_ids(); ++id) {
+        if (!level.Exists(id)) continue;
+        const int parent = level.parent[id];
+        labels[id] = parent < 0 ? regions++ : region[l + 1][parent];
+      }
+    }
+  }
+  // The cell of level l at absolute cell (x, y), or -1 outside the crop.
+  int Cell(int l, int x, int y) const {
+    const BipLevel& level = bip->level(l);
+    const int cx = x - (origin.x >> l), cy = y - (origin.y >> l);
+    if (cx < 0 || cy < 0 || cx >= level.cols || cy >= level.rows) return -1;
+    return cy * level.cols + cx;
+  }
+};
+
+// Builds `hierarchy` over the pixels of `mask` (frame size) with the similarity's features.
+void BuildHierarchy(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity similarity,
+                    const cv::Mat& mask, float t_max, Hierarchy* hierarchy) {
+  cv::Rect bounds = cv::boundingRect(mask);
+  // Align the origin so that cells keep their absolute positions from frame to frame.
+  const int x0 = bounds.x / kAlignment * kAlignment, y0 = bounds.y / kAlignment * kAlignment;
+  bounds = cv::Rect(x0, y0, bounds.x + bounds.width - x0, bounds.y + bounds.height - y0);
+  hierarchy->origin = bounds.tl();
+  hierarchy->size = bounds.size();
+  cv::Mat features;
+  if (similarity == TrackSimilarity::kSkin) {
+    ClassSimilarity::Features(skin(bounds), &features);
+    hierarchy->bip = &hierarchy->builder.Build(features, ClassSimilarity(), mask(bounds));
+  } else {
+    HsvSimilarity::Features(frame(bounds), &features);
+    hierarchy->bip = &hierarchy->builder.Build(features, HsvSimilarity(t_max), mask(bounds));
+  }
+  hierarchy->LabelRegions();
+}
+
+}  // namespace
+
+int TrackerOptions::EpsilonPixels(int width) const {
+  return std::max(1, static_cast<int>(std::lround(epsilon * width / 128.0)));
+}
+
+int TrackerOptions::EpsilonMaxPixels(int width) const {
+  return std::max(EpsilonPixels(width), static_cast<int>(std::lround(epsilon_max * width / 128.0)));
+}
+
+std::string TrackerOptions::Check() const {
+  if (!(t_colour > 0.f)) return "t_colour must be > 0";
+  if (!(t_oversegment > 0.f)) return "t_oversegment must be > 0";
+  if (!(t_refine >= 0.f)) return "t_refine must be >= 0";
+  if (!(alpha > 0.f && alpha <= 1.f)) return "alpha must be in (0, 1]";
+  if (!(epsilon >= 0.f)) return "epsilon must be >= 0";
+  if (!(epsilon_max >= epsilon)) return "epsilon_max must be >= epsilon";
+  if (!(working_area > 0.f && working_area <= 1.f)) return "working_area must be in (0, 1]";
+  if (!(min_overlap > 0.f && min_overlap <= 1.f)) return "min_overlap must be in (0, 1]";
+  return "";
+}
+
+const char* TrackStateName(TrackState state) {
+  switch (state) {
+    case TrackState::kFound:
+      return "found";
+    case TrackState::kOccluded:
+      return "occluded";
+    case TrackState::kLost:
+      return "lost";
+  }
+  return "lost";
+}
+
+struct MultiTracker::Impl {
+  struct Target {
+    int id = 0;
+    TrackSimilarity similarity = TrackSimilarity::kColour;
+    std::vector<TemplateLevel> levels;
+    cv::Rect box;
+    cv::Point2f centroid;
+    int border = 0;    // the ROI's border around `box` for the next frame
+    cv::Point motion;  // the last displacement found, pixels (d_f of 4.2.3)
+    cv::Rect roi;      // the ROI of the current frame
+    cv::Mat mask;      // pixels of the last frame; empty when not found
+  };
+
+  TrackerOptions options;
+  std::vector<Target> targets;
+  int next_id = 1;
+  Hierarchy hierarchies[2];  // colour and skin
+  cv::Mat union_mask;
+
+  explicit Impl(const TrackerOptions& o) : options(o) {}
+
+  // The template of a target from the regular cells of `hierarchy` in the target's regions.
+  // `in_target` says whether a region is the target's; `keep` limits it to a box (absolute
+  // pixels). Cells of the old template that the new target does not cover stay with their
+  // weight reduced by alpha, shifted by `shift` pixels.
+  std::vector<TemplateLevel> MakeTemplate(const Hierarchy& h, const std::vector<uint8_t>& in_target,
+                                          const cv::Rect& keep,
+                                          const std::vector<TemplateLevel>* old,
+                                          cv::Point shift) const {
+    const int levels = std::min(h.bip->num_levels(), kMaxTemplateLevel + 1);
+    std::vector<TemplateLevel> result(levels);
+    for (int l = 0; l < levels; ++l) {
+      const BipLevel& level = h.bip->level(l);
+      // Window: the crop's cells, joined with the shifted old window.
+      cv::Rect window((h.origin.x >> l), (h.origin.y >> l), level.cols, level.rows);
+      if (old != nullptr && l < static_cast<int>(old->size()) && !(*old)[l].cells.empty()) {
+        cv::Rect moved = (*old)[l].cells;
+        moved.x += static_cast<int>(std::lround(shift.x / static_cast<double>(1 << l)));
+        moved.y += static_cast<int>(std::lround(shift.y / static_cast<double>(1 << l)));
+        window |= moved;
+      }
+      const cv::Rect kept = CellsInside(keep, l) & window;
+      TemplateLevel& t = result[l];
+      t.cells = kept;
+      t.colour.assign(3 * static_cast<size_t>(kept.area()), 0.f);
+      t.area.assign(kept.area(), 0);
+      t.weight.assign(kept.area(), 0.f);
+      if (kept.empty()) continue;
+      // Decayed old vertices first, then the new target's vertices over them.
+      if (old != nullptr && l < static_cast<int>(old->size())) {
+        const TemplateLevel& o = (*old)[l];
+        const int dx = static_cast<int>(std::lround(shift.x / static_cast<double>(1 << l)));
+        const int dy = static_cast<int>(std::lround(shift.y / static_cast<double>(1 << l)));
+        for (int y = o.cells.y; y < o.cells.y + o.cells.height; ++y) {
+          for (int x = o.cells.x; x < o.cells.x + o.cells.width; ++x) {
+            const size_t i = o.Index(x, y);
+            const float w = o.weight[i] - options.alpha;
+            if (o.weight[i] <= 0.f || w <= 1e-6f || !kept.contains({x + dx, y + dy})) continue;
+            const size_t j = t.Index(x + dx, y + dy);
+            t.weight[j] = w;
+            t.area[j] = o.area[i];
+            std::copy(&o.colour[3 * i], &o.colour[3 * i] + 3, &t.colour[3 * j]);
+          }
+        }
+      }
+      for (int y = kept.y; y < kept.y + kept.height; ++y) {
+        for (int x = kept.x; x < kept.x + kept.width; ++x) {
+          const int cell = h.Cell(l, x, y);
+          if (cell < 0 || !level.hom[cell]) continue;
+          const int r = h.region[l][cell];
+          if (r < 0 || !in_target[r]) continue;
+          const size_t j = t.Index(x, y);
+          t.weight[j] = 1.f;
+          t.area[j] = level.area[cell];
+          std::copy(level.Feature(cell), level.Feature(cell) + 3, &t.colour[3 * j]);
+        }
+      }
+    }
+    while (!result.empty() && result.back().Empty()) result.pop_back();
+    return result;
+  }
+
+  // The working level (eq. 4.4): the highest level whose template area exceeds T_A of level 0's.
+  int WorkingLevel(const Target& target) const {
+    if (target.levels.empty()) return -1;
+    const double base = target.levels[0].TotalArea();
+    int working = 0;
+    for (int l = 1; l < static_cast<int>(target.levels.size()); ++l) {
+      if (base > 0 && target.levels[l].TotalArea() > options.working_area * base) working = l;
+    }
+    return working;
+  }
+
+  // Sets the target's pixels in `mask` (frame size) and its box and centroid from the regions.
+  void PaintTarget(const Hierarchy& h, const std::vector<uint8_t>& in_target, const cv::Rect& roi,
+                   cv::Size frame_size, cv::Mat* mask) const {
+    mask->create(frame_size, CV_8UC1);
+    mask->setTo(0);
+    const BipLevel& base = h.bip->level(0);
+    const cv::Rect inside = roi & cv::Rect(h.origin, h.size);
+    for (int y = inside.y; y < inside.y + inside.height; ++y) {
+      uchar* out = mask->ptr<uchar>(y);
+      const int row = (y - h.origin.y) * base.cols - h.origin.x;
+      for (int x = inside.x; x < inside.x + inside.width; ++x) {
+        const int cell = row + x;
+        if (!base.hom[cell]) continue;
+        const int r = h.region[0][cell];
+        if (r >= 0 && in_target[r]) out[x] = 255;
+      }
+    }
+  }
+
+  struct Match {
+    bool found = false;
+    int level = -1;
+    cv::Point displacement;  // cells of `level`
+    double overlap = 0.0;
+  };
+
+  // Top-down localisation (4.2.3) of a target in its ROI; fills `matched_regions`.
+  Match Localise(const Target& target, const Hierarchy& h, std::vector<uint8_t>* in_target) const {
+    Match best_match;
+    const float t2 = options.t_colour * options.t_colour;
+    for (int l = std::min(WorkingLevel(target), h.bip->num_levels() - 1); l >= 0; --l) {
+      const TemplateLevel& t = target.levels[l];
+      if (t.Empty()) continue;
+      const BipLevel& level = h.bip->level(l);
+      // The template's occupied cells and their total weight.
+      cv::Rect occupied;
+      double total = 0.0;
+      std::vector<int> vertices;
+      for (int y = t.cells.y; y < t.cells.y + t.cells.height; ++y) {
+        for (int x = t.cells.x; x < t.cells.x + t.cells.width; ++x) {
+          const size_t i = t.Index(x, y);
+          if (t.weight[i] <= 0.f) continue;
+          vertices.push_back(static_cast<int>(i));
+          total += t.weight[i];
+          occupied |= cv::Rect(x, y, 1, 1);
+        }
+      }
+      if (total <= 0.0) continue;
+      const cv::Rect roi = CellsInside(target.roi, l);
+      // Displacements that keep the occupied cells inside the ROI.
+      const int dx0 = roi.x - occupied.x, dx1 = roi.x + roi.width - (occupied.x + occupied.width);
+      const int dy0 = roi.y - occupied.y, dy1 = roi.y + roi.height - (occupied.y + occupied.height);
+      const cv::Point prior(
+          static_cast<int>(std::lround(target.motion.x / static_cast<double>(1 << l))),
+          static_cast<int>(std::lround(target.motion.y / static_cast<double>(1 << l))));
+      double best = -1.0;
+      cv::Point best_d;
+      for (int dy = dy0; dy <= dy1; ++dy) {
+        for (int dx = dx0; dx <= dx1; ++dx) {
+          double overlap = 0.0;
+          for (const int i : vertices) {
+            const int x = t.cells.x + i % t.cells.width + dx;
+            const int y = t.cells.y + i / t.cells.width + dy;
+            const int cell = h.Cell(l, x, y);
+            if (cell < 0 || !level.hom[cell]) continue;
+            if (SquaredDistance(&t.colour[3 * static_cast<size_t>(i)], level.Feature(cell)) < t2) {
+              overlap += t.weight[i];
+            }
+          }
+          overlap /= total;
+          const cv::Point d(dx, dy);
+          const bool better =
+              overlap > best || (overlap == best && cv::norm(d - prior) < cv::norm(best_d - prior));
+          if (better) best = overlap, best_d = d;
+        }
+      }
+      if (best > best_match.overlap) {
+        best_match.overlap = best;
+        best_match.level = l;
+      }
+      if (best > options.min_overlap) {
+        best_match = {true, l, best_d, best};
+        // The matched ROI vertices' regions are the target (first stage of 4.2.4).
+        for (const int i : vertices) {
+          const int x = t.cells.x + i % t.cells.width + best_d.x;
+          const int y = t.cells.y + i / t.cells.width + best_d.y;
+          const int cell = h.Cell(l, x, y);
+          if (cell < 0 || !level.hom[cell]) continue;
+          if (SquaredDistance(&t.colour[3 * static_cast<size_t>(i)], level.Feature(cell)) < t2) {
+            const int r = h.region[l][cell];
+            if (r >= 0) (*in_target)[r] = 1;
+          }
+        }
+        return best_match;
+      }
+    }
+    best_match.found = false;
+    return best_match;
+  }
+
+  // Second stage of 4.2.4: the regions of neighbours (regular and virtual) of the target's
+  // regular vertices that are within T_cr of them join the target. One pass, over the target
+  // as the first stage left it.
+  void Refine(const Hierarchy& h, const cv::Rect& roi, std::vector<uint8_t>* in_target) const {
+    const std::vector<uint8_t> first = *in_target;
+    const float t2 = options.t_refine * options.t_refine;
+    for (int l = 0; l < h.bip->num_levels(); ++l) {
+      const BipLevel& level = h.bip->level(l);
+      const std::vector<int32_t>& region = h.region[l];
+      const cv::Rect cells = CellsInside(roi, l);
+      auto consider = [&](int q, int n) {
+        const int rn = region[n];
+        if (rn < 0 || first[rn] || (*in_target)[rn]) return;
+        if (SquaredDistance(level.Feature(q), level.Feature(n)) < t2) (*in_target)[rn] = 1;
+      };
+      const int ox = h.origin.x >> l, oy = h.origin.y >> l;
+      for (int y = std::max(cells.y - oy, 0); y < std::min(cells.y + cells.height - oy, level.rows);
+           ++y) {
+        for (int x = std::max(cells.x - ox, 0);
+             x < std::min(cells.x + cells.width - ox, level.cols); ++x) {
+          const int q = y * level.cols + x;
+          if (!level.hom[q] || region[q] < 0 || !first[region[q]]) continue;
+          for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+              const int nx = x + dx, ny = y + dy;
+              if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= level.cols ||
+                  ny >= level.rows || !cells.contains({nx + ox, ny + oy})) {
+                continue;
+              }
+              const int n = ny * level.cols + nx;
+              if (level.hom[n]) consider(q, n);
+            }
+          }
+        }
+      }
+      // Virtual neighbours through the explicit edges.
+      for (const uint64_t edge : level.edges) {
+        const int a = static_cast<int>(edge >> 32), b = static_cast<int>(edge & 0xffffffffu);
+        for (const auto& [q, n] : {std::pair<int, int>{a, b}, std::pair<int, int>{b, a}}) {
+          if (level.IsVirtual(q) || region[q] < 0 || !first[region[q]]) continue;
+          const int qx = q % level.cols + ox, qy = q / level.cols + oy;
+          if (cells.contains({qx, qy})) consider(q, n);
+        }
+      }
+    }
+  }
+
+  void Track(const cv::Mat& frame, const cv::Mat& skin, std::vector<TrackResult>* results) {
+    const cv::Rect image(0, 0, frame.cols, frame.rows);
+    const int epsilon_max = options.EpsilonMaxPixels(frame.cols);
+    for (const TrackSimilarity similarity : {TrackSimilarity::kColour, TrackSimilarity::kSkin}) {
+      // One pyramid over the union of this similarity's ROIs (4.3).
+      union_mask.create(frame.size(), CV_8UC1);
+      union_mask.setTo(0);
+      bool any = false;
+      for (Target& target : targets) {
+        if (target.similarity != similarity) continue;
+        target.roi =
+            cv::Rect(target.box.x - target.border, target.box.y - target.border,
+                     target.box.width + 2 * target.border, target.box.height + 2 * target.border) &
+            image;
+        if (target.roi.empty()) continue;
+        union_mask(target.roi).setTo(255);
+        any = true;
+      }
+      if (!any) continue;
+      if (similarity == TrackSimilarity::kSkin) {
+        ATTEND_CHECK(skin.type() == CV_8UC1 && skin.size() == frame.size())
+            << "skin targets need the frame's binary skin map";
+      }
+      Hierarchy& h = hierarchies[similarity == TrackSimilarity::kSkin ? 1 : 0];
+      BuildHierarchy(frame, skin, similarity, union_mask, options.t_oversegment, &h);
+
+      for (Target& target : targets) {
+        if (target.similarity != similarity) continue;
+        TrackResult result;
+        result.id = target.id;
+        result.roi = target.roi;
+        std::vector<uint8_t> in_target(h.regions, 0);
+        const Match match = target.roi.empty() ? Match() : Localise(target, h, &in_target);
+        result.overlap = match.overlap;
+        if (match.found) {
+          Refine(h, target.roi, &in_target);
+          PaintTarget(h, in_target, target.roi, frame.size(), &target.mask);
+          const cv::Point shift(match.displacement.x << match.level,
+                                match.displacement.y << match.level);
+          target.levels = MakeTemplate(h, in_target, target.roi, &target.levels, shift);
+          const cv::Moments moments = cv::moments(target.mask, true);
+          if (moments.m00 > 0) {
+            target.box = cv::boundingRect(target.mask);
+            target.centroid = {static_cast<float>(moments.m10 / moments.m00),
+                               static_cast<float>(moments.m01 / moments.m00)};
+          }
+          target.motion = shift;
+          target.border = options.EpsilonPixels(frame.cols);
+          result.state = TrackState::kFound;
+          result.level = match.level;
+          result.area = static_cast<int>(moments.m00);
+        } else {
+          // Not found (4.2.7): every weight decays, the ROI border grows.
+          target.mask.release();
+          for (TemplateLevel& level : target.levels) {
+            for (float& w : level.weight) w = std::max(0.f, w - options.alpha);
+          }
+          while (!target.levels.empty() && target.levels.back().Empty()) target.levels.pop_back();
+          target.border = std::min(target.border + 1, epsilon_max);
+          target.motion = {0, 0};
+          result.state = target.levels.empty() ? TrackState::kLost : TrackState::kOccluded;
+        }
+        result.box = target.box;
+        result.centroid = target.centroid;
+        results->push_back(result);
+      }
+    }
+    std::sort(results->begin(), results->end(),
+              [](const TrackResult& a, const TrackResult& b) { return a.id < b.id; });
+    targets.erase(std::remove_if(targets.begin(), targets.end(),
+                                 [](const Target& t) { return t.levels.empty(); }),
+                  targets.end());
+  }
+
+  int Start(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity similarity,
+            const cv::Mat& target_mask, const cv::Mat& build_mask) {
+    if (cv::countNonZero(target_mask) == 0) return -1;
+    Hierarchy& h = hierarchies[similarity == TrackSimilarity::kSkin ? 1 : 0];
+    BuildHierarchy(frame, skin, similarity, build_mask, options.t_oversegment, &h);
+    // The target's regions: those with most of their pixels in `target_mask`.
+    std::vector<int> inside(h.regions, 0), all(h.regions, 0);
+    const BipLevel& base = h.bip->level(0);
+    for (int y = 0; y < h.size.height; ++y) {
+      const uchar* m = target_mask.ptr<uchar>(y + h.origin.y) + h.origin.x;
+      for (int x = 0; x < h.size.width; ++x) {
+        const int cell = y * base.cols + x;
+        if (!base.hom[cell] || h.region[0][cell] < 0) continue;
+        ++all[h.region[0][cell]];
+        if (m[x]) ++inside[h.region[0][cell]];
+      }
+    }
+    std::vector<uint8_t> in_target(h.regions, 0);
+    for (int r = 0; r < h.regions; ++r) in_target[r] = 2 * inside[r] > all[r];
+    Target target;
+    target.similarity = similarity;
+    const cv::Rect everything(0, 0, frame.cols, frame.rows);
+    PaintTarget(h, in_target, everything, frame.size(), &target.mask);
+    if (cv::countNonZero(target.mask) == 0) return -1;
+    target.levels = MakeTemplate(h, in_target, everything, nullptr, {});
+    if (target.levels.empty()) return -1;
+    const cv::Moments moments = cv::moments(target.mask, true);
+    target.box = cv::boundingRect(target.mask);
+    target.centroid = {static_cast<float>(moments.m10 / moments.m00),
+                       static_cast<float>(moments.m01 / moments.m00)};
+    target.border = options.EpsilonPixels(frame.cols);
+    target.id = next_id++;
+    targets.push_back(std::move(target));
+    return targets.back().id;
+  }
+};
+
+MultiTracker::MultiTracker(TrackerOptions options)
+    : options_(options), impl_(std::make_unique<Impl>(options)) {
+  const std::string error = options_.Check();
+  if (!error.empty()) throw ConfigError("tracker: " + error);
+}
+
+MultiTracker::~MultiTracker() = default;
+
+namespace {
+
+void CheckFrame(const cv::Mat& frame, TrackSimilarity similarity, const cv::Mat& skin) {
+  ATTEND_CHECK(!frame.empty() && frame.type() == CV_8UC3) << "frames must be 8-bit BGR";
+  if (similarity == TrackSimilarity::kSkin) {
+    ATTEND_CHECK(skin.type() == CV_8UC1 && skin.size() == frame.size())
+        << "skin targets need the frame's binary skin map";
+  }
+}
+
+}  // namespace
+
+int MultiTracker::StartFromMask(const cv::Mat& frame, const cv::Mat& mask,
+                                TrackSimilarity similarity, const cv::Mat& skin) {
+  CheckFrame(frame, similarity, skin);
+  ATTEND_CHECK(mask.type() == CV_8UC1 && mask.size() == frame.size())
+      << "a target mask must be CV_8UC1 of the frame's size";
+  // Over-segment the mask's box plus the ROI border, so that regions can be judged by how much
+  // of them lies in the mask.
+  const int border = options_.EpsilonPixels(frame.cols);
+  const cv::Rect box = cv::boundingRect(mask);
+  if (box.empty()) return -1;
+  cv::Mat build(frame.size(), CV_8UC1, cv::Scalar(0));
+  build(cv::Rect(box.x - border, box.y - border, box.width + 2 * border, box.height + 2 * border) &
+        cv::Rect(0, 0, frame.cols, frame.rows))
+      .setTo(255);
+  return impl_->Start(frame, skin, similarity, mask, build);
+}
+
+int MultiTracker::StartFromBox(const cv::Mat& frame, const cv::Rect& box,
+                               TrackSimilarity similarity, const cv::Mat& skin) {
+  CheckFrame(frame, similarity, skin);
+  const cv::Rect inside = box & cv::Rect(0, 0, frame.cols, frame.rows);
+  if (inside.empty()) return -1;
+  cv::Mat mask(frame.size(), CV_8UC1, cv::Scalar(0));
+  mask(inside).setTo(255);
+  return StartFromMask(frame, mask, similarity, skin);
+}
+
+void MultiTracker::Track(const cv::Mat& frame, std::vector<TrackResult>* results,
+                         const cv::Mat& skin) {
+  const Stopwatch stopwatch;
+  ATTEND_CHECK(!frame.empty() && frame.type() == CV_8UC3) << "frames must be 8-bit BGR";
+  std::vector<TrackResult> found;
+  impl_->Track(frame, skin, &found);
+  results->insert(results->end(), found.begin(), found.end());
+  milliseconds_ = stopwatch.ElapsedMs();
+}
+
+cv::Mat MultiTracker::Mask(int id) const {
+  for (const Impl::Target& target : impl_->targets) {
+    if (target.id == id) return target.mask;
+  }
+  return cv::Mat();
+}
+
+cv::Mat MultiTracker::TemplateWeights(int id, int level) const {
+  for (const Impl::Target& target : impl_->targets) {
+    if (target.id != id) continue;
+    if (level < 0 || level >= static_cast<int>(target.levels.size())) return cv::Mat();
+    const TemplateLevel& t = target.levels[level];
+    return cv::Mat(t.cells.height, t.cells.width, CV_32FC1, const_cast<float*>(t.weight.data()))
+        .clone();
+  }
+  return cv::Mat();
+}
+
+void MultiTracker::Remove(int id) {
+  auto& targets = impl_->targets;
+  targets.erase(std::remove_if(targets.begin(), targets.end(),
+                               [id](const Impl::Target& t) { return t.id == id; }),
+                targets.end());
+}
+
+std::vector<int> MultiTracker::ids() const {
+  std::vector<int> ids;
+  for (const Impl::Target& target : impl_->targets) ids.push_back(target.id);
+  return ids;
+}
+
+}  // namespace attend
