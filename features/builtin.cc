@@ -1,6 +1,7 @@
 #include "features/builtin.h"
 
 #include "features/contrast.h"
+#include "features/disparity_feature.h"
 #include "features/skin.h"
 
 namespace attend {
@@ -14,7 +15,10 @@ FeatureRegistry BuiltinFeatures() {
                &CreateIntensityContrast);
   registry.Add("skin", "TSL skin chrominance within a Mahalanobis threshold (thesis 5.1.1)",
                &CreateSkinFeature);
-  // "disparity" (thesis 5.1.1, SPEC 2.3) joins this list with the stereo estimator.
+  registry.Add("disparity",
+               "stereo disparity, nearer is more salient: box-filtered ZNCC and Sun's two-stage "
+               "dynamic programming (thesis 5.1.1)",
+               &CreateDisparityFeature);
   return registry;
 }
 

@@ -27,6 +27,9 @@ class FeatureMap {
   // a frame, frames in order; other plugins may be computing on the same context at the same
   // time, so a plugin only reads the context. Any scale: saliency normalises every map.
   virtual void Compute(const FrameContext& context, cv::Mat* out) = 0;
+  // True for features that need the right image; enabling one on a monocular source is a
+  // configuration error (SPEC 3.1).
+  virtual bool NeedsStereo() const { return false; }
 };
 
 // What a factory may need to know about the run besides its own parameters.

@@ -17,6 +17,12 @@ FeatureSet::FeatureSet(const std::vector<FeatureSpec>& specs, const FeatureRegis
   for (const FeatureSpec& spec : specs) {
     std::unique_ptr<FeatureMap> feature = registry.Create(spec, setup);
     if (!spec.enabled) continue;
+    if (feature->NeedsStereo() && !setup.stereo) {
+      spec.params.Fail("name", "feature '" + spec.name +
+                                   "' needs a stereo sequence, and this one is monocular (set "
+                                   "features." +
+                                   spec.name + ".enabled=false)");
+    }
     members_.push_back({registry.Find(spec.name), std::move(feature)});
     results_.push_back({spec.name, spec.weight, cv::Mat(), 0.0});
   }

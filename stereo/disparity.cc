@@ -1,1 +1,469 @@
+#include "stereo/disparity.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "util/error.h"
+#include "util/timer.h"
+
+namespace attend {
+
+namespace {
+
+// With `subpixel`, the volume is kept as integers of this scale for the parabola fit.
+constexpr float kCostScale = 32767.f;
+// A window of this standard deviation or less (grey levels) is flat: its ZNCC is 0.
+constexpr float kFlatSigma = 1e-3f;
+
+// Back-pointer codes: the step t in d(x - 1) = d(x) + t is code - 1.
+constexpr uint8_t kFromBelow = 0;  // t = -1
+constexpr uint8_t kFromSame = 1;   // t = 0
+constexpr uint8_t kFromAbove = 2;  // t = +1
+
+// Mean and standard deviation over the window around every pixel (borders replicated).
+void WindowStatistics(const cv::Mat& image, int window, cv::Mat* mean, cv::Mat* sigma,
+                      cv::Mat* scratch) {
+  const cv::Size size(window, window);
+  cv::boxFilter(image, *mean, CV_32F, size, cv::Point(-1, -1), true, cv::BORDER_REPLICATE);
+  cv::multiply(image, image, *scratch);
+  cv::boxFilter(*scratch, *sigma, CV_32F, size, cv::Point(-1, -1), true, cv::BORDER_REPLICATE);
+  for (int y = 0; y < image.rows; ++y) {
+    const float* m = mean->ptr<float>(y);
+    float* s = sigma->ptr<float>(y);
+    for (int x = 0; x < image.cols; ++x) s[x] = std::sqrt(std::max(0.f, s[x] - m[x] * m[x]));
+  }
+}
+
+// `row` of `image` reversed and extended by `depth` replicated pixels, so that the pixel
+// x - d (clamped at 0) is out[width - 1 - x + d]: contiguous in d.
+void ReversedRow(const float* row, int width, int depth, float* out) {
+  for (int m = 0; m < width + depth; ++m) out[m] = row[std::max(0, width - 1 - m)];
+}
+
+// The loops over d below are compiled twice, for AVX2 and for the baseline x86-64 (SSE2), and
+// the processor picks one at run time: the same operations in the same order, so the same
+// results, on every machine.
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ATTEND_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define ATTEND_VECTOR_CLONES
+#endif
+
+// column_sums[x][d] += L_in(x) R_in(x - d) - L_out(x) R_out(x - d): the window slides down by
+// one row. `reversed_*` are right rows laid out by ReversedRow(). Without a leaving row (the
+// first window), `left_out` is null.
+ATTEND_VECTOR_CLONES void SlideColumnSums(const float* left_in, const float* reversed_in,
+                                          const float* left_out, const float* reversed_out,
+                                          int width, int depth, float* column_sums) {
+  for (int x = 0; x < width; ++x) {
+    const float a = left_in[x];
+    const float* __restrict r_in = reversed_in + (width - 1 - x);
+    float* __restrict sums = column_sums + static_cast<size_t>(x) * depth;
+    if (left_out == nullptr) {
+      for (int d = 0; d < depth; ++d) sums[d] += a * r_in[d];
+    } else {
+      const float b = left_out[x];
+      const float* __restrict r_out = reversed_out + (width - 1 - x);
+      for (int d = 0; d < depth; ++d) sums[d] += a * r_in[d] - b * r_out[d];
+    }
+  }
+}
+
+// One row of ZNCC: slides the window along the row over the column sums and normalises.
+// `right_mean` and `right_inverse_sigma` are laid out by ReversedRow(); `window_sum` holds
+// depth floats of scratch.
+ATTEND_VECTOR_CLONES void ZnccRow(const float* column_sums, const float* left_mean,
+                                  const float* left_sigma, const float* right_mean,
+                                  const float* right_inverse_sigma, int width, int depth, int half,
+                                  float inverse_count, float* window_sum, float* costs) {
+  float* __restrict sums = window_sum;
+  std::fill(sums, sums + depth, 0.f);
+  for (int i = -half; i <= half; ++i) {
+    const float* __restrict column =
+        column_sums + static_cast<size_t>(std::clamp(i, 0, width - 1)) * depth;
+    for (int d = 0; d < depth; ++d) sums[d] += column[d];
+  }
+  for (int x = 0; x < width; ++x) {
+    if (x > 0) {
+      const float* __restrict in =
+          column_sums + static_cast<size_t>(std::min(x + half, width - 1)) * depth;
+      const float* __restrict out =
+          column_sums + static_cast<size_t>(std::max(x - half - 1, 0)) * depth;
+      for (int d = 0; d < depth; ++d) sums[d] += in[d] - out[d];
+    }
+    const float mean = left_mean[x];
+    const float inverse_sigma = left_sigma[x] > kFlatSigma ? 1.f / left_sigma[x] : 0.f;
+    const float* __restrict rm = right_mean + (width - 1 - x);
+    const float* __restrict ri = right_inverse_sigma + (width - 1 - x);
+    float* __restrict c = costs + static_cast<size_t>(x) * depth;
+    for (int d = 0; d < depth; ++d) {
+      const float covariance = sums[d] * inverse_count - mean * rm[d];
+      c[d] = std::clamp(covariance * inverse_sigma * ri[d], -1.f, 1.f);
+    }
+    for (int d = x + 1; d < depth; ++d) c[d] = -1.f;
+  }
+}
+
+// Stage 1 over one row of costs ([x][d]): leaves Y(width - 1, d) in `previous` and writes the
+// 2-bit back-pointers, `packed` bytes a column. `previous` and `current` point one past a -inf
+// pad and have one more -inf pad after depth floats; `codes` holds 4 * packed bytes.
+ATTEND_VECTOR_CLONES void MaximumSurfaceRow(const float* costs, int width, int depth, int packed,
+                                            float* previous, float* current, uint8_t* codes,
+                                            uint8_t* back) {
+  std::copy(costs, costs + depth, previous);
+  for (int x = 1; x < width; ++x) {
+    const float* __restrict cx = costs + static_cast<size_t>(x) * depth;
+    const float* __restrict p = previous;
+    float* __restrict out = current;
+    uint8_t* __restrict code = codes;
+    for (int d = 0; d < depth; ++d) {
+      // Ties keep the disparity, then take the smaller one.
+      const float same = p[d], below = p[d - 1], above = p[d + 1];
+      const float best = std::max(same, std::max(below, above));
+      code[d] = same == best ? kFromSame : (below == best ? kFromBelow : kFromAbove);
+      out[d] = cx[d] + best;
+    }
+    uint8_t* __restrict column = back + static_cast<size_t>(x) * packed;
+    for (int k = 0; k < packed; ++k) {
+      const uint8_t* q = codes + 4 * k;
+      column[k] = static_cast<uint8_t>(q[0] | (q[1] << 2) | (q[2] << 4) | (q[3] << 6));
+    }
+    std::swap(previous, current);
+  }
+  // After an odd number of swaps the result is in the caller's `current` array (which
+  // `previous` now points to): copy it to the caller's `previous` array.
+  if ((width - 1) % 2 == 1) std::copy(previous, previous + depth, current);
+}
+
+// The ZNCC volume, one row at a time. Window sums of L(x) R(x - d) are kept per column for
+// all d and slid down the image (add the entering row, subtract the leaving one), then slid
+// along the row; every sum is of integers below 2^24 for windows up to 15, so float holds it
+// exactly and the result equals box filtering the product image. Borders are replicated.
+class CostRows {
+ public:
+  CostRows(const cv::Mat& left, const cv::Mat& right, int depth, int window)
+      : width_(left.cols), height_(left.rows), depth_(depth), half_(window / 2) {
+    left.convertTo(left_, CV_32F);
+    right.convertTo(right_, CV_32F);
+    cv::Mat scratch;
+    WindowStatistics(left_, window, &left_mean_, &left_sigma_, &scratch);
+    WindowStatistics(right_, window, &right_mean_, &right_sigma_, &scratch);
+    inverse_count_ = 1.f / static_cast<float>(window * window);
+    reversed_right_.resize(static_cast<size_t>(height_) * (width_ + depth_));
+    for (int y = 0; y < height_; ++y) {
+      ReversedRow(right_.ptr<float>(y), width_, depth_, ReversedRight(y));
+    }
+    column_sums_.assign(static_cast<size_t>(width_) * depth_, 0.f);
+    window_sum_.resize(depth_);
+    right_mean_row_.resize(width_ + depth_);
+    right_inverse_sigma_row_.resize(width_ + depth_);
+  }
+
+  // Calls `consume(y, costs)` for y = 0, 1, ...; costs[x * depth + d] is the ZNCC of (x, y) at
+  // disparity d, -1 where x - d < 0.
+  template <typename Consumer>
+  void ForEachRow(std::vector<float>* costs, Consumer consume) {
+    costs->resize(static_cast<size_t>(width_) * depth_);
+    std::fill(column_sums_.begin(), column_sums_.end(), 0.f);
+    for (int j = -half_; j <= half_; ++j) SlideDown(Clamp(j, height_), -1);
+    for (int y = 0; y < height_; ++y) {
+      if (y > 0) SlideDown(Clamp(y + half_, height_), Clamp(y - half_ - 1, height_));
+      ReversedRow(right_mean_.ptr<float>(y), width_, depth_, right_mean_row_.data());
+      ReversedRow(right_sigma_.ptr<float>(y), width_, depth_, right_inverse_sigma_row_.data());
+      for (float& sigma : right_inverse_sigma_row_) {
+        sigma = sigma > kFlatSigma ? 1.f / sigma : 0.f;
+      }
+      ZnccRow(column_sums_.data(), left_mean_.ptr<float>(y), left_sigma_.ptr<float>(y),
+              right_mean_row_.data(), right_inverse_sigma_row_.data(), width_, depth_, half_,
+              inverse_count_, window_sum_.data(), costs->data());
+      consume(y, static_cast<const float*>(costs->data()));
+    }
+  }
+
+ private:
+  static int Clamp(int i, int n) { return std::clamp(i, 0, n - 1); }
+  float* ReversedRight(int y) {
+    return reversed_right_.data() + static_cast<size_t>(y) * (width_ + depth_);
+  }
+  // Adds row `in` to the column sums and, when `out` >= 0, removes row `out`.
+  void SlideDown(int in, int out) {
+    SlideColumnSums(left_.ptr<float>(in), ReversedRight(in),
+                    out >= 0 ? left_.ptr<float>(out) : nullptr,
+                    out >= 0 ? ReversedRight(out) : nullptr, width_, depth_, column_sums_.data());
+  }
+
+  int width_, height_, depth_, half_;
+  float inverse_count_ = 1.f;
+  cv::Mat left_, right_, left_mean_, left_sigma_, right_mean_, right_sigma_;
+  std::vector<float> reversed_right_;
+  std::vector<float> column_sums_;
+  std::vector<float> window_sum_;
+  std::vector<float> right_mean_row_, right_inverse_sigma_row_;
+};
+
+}  // namespace
+
+std::string DisparityOptions::Check() const {
+  if (max_disparity < 1) return "max_disparity must be at least 1";
+  if (window < 1 || window > 31 || window % 2 == 0) return "window must be odd, 1..31";
+  if (lr_tolerance < 0) return "lr_tolerance must be >= 0";
+  return "";
+}
+
+struct DisparityEstimator::Buffers {
+  cv::Mat left_grey, right_grey;         // CV_8UC1
+  std::vector<float> costs;              // one row of the volume: [x][d]
+  std::vector<int16_t> volume;           // [y][x][d], ZNCC * kCostScale; only for `subpixel`
+  std::vector<uint8_t> back;             // [y][x][d / 4], 2 bits a voxel
+  std::vector<uint8_t> codes;            // one column's codes before packing
+  std::vector<float> row_ends;           // [y][d]: Y(width - 1, y, d)
+  std::vector<uint8_t> column_back;      // [y][d]: stage 2's codes
+  std::vector<float> previous, current;  // D + 2 floats, padded with -inf at both ends
+  std::vector<int> ends;                 // per row: the end disparity chosen by stage 2
+  cv::Mat right_view;                    // the right image's disparity, for the left-right check
+  cv::Mat flipped_left, flipped_right;
+};
+
+DisparityEstimator::DisparityEstimator(DisparityOptions options)
+    : options_(options), buffers_(new Buffers) {
+  const std::string error = options_.Check();
+  if (!error.empty()) throw ConfigError("disparity: " + error);
+}
+
+DisparityEstimator::~DisparityEstimator() { delete buffers_; }
+
+size_t DisparityEstimator::buffer_bytes() const {
+  const Buffers& b = *buffers_;
+  size_t bytes = b.costs.capacity() * sizeof(float) + b.volume.capacity() * sizeof(int16_t) +
+                 b.back.capacity() + b.codes.capacity() + b.row_ends.capacity() * sizeof(float) +
+                 b.column_back.capacity() +
+                 (b.previous.capacity() + b.current.capacity()) * sizeof(float) +
+                 b.ends.capacity() * sizeof(int);
+  for (const cv::Mat* m :
+       {&b.left_grey, &b.right_grey, &b.right_view, &b.flipped_left, &b.flipped_right}) {
+    bytes += m->total() * m->elemSize();
+  }
+  return bytes;
+}
+
+void ZnccSlice(const cv::Mat& left, const cv::Mat& right, int d, int window, cv::Mat* out) {
+  CV_Assert(left.type() == CV_8UC1 && right.type() == CV_8UC1 && left.size() == right.size());
+  CV_Assert(d >= 0 && d < left.cols);
+  out->create(left.size(), CV_32FC1);
+  CostRows rows(left, right, d + 1, window);
+  std::vector<float> costs;
+  rows.ForEachRow(&costs, [&](int y, const float* row) {
+    float* z = out->ptr<float>(y);
+    for (int x = 0; x < left.cols; ++x) z[x] = row[static_cast<size_t>(x) * (d + 1) + d];
+  });
+}
+
+double DirectZncc(const cv::Mat& left, const cv::Mat& right, int x, int y, int d, int window) {
+  const int half = window / 2;
+  auto at = [](const cv::Mat& image, int row, int col) {
+    return static_cast<double>(
+        image.at<uchar>(std::clamp(row, 0, image.rows - 1), std::clamp(col, 0, image.cols - 1)));
+  };
+  double sl = 0, sr = 0, sll = 0, srr = 0, slr = 0;
+  const int n = window * window;
+  for (int j = -half; j <= half; ++j) {
+    for (int i = -half; i <= half; ++i) {
+      const double a = at(left, y + j, x + i), b = at(right, y + j, x - d + i);
+      sl += a, sr += b, sll += a * a, srr += b * b, slr += a * b;
+    }
+  }
+  const double ml = sl / n, mr = sr / n;
+  const double vl = sll / n - ml * ml, vr = srr / n - mr * mr;
+  if (vl <= 1e-6 || vr <= 1e-6) return 0.0;
+  return (slr / n - ml * mr) / std::sqrt(vl * vr);
+}
+
+void DisparityEstimator::Compute(const cv::Mat& left, const cv::Mat& right, cv::Mat* disparity) {
+  const Stopwatch stopwatch;
+  if (left.empty() || right.empty() || left.size() != right.size()) {
+    throw InputError("disparity: the left image is " + std::to_string(left.cols) + "x" +
+                     std::to_string(left.rows) + " and the right one " +
+                     std::to_string(right.cols) + "x" + std::to_string(right.rows) +
+                     "; a stereo pair needs two images of one size");
+  }
+  if (options_.max_disparity >= left.cols) {
+    throw InputError("disparity: max_disparity " + std::to_string(options_.max_disparity) +
+                     " is not below the image width " + std::to_string(left.cols));
+  }
+  Buffers& b = *buffers_;
+  auto grey = [](const cv::Mat& image, cv::Mat* out) {
+    ATTEND_CHECK(image.depth() == CV_8U) << "disparity needs 8-bit images";
+    if (image.channels() == 1) {
+      image.copyTo(*out);
+    } else {
+      cv::cvtColor(image, *out, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+    }
+  };
+  grey(left, &b.left_grey);
+  grey(right, &b.right_grey);
+  Estimate(b.left_grey, b.right_grey, disparity);
+  if (options_.left_right_check) {
+    // The right view's map: the same estimation on the mirrored pair, with the roles swapped.
+    cv::flip(b.right_grey, b.flipped_left, 1);
+    cv::flip(b.left_grey, b.flipped_right, 1);
+    cv::Mat mirrored;
+    Estimate(b.flipped_left, b.flipped_right, &mirrored);
+    cv::flip(mirrored, b.right_view, 1);
+    CheckLeftRight(b.right_view, options_.lr_tolerance, disparity);
+    FillInvalidDisparities(disparity);
+  }
+  milliseconds_ = stopwatch.ElapsedMs();
+}
+
+void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right_grey,
+                                  cv::Mat* disparity) {
+  Buffers& b = *buffers_;
+  const int width = left_grey.cols, height = left_grey.rows;
+  const int depth = options_.max_disparity;
+  const int window = options_.window;
+  const int packed = (depth + 3) / 4;
+
+  // Stage 1, row by row as the volume is computed: Y(x, d) = C(x, d) + max_t Y(x - 1, d + t).
+  constexpr float kNone = -std::numeric_limits<float>::infinity();
+  b.back.assign(static_cast<size_t>(width) * height * packed, 0);
+  b.codes.resize(static_cast<size_t>(packed) * 4);
+  b.row_ends.resize(static_cast<size_t>(height) * depth);
+  b.previous.assign(depth + 2, kNone);
+  b.current.assign(depth + 2, kNone);
+  if (options_.subpixel) b.volume.resize(static_cast<size_t>(width) * height * depth);
+  CostRows rows(left_grey, right_grey, depth, window);
+  rows.ForEachRow(&b.costs, [&](int y, const float* c) {
+    if (options_.subpixel) {
+      int16_t* v = b.volume.data() + static_cast<size_t>(y) * width * depth;
+      for (size_t i = 0; i < static_cast<size_t>(width) * depth; ++i) {
+        v[i] = static_cast<int16_t>(std::lround(c[i] * kCostScale));
+      }
+    }
+    float* previous = b.previous.data() + 1;  // previous[-1] and previous[depth] stay -inf
+    float* current = b.current.data() + 1;
+    MaximumSurfaceRow(c, width, depth, packed, previous, current, b.codes.data(),
+                      b.back.data() + static_cast<size_t>(y) * width * packed);
+    std::copy(previous, previous + depth, b.row_ends.data() + static_cast<size_t>(y) * depth);
+  });
+
+  // Stage 2: along y over the rows' last columns, then backtrack the end disparities.
+  b.column_back.assign(static_cast<size_t>(height) * depth, kFromSame);
+  {
+    float* previous = b.previous.data() + 1;
+    float* current = b.current.data() + 1;
+    std::copy(b.row_ends.begin(), b.row_ends.begin() + depth, previous);
+    for (int y = 1; y < height; ++y) {
+      const float* ends = b.row_ends.data() + static_cast<size_t>(y) * depth;
+      uint8_t* back = b.column_back.data() + static_cast<size_t>(y) * depth;
+      for (int d = 0; d < depth; ++d) {
+        uint8_t code = kFromSame;
+        float best = previous[d];
+        if (previous[d - 1] > best) best = previous[d - 1], code = kFromBelow;
+        if (previous[d + 1] > best) best = previous[d + 1], code = kFromAbove;
+        current[d] = ends[d] + best;
+        back[d] = code;
+      }
+      std::swap(previous, current);
+    }
+    b.ends.resize(height);
+    int d = static_cast<int>(std::max_element(previous, previous + depth) - previous);
+    for (int y = height - 1; y >= 0; --y) {
+      b.ends[y] = d;
+      d += static_cast<int>(b.column_back[static_cast<size_t>(y) * depth + d]) - 1;
+    }
+    // The padding may have been overwritten by the swaps; restore it for the next call.
+    b.previous.front() = b.previous.back() = kNone;
+    b.current.front() = b.current.back() = kNone;
+  }
+
+  // Backtrack every row from its end disparity.
+  disparity->create(height, width, CV_32FC1);
+  for (int y = 0; y < height; ++y) {
+    float* out = disparity->ptr<float>(y);
+    int d = b.ends[y];
+    for (int x = width - 1; x >= 0; --x) {
+      out[x] = static_cast<float>(d);
+      if (options_.subpixel && d > 0 && d < depth - 1) {
+        const int16_t* c = b.volume.data() + (static_cast<size_t>(y) * width + x) * depth + d;
+        const float minus = c[-1], centre = c[0], plus = c[1];
+        const float curvature = minus - 2.f * centre + plus;
+        if (curvature < 0.f) {
+          out[x] += std::clamp(0.5f * (minus - plus) / curvature, -0.5f, 0.5f);
+        }
+      }
+      if (x == 0) break;
+      const uint8_t byte = b.back[(static_cast<size_t>(y) * width + x) * packed + (d >> 2)];
+      d += static_cast<int>((byte >> ((d & 3) * 2)) & 3) - 1;
+    }
+  }
+}
+
+void CheckLeftRight(const cv::Mat& right_view, int tolerance, cv::Mat* disparity) {
+  CV_Assert(right_view.type() == CV_32FC1 && disparity->type() == CV_32FC1 &&
+            right_view.size() == disparity->size());
+  for (int y = 0; y < disparity->rows; ++y) {
+    float* d = disparity->ptr<float>(y);
+    const float* dr = right_view.ptr<float>(y);
+    for (int x = 0; x < disparity->cols; ++x) {
+      const int xr = x - static_cast<int>(std::lround(d[x]));
+      if (xr < 0 || xr >= disparity->cols || std::abs(dr[xr] - d[x]) > tolerance) d[x] = -1.f;
+    }
+  }
+}
+
+void FillInvalidDisparities(cv::Mat* disparity) {
+  CV_Assert(disparity->type() == CV_32FC1);
+  const int width = disparity->cols;
+  for (int y = 0; y < disparity->rows; ++y) {
+    float* d = disparity->ptr<float>(y);
+    int last_valid = -1;
+    for (int x = 0; x < width; ++x) {
+      if (d[x] >= 0.f) {
+        last_valid = x;
+        continue;
+      }
+      int next = x + 1;
+      while (next < width && d[next] < 0.f) ++next;
+      const float from_left = last_valid >= 0 ? d[last_valid] : -1.f;
+      const float from_right = next < width ? d[next] : -1.f;
+      float fill = 0.f;
+      if (from_left >= 0.f && from_right >= 0.f) {
+        fill = std::min(from_left, from_right);
+      } else if (from_left >= 0.f || from_right >= 0.f) {
+        fill = std::max(from_left, from_right);
+      }
+      std::fill(d + x, d + next, fill);
+      x = next - 1;
+    }
+  }
+}
+
+BadPixelRates EvaluateDisparity(const cv::Mat& disparity, const cv::Mat& ground_truth) {
+  CV_Assert(disparity.type() == CV_32FC1 && ground_truth.type() == CV_32FC1 &&
+            disparity.size() == ground_truth.size());
+  BadPixelRates rates;
+  int bad1 = 0, bad2 = 0;
+  for (int y = 0; y < disparity.rows; ++y) {
+    const float* d = disparity.ptr<float>(y);
+    const float* g = ground_truth.ptr<float>(y);
+    for (int x = 0; x < disparity.cols; ++x) {
+      if (!(g[x] > 0.f) || !std::isfinite(g[x])) continue;
+      ++rates.known;
+      const bool valid = d[x] >= 0.f && std::isfinite(d[x]);
+      const float error = valid ? std::abs(d[x] - g[x]) : std::numeric_limits<float>::infinity();
+      bad1 += error > 1.f;
+      bad2 += error > 2.f;
+    }
+  }
+  if (rates.known > 0) {
+    rates.bad1 = static_cast<double>(bad1) / rates.known;
+    rates.bad2 = static_cast<double>(bad2) / rates.known;
+  }
+  return rates;
+}
+
+}  // namespace attend

@@ -78,6 +78,16 @@ double DirectZncc(const cv::Mat& left, const cv::Mat& right, int x, int y, int d
 // computes it; pixels whose right window would leave the image (x - d < 0) get -1.
 void ZnccSlice(const cv::Mat& left, const cv::Mat& right, int d, int window, cv::Mat* out);
 
+// The left-right consistency check: a left pixel x with disparity d whose match x - round(d)
+// lies outside the image, or whose right-view disparity there differs from d by more than
+// `tolerance`, is set to -1 (invalid). `right_view` is the right image's disparity map.
+void CheckLeftRight(const cv::Mat& right_view, int tolerance, cv::Mat* disparity);
+
+// Fills invalid (negative) pixels from the nearest valid pixels on their row, taking the
+// smaller (farther) disparity of the two sides, as occluded pixels see the background; a row
+// without valid pixels becomes 0.
+void FillInvalidDisparities(cv::Mat* disparity);
+
 // Bad-pixel rates of SPEC 4 (Middlebury): the share of pixels with known ground truth
 // (`ground_truth` > 0 and finite, CV_32FC1 in pixels) where |d - d_gt| > 1 and > 2; invalid
 // estimates (negative or not finite) count as bad.

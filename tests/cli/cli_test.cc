@@ -94,6 +94,13 @@ TEST(Cli, BadInputExitsThreeNamingTheCulprit) {
   EXPECT_EQ(summary["frames"], 2);
   EXPECT_EQ(summary["interrupted"], true);
 
+  testing::MakeFolderSequence(dir.File("mono"), 2, 48, 32, false);
+  r = Attend(dir, {"run", "--sequence", "mono", "--out", "run2"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "feature 'disparity' needs a stereo sequence")) << r.err;
+  EXPECT_TRUE(Contains(r.err, "features.disparity.enabled=false")) << r.err;
+  EXPECT_FALSE(fs::exists(dir.File("run2")));
+
   r = Attend(dir, {"run", "--sequence", "seq", "--out", "run3", "--set",
                    "features.colour_contrast.name=colour_contrst"});
   EXPECT_EQ(r.status, 2);

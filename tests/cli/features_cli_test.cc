@@ -80,19 +80,27 @@ TEST(FeaturesCli, RunDumpsFeatureAndSaliencyMapsThatLightUpTheRightObjects) {
   const cv::Rect box = GroundTruthBox(dir, 1, 1);
   EXPECT_GT(cv::mean(colour(box))[0], 4 * cv::mean(colour(cv::Rect(0, 0, 60, 40)))[0]);
 
+  // Disparity: the person (shirt, id 6, at 1.9 m) is nearer than the wall (6 m).
+  const cv::Mat disparity = Map(dir, "run", "features/disparity", 1);
+  const cv::Rect shirt = GroundTruthBox(dir, 1, 6);
+  const cv::Rect shirt_core(shirt.x + shirt.width / 4, shirt.y + shirt.height / 4, shirt.width / 2,
+                            shirt.height / 2);
+  EXPECT_GT(cv::mean(disparity(shirt_core))[0],
+            2 * cv::mean(disparity(cv::Rect(20, 0, 60, 40)))[0]);
+
   // Saliency is the weight-averaged min-max normalisation of the dumped maps (all weights 1).
   cv::Mat expected(skin.size(), CV_32FC1, cv::Scalar(0.f));
-  for (const std::string name : {"colour_contrast", "intensity_contrast", "skin"}) {
+  for (const std::string name : {"colour_contrast", "intensity_contrast", "skin", "disparity"}) {
     cv::Mat map = Map(dir, "run", "features/" + name, 1), unit;
     cv::normalize(map, unit, 0.0, 1.0, cv::NORM_MINMAX);
-    expected += unit / 3.f;
+    expected += unit / 4.f;
   }
   EXPECT_LT(cv::norm(expected, Map(dir, "run", "saliency", 1), cv::NORM_INF), 1e-5);
 
   const std::vector<nlohmann::json> frames = Frames(dir, "run");
   ASSERT_EQ(frames.size(), 2u);
-  for (const std::string stage :
-       {"segment", "features", "feature.skin", "feature.colour_contrast", "saliency"}) {
+  for (const std::string stage : {"segment", "features", "feature.skin", "feature.colour_contrast",
+                                  "feature.disparity", "saliency"}) {
     EXPECT_TRUE(frames[1]["timings_ms"].contains(stage)) << stage;
   }
 }
@@ -104,8 +112,9 @@ TEST(FeaturesCli, DisabledFeatureLeavesNoTraceAndThreadsDoNotChangeResults) {
                           "--set", "features.skin.enabled=false", "--set", "threads=1"});
   ASSERT_EQ(r.status, 0) << r.err;
   r = Attend(dir, {"run", "--sequence", "seq", "--out", "b", "--quiet", "--set", kAllDumps, "--set",
-                   "features=[{name: colour_contrast}, {name: intensity_contrast}]", "--set",
-                   "threads=2"});
+                   "features=[{name: colour_contrast}, {name: intensity_contrast}, "
+                   "{name: disparity}]",
+                   "--set", "threads=2"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_FALSE(fs::exists(dir.File("a/features/skin")));
   EXPECT_FALSE(Frames(dir, "a")[0]["timings_ms"].contains("feature.skin"));

@@ -47,9 +47,10 @@ TEST(OptionsIo, DefaultYamlSetsEveryKeyToTheStructDefault) {
   // The file and the struct agree: a reader of either sees the same defaults.
   EXPECT_EQ(OptionsToYaml(options).substr(0, OptionsToYaml(options).find("features:")),
             OptionsToYaml(defaults).substr(0, OptionsToYaml(defaults).find("features:")));
-  ASSERT_EQ(options.features.size(), 3u);
+  ASSERT_EQ(options.features.size(), 4u);
   EXPECT_EQ(options.features[0].name, "colour_contrast");
   EXPECT_EQ(options.features[2].name, "skin");
+  EXPECT_EQ(options.features[3].name, "disparity");
 }
 
 TEST(OptionsIo, EveryKeyIsDocumentedInConfigsReadme) {

@@ -115,6 +115,28 @@ TEST(RunSequence, BadSourceFailsBeforeCreatingTheRunFolder) {
   EXPECT_FALSE(fs::exists(dir.File("run")));
 }
 
+TEST(RunSequence, DisparityOnAMonocularSourceIsAConfigurationError) {
+  testing::TempDir dir;
+  RunRequest request;
+  request.options = ReadOptions(ParamBlock::Parse(
+      "features:\n  - {name: colour_contrast}\n  - {name: disparity}\n", "c.yaml"));
+  request.options.sequence.folder = testing::MakeFolderSequence(dir.File("mono"), 2, 48, 32, false);
+  request.out_dir = dir.File("run");
+  try {
+    RunSequence(request);
+    FAIL() << "disparity needs a stereo source";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("c.yaml:3: features.1.name: feature 'disparity' needs a "
+                                         "stereo sequence"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir.File("run")));
+  // Disabled, it is fine.
+  request.options.features[1].enabled = false;
+  EXPECT_EQ(RunSequence(request).frames, 2);
+}
+
 TEST(RunSequence, UnknownFeatureIsAConfigurationErrorBeforeTheRunFolder) {
   testing::TempDir dir;
   RunRequest request;
