@@ -158,7 +158,7 @@ TEST(DisparityCommand, WritesTheMapAndReportsItsAccuracy) {
   EXPECT_EQ(expected.known, cv::countNonZero(truth));
   EXPECT_NEAR(report["bad1"].get<double>(), expected.bad1, 1e-12);
   EXPECT_NEAR(report["bad2"].get<double>(), expected.bad2, 1e-12);
-  EXPECT_LT(expected.bad2, 0.15);
+  EXPECT_LT(expected.bad1, 0.08);
   EXPECT_LE(expected.bad2, expected.bad1);
   EXPECT_TRUE(Leftovers(dir).empty());
 }
@@ -192,7 +192,7 @@ TEST(DisparityCommand, GroundTruthInScaledImages) {
     EXPECT_EQ(report["known_pixels"], expected.known) << gt[1];
     EXPECT_NEAR(report["bad1"].get<double>(), expected.bad1, 1e-12) << gt[1];
     EXPECT_NEAR(report["bad2"].get<double>(), expected.bad2, 1e-12) << gt[1];
-    EXPECT_LT(expected.bad2, 0.15) << gt[1];
+    EXPECT_LT(expected.bad1, 0.08) << gt[1];
     EXPECT_EQ(report["gt_scale"], std::stod(gt[3])) << gt[1];
   }
   // Without the scale the values are read as pixels, four times too far: nearly every pixel
