@@ -1,6 +1,7 @@
 #include "colour/colour.h"
 
 #include <algorithm>
+#include <opencv2/core/hal/hal.hpp>
 
 #include "util/error.h"
 
@@ -81,17 +82,47 @@ __attribute__((noinline)) void TslRow(const float* __restrict r, const float* __
   for (int i = 0; i < count; ++i) Tsl(r[i], g[i], b[i], &t[i], &s[i], &l[i]);
 }
 
-template <void (*Convert)(float, float, float, float*)>
-void ConvertImage(const cv::Mat& bgr, cv::Mat* out) {
-  ATTEND_CHECK(bgr.type() == CV_8UC3) << "expected an 8-bit BGR image, got type " << bgr.type();
-  out->create(bgr.size(), CV_32FC3);
-  for (int row = 0; row < bgr.rows; ++row) {
-    const uchar* in = bgr.ptr<uchar>(row);
-    float* result = out->ptr<float>(row);
-    for (int col = 0; col < bgr.cols; ++col) {
-      Convert(in[2], in[1], in[0], result);
-      in += 3;
-      result += 3;
+// Cylinder() over a row of 8-bit BGR pixels, in chunks, written so that the compiler
+// vectorises it (it does not vectorise Cylinder()'s branches and square root):
+// - the channels are first split into integer arrays (SSE2 cannot shuffle bytes);
+// - sums, differences, minimum and maximum of the channels are exact in integers;
+// - no division needs a branch: black takes minimum 1 and sum 3, which gives saturation 0,
+//   and a grey phasor (x = y = 0) takes length 1, its saturation being 0 already;
+// - the square roots go through cv::hal::sqrt32f, since GCC does not vectorise std::sqrt
+//   under its default -fmath-errno.
+// Every other float operation is Cylinder()'s, on the same values in the same order, so the
+// results are the same to the bit.
+void CylinderRow(const uchar* bgr, int n, float* out) {
+  constexpr int kChunk = 128;
+  int32_t blue[kChunk], green[kChunk], red[kChunk];
+  float x[kChunk], y[kChunk], s[kChunk], v[kChunk], length[kChunk];
+  for (int start = 0; start < n; start += kChunk) {
+    const int count = std::min(kChunk, n - start);
+    const uchar* in = bgr + 3 * start;
+    for (int i = 0; i < count; ++i) {
+      blue[i] = in[3 * i];
+      green[i] = in[3 * i + 1];
+      red[i] = in[3 * i + 2];
+    }
+    for (int i = 0; i < count; ++i) {
+      const int r = red[i], g = green[i], b = blue[i];
+      const int sum = r + g + b;
+      const int black = sum == 0;
+      const int grey = (2 * r - g - b == 0) & (g == b);
+      x[i] = static_cast<float>(2 * r - g - b);
+      y[i] = kSqrt3 * static_cast<float>(g - b);
+      length[i] = x[i] * x[i] + y[i] * y[i] + static_cast<float>(grey);
+      const float minimum = static_cast<float>(std::min(r, std::min(g, b)) + black);
+      s[i] = 255.f * (1.f - 3.f * minimum / static_cast<float>(sum + 3 * black));
+      v[i] = static_cast<float>(std::max(r, std::max(g, b)));
+    }
+    cv::hal::sqrt32f(length, length, count);
+    float* result = out + 3 * start;
+    for (int i = 0; i < count; ++i) {
+      const float scale = s[i] / length[i];
+      result[3 * i] = x[i] * scale;
+      result[3 * i + 1] = y[i] * scale;
+      result[3 * i + 2] = v[i];
     }
   }
 }
@@ -110,7 +141,13 @@ cv::Vec2f TslChrominance(float r, float g, float b) {
   return {t, s};
 }
 
-void BgrToCylinder(const cv::Mat& bgr, cv::Mat* out) { ConvertImage<Cylinder>(bgr, out); }
+void BgrToCylinder(const cv::Mat& bgr, cv::Mat* out) {
+  ATTEND_CHECK(bgr.type() == CV_8UC3) << "expected an 8-bit BGR image, got type " << bgr.type();
+  out->create(bgr.size(), CV_32FC3);
+  for (int row = 0; row < bgr.rows; ++row) {
+    CylinderRow(bgr.ptr<uchar>(row), bgr.cols, out->ptr<float>(row));
+  }
+}
 
 void BgrToTsl(const cv::Mat& bgr, cv::Mat* out) {
   ATTEND_CHECK(bgr.type() == CV_8UC3) << "expected an 8-bit BGR image, got type " << bgr.type();

@@ -1,6 +1,7 @@
 #include "pyramid/bip.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -26,17 +27,28 @@ inline uint64_t EdgeKey(int a, int b) {
   return (lo << 32) | hi;
 }
 
-// Keeps the most similar candidate seen so far.
+constexpr float kFar = std::numeric_limits<float>::infinity();
+
+// Keeps the most similar candidate seen so far (the first of equals). Written without a
+// branch: which neighbour is closest is unpredictable in textured areas.
 struct Best {
   int id = -1;
-  float distance2 = std::numeric_limits<float>::infinity();
+  float distance2 = kFar;
   void Offer(int candidate, float d2) {
-    if (d2 < distance2) {
-      distance2 = d2;
-      id = candidate;
-    }
+    const bool closer = d2 < distance2;
+    distance2 = closer ? d2 : distance2;
+    id = closer ? candidate : id;
   }
 };
+
+// A neighbour of the 8-neighbourhood as one integer: its squared distance above its position
+// (0..7, raster order). The bits of non-negative floats order like their values, so the
+// smallest key is the most similar neighbour and, among equals, the first in raster order;
+// comparing integers lets the choice run without branches and with short dependency chains.
+constexpr uint64_t kNoNeighbour = ~uint64_t{0};
+inline uint64_t NeighbourKey(float d2, int position) {
+  return (uint64_t{std::bit_cast<uint32_t>(d2)} << 3) | static_cast<uint64_t>(position);
+}
 
 }  // namespace
 
@@ -133,7 +145,6 @@ void BipBuilder::NeighbourDistances(int l) {
   const BipLevel& cur = levels_[l];
   const int cols = cur.cols, rows = cur.rows;
   const size_t cells = static_cast<size_t>(cols) * rows;
-  constexpr float kFar = std::numeric_limits<float>::infinity();
   // Grow only: resizing back up after a smaller level would zero-fill every frame.
   for (auto& plane : distance_) {
     if (plane.size() < cells) plane.resize(cells);
@@ -281,13 +292,24 @@ void BipBuilder::RegularOrphans(int l, float t2) {
   const float* south = distance_[kSouth].data();
   const float* south_east = distance_[kSouthEast].data();
   const float* south_west = distance_[kSouthWest].data();
-  row_orphans_.resize(cur.cols);
+  const int cols = cur.cols;
+  const int grid[8] = {-cols - 1, -cols, -cols + 1, -1, 1, cols - 1, cols, cols + 1};
+  // The most similar neighbour among those of one kind, from its key.
+  auto best_of = [&](int id, uint64_t key) {
+    Best best;
+    if (key != kNoNeighbour) {
+      best.id = id + grid[key & 7];
+      best.distance2 = std::bit_cast<float>(static_cast<uint32_t>(key >> 3));
+    }
+    return best;
+  };
+  row_orphans_.resize(cols);
   for (int row = 0; row < cur.rows; ++row) {
     // The row's orphans, gathered without a branch per cell: whether a cell is an orphan
     // alternates unpredictably in textured areas.
-    const int first = row * cur.cols;
+    const int first = row * cols;
     int count = 0;
-    for (int col = 0; col < cur.cols; ++col) {
+    for (int col = 0; col < cols; ++col) {
       row_orphans_[count] = col;
       count += (cur.hom[first + col] != 0) & (cur.parent[first + col] < 0);
     }
@@ -296,25 +318,46 @@ void BipBuilder::RegularOrphans(int l, float t2) {
       const int id = first + col;
       if (cur.parent[id] >= 0) continue;  // twinned earlier in this row
       Best parented, orphan;
-      auto offer = [&](int n, float d2) {
-        if (cur.hom[n] == 0) return;
-        if (cur.parent[n] >= 0) {
-          parented.Offer(n, d2);
-        } else {
-          orphan.Offer(n, d2);
+      if (row > 0 && col > 0 && row + 1 < cur.rows && col + 1 < cols) {
+        // The squared distances to the neighbours, in the order of `grid`.
+        float d2[8];
+        d2[0] = south_east[id - cols - 1];
+        d2[1] = south[id - cols];
+        d2[2] = south_west[id - cols + 1];
+        d2[3] = east[id - 1];
+        d2[4] = east[id];
+        d2[5] = south_west[id];
+        d2[6] = south[id];
+        d2[7] = south_east[id];
+        uint64_t parented_key = kNoNeighbour, orphan_key = kNoNeighbour;
+        for (int k = 0; k < 8; ++k) {
+          const int n = id + grid[k];
+          const uint64_t key = cur.hom[n] != 0 ? NeighbourKey(d2[k], k) : kNoNeighbour;
+          const bool has_parent = cur.parent[n] >= 0;
+          parented_key = std::min(parented_key, has_parent ? key : kNoNeighbour);
+          orphan_key = std::min(orphan_key, has_parent ? kNoNeighbour : key);
         }
-      };
-      const int cols = cur.cols;
-      const bool inside = row > 0 && col > 0 && row + 1 < cur.rows && col + 1 < cols;
-      // In raster order of the neighbours, so that ties go to the first.
-      if (inside || (row > 0 && col > 0)) offer(id - cols - 1, south_east[id - cols - 1]);
-      if (inside || row > 0) offer(id - cols, south[id - cols]);
-      if (inside || (row > 0 && col + 1 < cols)) offer(id - cols + 1, south_west[id - cols + 1]);
-      if (inside || col > 0) offer(id - 1, east[id - 1]);
-      if (inside || col + 1 < cols) offer(id + 1, east[id]);
-      if (inside || (row + 1 < cur.rows && col > 0)) offer(id + cols - 1, south_west[id]);
-      if (inside || row + 1 < cur.rows) offer(id + cols, south[id]);
-      if (inside || (row + 1 < cur.rows && col + 1 < cols)) offer(id + cols + 1, south_east[id]);
+        parented = best_of(id, parented_key);
+        orphan = best_of(id, orphan_key);
+      } else {
+        // On the border, in raster order of the neighbours so that ties go to the first.
+        auto offer = [&](int n, float d2) {
+          if (cur.hom[n] == 0) return;
+          if (cur.parent[n] >= 0) {
+            parented.Offer(n, d2);
+          } else {
+            orphan.Offer(n, d2);
+          }
+        };
+        if (row > 0 && col > 0) offer(id - cols - 1, south_east[id - cols - 1]);
+        if (row > 0) offer(id - cols, south[id - cols]);
+        if (row > 0 && col + 1 < cols) offer(id - cols + 1, south_west[id - cols + 1]);
+        if (col > 0) offer(id - 1, east[id - 1]);
+        if (col + 1 < cols) offer(id + 1, east[id]);
+        if (row + 1 < cur.rows && col > 0) offer(id + cols - 1, south_west[id]);
+        if (row + 1 < cur.rows) offer(id + cols, south[id]);
+        if (row + 1 < cur.rows && col + 1 < cols) offer(id + cols + 1, south_east[id]);
+      }
       if (across) {
         const float* colour = cur.Feature(id);
         for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) {
@@ -418,20 +461,32 @@ void BipBuilder::DistantRegularEdges(int l) {
     if (cur.parent[id] < first_virtual) sons_[stamp_[cur.parent[id]]++] = id;
   }
   stamp_.assign(first_virtual, -1);
+  const int cols = cur.cols, rows = cur.rows;
+  const int grid[8] = {-cols - 1, -cols, -cols + 1, -1, 1, cols - 1, cols, cols + 1};
   for (int p = 0; p < first_virtual; ++p) {
+    if (son_offsets_[p] == son_offsets_[p + 1]) continue;
+    const int p_row = cell_row_[p], p_col = cell_col_[p];
+    // Cheapest and most selective tests first: most neighbours have no parent, a virtual one,
+    // p or an array neighbour of p, none of which makes an edge here.
     auto visit = [&](int neighbour) {
       const int q = cur.parent[neighbour];
-      if (q < 0 || q == p || q >= first_virtual || stamp_[q] == p) return;
+      if (static_cast<unsigned>(q) >= static_cast<unsigned>(first_virtual)) return;
+      if (std::abs(cell_row_[q] - p_row) <= 1 && std::abs(cell_col_[q] - p_col) <= 1) return;
+      if (stamp_[q] == p) return;
       stamp_[q] = p;
-      add(p, q);
+      up.edges.push_back(EdgeKey(p, q));
     };
     for (int k = son_offsets_[p]; k < son_offsets_[p + 1]; ++k) {
       const int id = sons_[k];
       if (!cur.IsVirtual(id)) {
-        const int row = id / cur.cols, col = id - row * cur.cols;
-        for (int d = 0; d < 8; ++d) {
-          const int x = col + kDx[d], y = row + kDy[d];
-          if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) visit(y * cur.cols + x);
+        const int row = id / cols, col = id - row * cols;
+        if (row > 0 && col > 0 && row + 1 < rows && col + 1 < cols) {
+          for (int d = 0; d < 8; ++d) visit(id + grid[d]);
+        } else {
+          for (int d = 0; d < 8; ++d) {
+            const int x = col + kDx[d], y = row + kDy[d];
+            if (x >= 0 && y >= 0 && x < cols && y < rows) visit(y * cols + x);
+          }
         }
       }
       for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) visit(adjacency_[e]);
@@ -469,26 +524,34 @@ void BipBuilder::IntraLevelEdges(int l) {
     const int p = cur.parent[id];
     if (p >= first_virtual) sons_[stamp_[p - first_virtual]++] = id;
   }
-  stamp_.assign(parents, -1);
-  for (int p = up.num_cells(); p < parents; ++p) {
+  // stamp_[q + 1] == p once p has seen parent q; slot 0 stands for "no parent" (q = -1).
+  stamp_.assign(parents + 1, -1);
+  const int cols = cur.cols, rows = cur.rows;
+  const int grid[8] = {-cols - 1, -cols, -cols + 1, -1, 1, cols - 1, cols, cols + 1};
+  for (int p = first_virtual; p < parents; ++p) {
+    // Marking "no parent" and p itself as seen leaves one test per neighbour.
+    stamp_[0] = p;
+    stamp_[p + 1] = p;
     auto visit = [&](int neighbour) {
       const int q = cur.parent[neighbour];
-      if (q < 0 || q == p || stamp_[q] == p) return;
-      stamp_[q] = p;
-      if (!up.IsVirtual(q) || q > p) up.edges.push_back(EdgeKey(p, q));
+      const bool seen = stamp_[q + 1] == p;
+      stamp_[q + 1] = p;
+      if (!seen && (q < first_virtual || q > p)) up.edges.push_back(EdgeKey(p, q));
     };
     for (int k = son_offsets_[p - first_virtual]; k < son_offsets_[p - first_virtual + 1]; ++k) {
       const int son = sons_[k];
       if (!cur.IsVirtual(son)) {
-        const int row = son / cur.cols, col = son - row * cur.cols;
-        for (int d = 0; d < 8; ++d) {
-          const int x = col + kDx[d], y = row + kDy[d];
-          if (x >= 0 && y >= 0 && x < cur.cols && y < cur.rows) visit(y * cur.cols + x);
+        const int row = son / cols, col = son - row * cols;
+        if (row > 0 && col > 0 && row + 1 < rows && col + 1 < cols) {
+          for (int d = 0; d < 8; ++d) visit(son + grid[d]);
+        } else {
+          for (int d = 0; d < 8; ++d) {
+            const int x = col + kDx[d], y = row + kDy[d];
+            if (x >= 0 && y >= 0 && x < cols && y < rows) visit(y * cols + x);
+          }
         }
       }
-      for (int e = AdjacencyBegin(son); e < AdjacencyEnd(son); ++e) {
-        visit(adjacency_[e]);
-      }
+      for (int e = AdjacencyBegin(son); e < AdjacencyEnd(son); ++e) visit(adjacency_[e]);
     }
   }
 }
@@ -511,7 +574,7 @@ int Bip::LabelRoots(cv::Mat* labels, std::vector<VertexRef>* root_refs) const {
   std::vector<VertexRef>& found = root_scratch_;
   found.clear();
   int roots = 0;
-  for (int l = num_levels_ - 1; l >= 0; --l) {
+  for (int l = num_levels_ - 1; l >= 1; --l) {
     const BipLevel& level = (*levels_)[l];
     current.assign(level.num_ids(), -1);
     for (int id = 0; id < level.num_ids(); ++id) {
@@ -526,19 +589,28 @@ int Bip::LabelRoots(cv::Mat* labels, std::vector<VertexRef>* root_refs) const {
     }
     std::swap(above, current);
   }
-  // Number roots by first appearance in raster order, so labels do not depend on the order in
-  // which levels were visited.
+  // Level 0, whose ids are the pixels in raster order, in the same pass as numbering the roots
+  // by first appearance, so that labels do not depend on the order in which levels were
+  // visited.
+  const BipLevel& base = (*levels_)[0];
   labels->create(height_, width_, CV_32SC1);
   std::vector<int32_t>& renumber = label_scratch_[1];
-  renumber.assign(roots, -1);
+  renumber.assign(roots + base.num_regular, -1);  // level 0 adds at most num_regular roots
   int next = 0;
   for (int row = 0; row < height_; ++row) {
     int32_t* out = labels->ptr<int32_t>(row);
-    for (int col = 0; col < width_; ++col) {
-      const int root = above[static_cast<size_t>(row) * width_ + col];
-      if (root < 0) {
+    for (int col = 0, id = row * width_; col < width_; ++col, ++id) {
+      if (base.hom[id] == 0) {
         out[col] = -1;
         continue;
+      }
+      const int p = base.parent[id];
+      int root;
+      if (p >= 0) {
+        root = above[p];
+      } else {
+        root = roots++;
+        if (root_refs != nullptr) found.push_back({0, id});
       }
       if (renumber[root] < 0) renumber[root] = next++;
       out[col] = renumber[root];

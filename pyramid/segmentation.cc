@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <limits>
-#include <queue>
 
 #include "util/error.h"
 #include "util/timer.h"
@@ -16,17 +15,6 @@ std::string SegmentationOptions::Check() const {
   return bip.Check();
 }
 
-Segmenter::Segmenter(SegmentationOptions options)
-    : options_(options), policy_(options.t_max), builder_(options.bip) {
-  const std::string problem = options_.Check();
-  ATTEND_CHECK(problem.empty()) << problem;
-}
-
-void Segmenter::Segment(const cv::Mat& bgr, Segmentation* out) {
-  BgrToCylinder(bgr, &cylinder_);
-  SegmentCylinder(cylinder_, out);
-}
-
 namespace {
 
 // A pair of adjacent regions (a < b) and the number of 4-neighbour pixel edges between them.
@@ -36,43 +24,106 @@ struct RegionEdge {
   int length = 0;
 };
 
+}  // namespace
+
+// Every buffer of the region statistics and of the merge, kept between frames so that a
+// Segmenter allocates nothing for them after the first frame of a size.
+struct Segmenter::Workspace {
+  void AccumulateRegions(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
+                         std::vector<RegionStats>* regions);
+  int MergeFlat(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions);
+  void BuildGraph(int num_regions, RegionGraph* graph);
+  void CombinePairs(int num_regions, const std::vector<RegionEdge>& pairs,
+                    std::vector<RegionEdge>* combined);
+
+  // The region adjacency as a flat edge list (a < b), combined.
+  std::vector<RegionEdge> edges;
+  // AccumulateRegions.
+  std::vector<double> sums;
+  std::vector<cv::Point> low;
+  std::vector<cv::Point> high;
+  std::vector<RegionEdge> runs;
+  // CombinePairs.
+  std::vector<int> pair_offsets;
+  std::vector<int> pair_cursor;
+  std::vector<int> pair_slot;
+  std::vector<RegionEdge> grouped;
+  // MergeFlat.
+  std::vector<int> offsets;
+  std::vector<int> adjacent;
+  std::vector<int> parent;
+  std::vector<int> area;
+  std::vector<int> next_member;
+  std::vector<int> last_member;
+  std::vector<std::array<double, 4>> merge_sums;  // sx, sy, v, saturation times area
+  std::vector<std::pair<int, int>> heap;          // (area, region)
+  std::vector<int> renumber;
+  std::vector<int> relabel;
+  std::vector<RegionStats> merged;
+  std::vector<RegionEdge> pairs;
+  // BuildGraph.
+  std::vector<std::pair<int, int>> ends;
+  std::vector<RegionBoundary> lengths;
+};
+
+Segmenter::Segmenter(SegmentationOptions options)
+    : options_(options),
+      policy_(options.t_max),
+      builder_(options.bip),
+      workspace_(std::make_unique<Workspace>()) {
+  const std::string problem = options_.Check();
+  ATTEND_CHECK(problem.empty()) << problem;
+}
+
+Segmenter::~Segmenter() = default;
+
+void Segmenter::Segment(const cv::Mat& bgr, Segmentation* out) {
+  BgrToCylinder(bgr, &cylinder_);
+  SegmentCylinder(cylinder_, out);
+}
+
 // Adds up the lengths of repeated pairs without sorting: the pairs are grouped by their first
 // region (counting sort), then each group's lengths are summed per second region.
-void CombinePairs(int num_regions, const std::vector<RegionEdge>& pairs,
-                  std::vector<RegionEdge>* edges) {
-  std::vector<int> offsets(num_regions + 1, 0);
+void Segmenter::Workspace::CombinePairs(int num_regions, const std::vector<RegionEdge>& pairs,
+                                        std::vector<RegionEdge>* combined) {
+  std::vector<int>& offsets = pair_offsets;
+  offsets.assign(num_regions + 1, 0);
   for (const RegionEdge& pair : pairs) ++offsets[pair.a + 1];
   for (int r = 0; r < num_regions; ++r) offsets[r + 1] += offsets[r];
-  std::vector<RegionEdge> grouped(pairs.size());
-  std::vector<int> cursor(offsets.begin(), offsets.end() - 1);
+  grouped.resize(pairs.size());
+  std::vector<int>& cursor = pair_cursor;
+  cursor.assign(offsets.begin(), offsets.end() - 1);
   for (const RegionEdge& pair : pairs) grouped[cursor[pair.a]++] = pair;
-  edges->clear();
-  std::vector<int> slot(num_regions, -1);  // index in edges of (a, b) for the current a
+  combined->clear();
+  std::vector<int>& slot = pair_slot;  // index in edges of (a, b) for the current a
+  slot.assign(num_regions, -1);
   for (int a = 0; a < num_regions; ++a) {
     for (int k = offsets[a]; k < offsets[a + 1]; ++k) {
       const RegionEdge& pair = grouped[k];
-      if (slot[pair.b] < 0 || (*edges)[slot[pair.b]].a != a) {
-        slot[pair.b] = static_cast<int>(edges->size());
-        edges->push_back({a, pair.b, 0});
+      if (slot[pair.b] < 0 || (*combined)[slot[pair.b]].a != a) {
+        slot[pair.b] = static_cast<int>(combined->size());
+        combined->push_back({a, pair.b, 0});
       }
-      (*edges)[slot[pair.b]].length += pair.length;
+      (*combined)[slot[pair.b]].length += pair.length;
     }
   }
 }
 
-// One pass over the pixels: areas, sums, boxes, perimeters and the adjacent pairs.
-void AccumulateRegions(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
-                       std::vector<RegionStats>* regions, std::vector<RegionEdge>* edges) {
+// One pass over the pixels: areas, sums, boxes, perimeters and the adjacent pairs (into
+// edges).
+void Segmenter::Workspace::AccumulateRegions(const cv::Mat& labels, int num_regions,
+                                             const cv::Mat& cylinder,
+                                             std::vector<RegionStats>* regions) {
   ATTEND_CHECK(labels.type() == CV_32SC1 && cylinder.type() == CV_32FC3 &&
                labels.size() == cylinder.size())
       << "labels and cylinder image must match";
   regions->assign(num_regions, RegionStats{});
   // Sums in double: a 640x480 region of V = 255 reaches 8e7, beyond float's exact integers.
-  std::vector<double> sums(4 * static_cast<size_t>(num_regions), 0.0);
-  std::vector<cv::Point> low(num_regions, cv::Point(labels.cols, labels.rows));
-  std::vector<cv::Point> high(num_regions, cv::Point(-1, -1));
+  sums.assign(4 * static_cast<size_t>(num_regions), 0.0);
+  low.assign(num_regions, cv::Point(labels.cols, labels.rows));
+  high.assign(num_regions, cv::Point(-1, -1));
   // Consecutive boundary pixels mostly separate the same pair of regions: store runs.
-  std::vector<RegionEdge> runs;
+  runs.clear();
   auto boundary = [&](int a, int b) {
     ++(*regions)[a].perimeter;
     ++(*regions)[b].perimeter;
@@ -129,14 +180,12 @@ void AccumulateRegions(const cv::Mat& labels, int num_regions, const cv::Mat& cy
     region.saturation = static_cast<float>(sum[3] / region.area);
     region.bbox = cv::Rect(low[r], high[r] + cv::Point(1, 1));
   }
-  CombinePairs(num_regions, runs, edges);
+  CombinePairs(num_regions, runs, &edges);
 }
 
-void BuildGraph(int num_regions, const std::vector<RegionEdge>& edges, RegionGraph* graph) {
-  std::vector<std::pair<int, int>> ends;
-  std::vector<RegionBoundary> lengths;
-  ends.reserve(edges.size());
-  lengths.reserve(edges.size());
+void Segmenter::Workspace::BuildGraph(int num_regions, RegionGraph* graph) {
+  ends.clear();
+  lengths.clear();
   for (const RegionEdge& edge : edges) {
     ends.emplace_back(edge.a, edge.b);
     lengths.push_back({edge.length});
@@ -146,28 +195,34 @@ void BuildGraph(int num_regions, const std::vector<RegionEdge>& edges, RegionGra
 
 // Merges every region smaller than `min_area` pixels into its adjacent region of closest mean
 // colour, smallest first, until none is left that has a neighbour. Relabels `labels` (regions
-// numbered by first appearance) and updates `regions` and `edges` exactly, without another
+// numbered by first appearance) and updates `regions` and edges exactly, without another
 // pass over the pixels. Merged regions stay connected. Returns the new number of regions.
-int MergeFlat(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions,
-              std::vector<RegionEdge>* edges) {
+int Segmenter::Workspace::MergeFlat(int min_area, cv::Mat* labels,
+                                    std::vector<RegionStats>* regions) {
   const int count = static_cast<int>(regions->size());
   // Adjacency of the original regions (CSR); a merged region's neighbours are those of its
   // members, which a linked list per region keeps.
-  std::vector<int> offsets(count + 1, 0), adjacent(2 * edges->size());
-  for (const RegionEdge& edge : *edges) {
+  offsets.assign(count + 1, 0);
+  adjacent.resize(2 * edges.size());
+  for (const RegionEdge& edge : edges) {
     ++offsets[edge.a + 1];
     ++offsets[edge.b + 1];
   }
   for (int r = 0; r < count; ++r) offsets[r + 1] += offsets[r];
   {
-    std::vector<int> cursor(offsets.begin(), offsets.end() - 1);
-    for (const RegionEdge& edge : *edges) {
+    std::vector<int>& cursor = pair_cursor;
+    cursor.assign(offsets.begin(), offsets.end() - 1);
+    for (const RegionEdge& edge : edges) {
       adjacent[cursor[edge.a]++] = edge.b;
       adjacent[cursor[edge.b]++] = edge.a;
     }
   }
-  std::vector<int> parent(count), area(count), next_member(count, -1), last_member(count);
-  std::vector<std::array<double, 4>> sum(count);  // sx, sy, v, saturation times area
+  parent.resize(count);
+  area.resize(count);
+  next_member.assign(count, -1);
+  last_member.resize(count);
+  std::vector<std::array<double, 4>>& sum = merge_sums;
+  sum.resize(count);
   for (int r = 0; r < count; ++r) {
     const RegionStats& region = (*regions)[r];
     parent[r] = r;
@@ -181,18 +236,19 @@ int MergeFlat(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions,
     while (parent[r] != r) r = parent[r] = parent[parent[r]];
     return r;
   };
-  // Smallest first; an entry whose area is stale was merged since it was queued.
+  // Smallest first (a min-heap); an entry whose area is stale was merged since it was queued.
   using Entry = std::pair<int, int>;  // (area, region)
-  std::vector<Entry> heap;
+  heap.clear();
   for (int r = 0; r < count; ++r) {
     if (area[r] < min_area) heap.push_back({area[r], r});
   }
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue(std::greater<Entry>(),
-                                                                            std::move(heap));
+  const std::greater<Entry> later;
+  std::make_heap(heap.begin(), heap.end(), later);
   bool merged_any = false;
-  while (!queue.empty()) {
-    const auto [queued_area, r] = queue.top();
-    queue.pop();
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), later);
+    const auto [queued_area, r] = heap.back();
+    heap.pop_back();
     if (find(r) != r || area[r] != queued_area) continue;
     int best = -1;
     double best_distance = std::numeric_limits<double>::infinity();
@@ -218,28 +274,36 @@ int MergeFlat(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions,
     for (int c = 0; c < 4; ++c) sum[best][c] += sum[r][c];
     next_member[last_member[best]] = r;
     last_member[best] = last_member[r];
-    if (area[best] < min_area) queue.push({area[best], best});
+    if (area[best] < min_area) {
+      heap.push_back({area[best], best});
+      std::push_heap(heap.begin(), heap.end(), later);
+    }
   }
   if (!merged_any) return count;
 
-  // Relabel, numbering the surviving regions by first appearance.
-  std::vector<int> renumber(count, -1);
+  // Number the surviving regions by first appearance. The regions are numbered so already, so
+  // a merged region first appears where its lowest-numbered member does: numbering the roots
+  // in order of their lowest member gives the numbers a scan of the pixels would.
+  renumber.assign(count, -1);  // per root
+  relabel.resize(count);       // per original region
   int next = 0;
+  for (int r = 0; r < count; ++r) {
+    const int root = find(r);
+    if (renumber[root] < 0) renumber[root] = next++;
+    relabel[r] = renumber[root];
+  }
   for (int row = 0; row < labels->rows; ++row) {
     int32_t* label = labels->ptr<int32_t>(row);
     for (int col = 0; col < labels->cols; ++col) {
-      if (label[col] < 0) continue;
-      const int root = find(label[col]);
-      if (renumber[root] < 0) renumber[root] = next++;
-      label[col] = renumber[root];
+      if (label[col] >= 0) label[col] = relabel[label[col]];
     }
   }
   // Statistics of the merged regions: sums add, boxes join, and a perimeter is the length of
   // the boundaries that remain between different regions.
-  std::vector<RegionStats> merged(next);
+  merged.assign(next, RegionStats{});
   for (int r = 0; r < count; ++r) {
     const RegionStats& source = (*regions)[r];
-    RegionStats& region = merged[renumber[find(r)]];
+    RegionStats& region = merged[relabel[r]];
     region.bbox = region.area == 0 ? source.bbox : (region.bbox | source.bbox);
     region.area += source.area;
   }
@@ -252,34 +316,30 @@ int MergeFlat(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions,
     region.intensity = region.colour.v;
     region.saturation = static_cast<float>(sum[r][3] / area[r]);
   }
-  std::vector<RegionEdge> pairs;
-  pairs.reserve(edges->size());
-  for (const RegionEdge& edge : *edges) {
-    const int a = renumber[find(edge.a)], b = renumber[find(edge.b)];
+  pairs.clear();
+  for (const RegionEdge& edge : edges) {
+    const int a = relabel[edge.a], b = relabel[edge.b];
     if (a != b) pairs.push_back({std::min(a, b), std::max(a, b), edge.length});
   }
-  CombinePairs(next, pairs, edges);
-  for (const RegionEdge& edge : *edges) {
+  CombinePairs(next, pairs, &edges);
+  for (const RegionEdge& edge : edges) {
     merged[edge.a].perimeter += edge.length;
     merged[edge.b].perimeter += edge.length;
   }
-  *regions = std::move(merged);
+  regions->swap(merged);
   return next;
 }
-
-}  // namespace
 
 void Segmenter::SegmentCylinder(const cv::Mat& cylinder, Segmentation* out, const cv::Mat& mask) {
   const Stopwatch watch;
   const Bip& bip = builder_.Build(cylinder, policy_, mask);
   int regions = bip.LabelRoots(&out->labels);
   out->pyramid_levels = bip.num_levels();
-  std::vector<RegionEdge> edges;
-  AccumulateRegions(out->labels, regions, cylinder, &out->regions, &edges);
+  workspace_->AccumulateRegions(out->labels, regions, cylinder, &out->regions);
   if (options_.min_region_area > 1) {
-    regions = MergeFlat(options_.min_region_area, &out->labels, &out->regions, &edges);
+    regions = workspace_->MergeFlat(options_.min_region_area, &out->labels, &out->regions);
   }
-  BuildGraph(regions, edges, &out->graph);
+  workspace_->BuildGraph(regions, &out->graph);
   out->milliseconds = watch.ElapsedMs();
 }
 

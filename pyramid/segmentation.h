@@ -2,6 +2,7 @@
 #pragma once
 
 #include <boost/graph/adjacency_list.hpp>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -63,6 +64,9 @@ struct Segmentation {
 class Segmenter {
  public:
   explicit Segmenter(SegmentationOptions options = {});
+  ~Segmenter();
+  Segmenter(const Segmenter&) = delete;
+  Segmenter& operator=(const Segmenter&) = delete;
 
   // Segments an 8-bit BGR image.
   void Segment(const cv::Mat& bgr, Segmentation* out);
@@ -78,6 +82,9 @@ class Segmenter {
   HsvSimilarity policy_;
   BipBuilder builder_;
   cv::Mat cylinder_;
+  // Scratch buffers of the region statistics and the small-region merge, kept between calls.
+  struct Workspace;
+  std::unique_ptr<Workspace> workspace_;
 };
 
 // Paints each region with a distinct colour (hashing its index), black outside the mask.
