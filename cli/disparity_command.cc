@@ -58,8 +58,8 @@ DisparityOptions ResolveOptions(const DisparityArguments& args, bool subpixel_gi
   for (const std::string& assignment : args.sets) {
     if (assignment.rfind("disparity.", 0) != 0) {
       throw ConfigError("--set " + assignment +
-                        ": attend disparity takes disparity.KEY=VALUE "
-                        "only (max_disparity, window, subpixel, left_right_check, lr_tolerance)");
+                        ": attend disparity takes only disparity.KEY=VALUE, KEY one of "
+                        "max_disparity, window, subpixel, left_right_check, lr_tolerance");
     }
     root.Override(assignment);
   }
