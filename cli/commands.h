@@ -14,6 +14,9 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
 void AddSynthCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 void AddSegmentCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 void AddDisparityCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
+void AddTrackCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
+void AddEvalTrackingCommand(CLI::App& app, const std::string& command_line,
+                            CommandAction* action);
 void AddSkinTrainCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 
 }  // namespace attend

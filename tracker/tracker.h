@@ -1,0 +1,107 @@
+// The BIP template tracker (thesis chapter 4, SPEC 2.5).
+//
+// Every frame, one BIP is built over the union of the targets' regions of interest (ROI) with
+// a small T_max (over-segmentation, 4.2.2, 4.3). Each target's template is the regular part of
+// its last hierarchical representation: per level, the homogeneous cells of the target with
+// their colour, area and weight. From the template's working level (eq. 4.4) down, the
+// template is shifted over the ROI's regular cells of the same level, and the displacement with
+// the best weighted overlap (eq. 4.5, 4.6) is accepted when the overlap exceeds `min_overlap`
+// (4.2.3). The matched cells' regions of the over-segmentation are the target; the target is
+// then grown by neighbouring regions of similar colour (4.2.4), the template is updated
+// (eq. 4.7, 4.8) and the ROI for the next frame is the target's box plus a border epsilon
+// (4.2.6). A target not found is occluded: its weights decay by alpha and its ROI border grows
+// by one pixel a frame up to epsilon_max; when every weight reaches 0 it is lost (4.2.7).
+#pragma once
+
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+namespace attend {
+
+struct TrackerOptions {
+  float t_colour = 30.f;       // T_c: a template vertex matches a ROI vertex below it (eq. 4.6)
+  float t_oversegment = 10.f;  // T_co: T_max of the ROI's over-segmentation
+  float t_refine = 20.f;       // T_cr: colour threshold of the target refinement (4.2.4)
+  float alpha = 0.1f;          // forgetting constant of the template weights (eq. 4.8)
+  // ROI border and its maximum while the target is not found, in pixels at an image width of
+  // 128 (the thesis's); scaled by width / 128 (SPEC 2.5).
+  float epsilon = 6.f;
+  float epsilon_max = 12.f;
+  float working_area = 0.8f;  // T_A: share of the template's area at the working level (4.4)
+  float min_overlap = 0.7f;   // weighted overlap that accepts a displacement (4.2.3)
+
+  // The borders in pixels for images `width` wide (at least 1).
+  int EpsilonPixels(int width) const;
+  int EpsilonMaxPixels(int width) const;
+  // "" when valid; otherwise names the field and the broken constraint.
+  std::string Check() const;
+};
+
+enum class TrackState { kFound, kOccluded, kLost };
+// "found", "occluded", "lost" (the state column of tracks.csv, SPEC 3.2).
+const char* TrackStateName(TrackState state);
+
+// How vertices are compared: HSV cylinder colour, or "same skin class" for skin targets (a
+// binary skin map passed with each frame; thesis 5.1.2).
+enum class TrackSimilarity { kColour, kSkin };
+
+// One target in one frame.
+struct TrackResult {
+  int id = 0;
+  TrackState state = TrackState::kFound;
+  cv::Rect box;            // the target's bounding box; the last known one when not found
+  cv::Point2f centroid;    // of the target's pixels; the last known one when not found
+  int area = 0;            // target pixels this frame (0 when not found)
+  int level = -1;          // pyramid level where the template matched; -1 when not found
+  double overlap = 0.0;    // the accepted (or best) weighted overlap, 0..1
+  cv::Rect roi;            // the region of interest searched this frame
+};
+
+// Tracks any number of targets in one shared pyramid (4.3). Keeps its buffers between frames.
+class MultiTracker {
+ public:
+  explicit MultiTracker(TrackerOptions options = {});
+  ~MultiTracker();
+  MultiTracker(const MultiTracker&) = delete;
+  MultiTracker& operator=(const MultiTracker&) = delete;
+
+  // Starts a target in `frame` (8-bit BGR) from a mask of its pixels (CV_8UC1, frame size,
+  // non-zero = target) or from a box: the box is over-segmented and the regions lying mostly
+  // inside it are the target. For skin targets `skin` is the frame's binary skin map (CV_8UC1).
+  // Returns the new target's id (1, 2, ... in order of starting), or -1 when the mask or box
+  // holds no usable target (empty, or too thin for a template).
+  int StartFromMask(const cv::Mat& frame, const cv::Mat& mask,
+                    TrackSimilarity similarity = TrackSimilarity::kColour,
+                    const cv::Mat& skin = cv::Mat());
+  int StartFromBox(const cv::Mat& frame, const cv::Rect& box,
+                   TrackSimilarity similarity = TrackSimilarity::kColour,
+                   const cv::Mat& skin = cv::Mat());
+
+  // Searches every active target in `frame` and appends one result per target, in id order.
+  // A target reported lost is removed afterwards. `skin` is needed when a skin target exists.
+  void Track(const cv::Mat& frame, std::vector<TrackResult>* results,
+             const cv::Mat& skin = cv::Mat());
+
+  // The target's pixels in the last frame (CV_8UC1, frame size); empty when it was not found.
+  cv::Mat Mask(int id) const;
+  // The template weights of a level (for tests and displays): CV_32FC1 over the template's
+  // cells of that level, 0 where the template has no vertex; empty for an unknown id or level.
+  cv::Mat TemplateWeights(int id, int level) const;
+  // Stops tracking a target.
+  void Remove(int id);
+  // Ids of the targets being tracked.
+  std::vector<int> ids() const;
+  const TrackerOptions& options() const { return options_; }
+  // Milliseconds of the last Track() call.
+  double milliseconds() const { return milliseconds_; }
+
+ private:
+  struct Impl;
+  TrackerOptions options_;
+  std::unique_ptr<Impl> impl_;
+  double milliseconds_ = 0.0;
+};
+
+}  // namespace attend
