@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   attend::AddRunCommand(app, command_line, &action);
   attend::AddSynthCommand(app, command_line, &action);
   attend::AddSegmentCommand(app, command_line, &action);
+  attend::AddDisparityCommand(app, command_line, &action);
   attend::AddSkinTrainCommand(app, command_line, &action);
 
   try {

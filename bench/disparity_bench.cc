@@ -1,0 +1,695 @@
+// Benchmark (SPEC 5): the disparity estimator (stereo/disparity.h) against OpenCV's StereoBM
+// and StereoSGBM, on the same pairs, at the same size and disparity range, in the same run, on
+// one thread. Prints a markdown report; docs/DISPARITY.md holds one with its command.
+//
+//   disparity_bench [--data DIR] [--home DIR] [--repeat N] [--markdown FILE]
+//
+// Pairs: the four Middlebury pairs under DIR/middlebury (skipped with a message when absent),
+// at full size, and frames rendered from sequences/lab.yaml and sequences/occlusions.yaml with
+// their exact ground truth, plus the lab scene rendered at 640x480 for SPEC 5's size.
+//
+// What is timed, as the median of N rounds after one warm-up round (in each round every
+// method runs once, in turn, so that load from other processes falls on all of them alike):
+//   ours:  DisparityEstimator::Compute on the 8-bit BGR pair (its grey conversion included);
+//   BM:    grey conversion of both views + StereoBM::compute;
+//   SGBM:  grey conversion of both views + StereoSGBM::compute (MODE_SGBM); and once more on
+//          the BGR views directly (cn = 3), SGBM's best case.
+// OpenCV's fixed-point output (1/16 px) is converted to pixels and its invalid pixels are
+// evaluated twice: counted as bad, and filled from the nearest valid pixel on their row (the
+// smaller disparity of the two sides), both outside the timing.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "stereo/disparity.h"
+#include "synth/renderer.h"
+#include "synth/scene.h"
+#include "util/timer.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// OpenCV's parameters. StereoBM as in OpenCV's samples/cpp/stereo_match.cpp; StereoSGBM the
+// same with a 5x5 block and the penalties the OpenCV documentation recommends.
+constexpr int kBmBlockSize = 9;
+constexpr int kBmPreFilterCap = 31;
+constexpr int kBmTextureThreshold = 10;
+constexpr int kBmUniquenessRatio = 15;
+constexpr int kSgbmBlockSize = 5;
+constexpr int kSgbmPreFilterCap = 63;
+constexpr int kSgbmUniquenessRatio = 10;
+constexpr int kSpeckleWindowSize = 100;
+constexpr int kSpeckleRange = 32;
+constexpr int kDisp12MaxDiff = 1;
+
+// The synthetic scenes' frames and range: the nearest object of lab.yaml is at 22.5 px, of
+// occlusions.yaml at 18 px; at 640x480 the lab scene's disparities double.
+constexpr int kLabFrames[] = {0, 40, 80};
+constexpr int kOcclusionFrames[] = {0, 30, 65};
+constexpr int kSynthMaxDisparity = 32;
+constexpr int kLargeFrame = 40;
+constexpr int kLargeMaxDisparity = 64;
+
+struct Options {
+  std::string data_dir = ATTEND_SOURCE_ROOT "/../shared/data";
+  std::string home = ATTEND_SOURCE_ROOT;
+  int repeat = 7;
+  std::string markdown_path;
+};
+
+struct Pair {
+  std::string name;
+  std::string source;
+  cv::Mat left;          // CV_8UC3, BGR
+  cv::Mat right;         // CV_8UC3, BGR
+  cv::Mat ground_truth;  // CV_32FC1, pixels; 0 or not finite where unknown
+  int max_disparity = 0;
+};
+
+// numDisparities for OpenCV: the same range rounded up to a multiple of 16, as OpenCV needs.
+int OpenCvDisparities(int max_disparity) { return (max_disparity + 15) / 16 * 16; }
+
+void PrintUsage(std::ostream& out) {
+  out << "usage: disparity_bench [--data DIR] [--home DIR] [--repeat N] [--markdown FILE]\n"
+         "  --data DIR       reference data folder holding middlebury/ (default: the shared\n"
+         "                   data next to the source tree, " ATTEND_SOURCE_ROOT
+         "/../shared/data);\n"
+         "                   pairs that are missing are skipped with a message\n"
+         "  --home DIR       attend source tree, for sequences/*.yaml (default " ATTEND_SOURCE_ROOT
+         ")\n"
+         "  --repeat N       timed rounds after one warm-up round (default 7)\n"
+         "  --markdown FILE  also write the report to FILE\n";
+}
+
+// Returns false on a bad command line (after printing why).
+bool ParseArguments(int argc, char** argv, Options* options, bool* help) {
+  *help = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      *help = true;
+      return true;
+    }
+    if (arg != "--data" && arg != "--home" && arg != "--repeat" && arg != "--markdown") {
+      std::cerr << "disparity_bench: unknown argument '" << arg << "'\n";
+      return false;
+    }
+    if (i + 1 >= argc) {
+      std::cerr << "disparity_bench: " << arg << " needs a value\n";
+      return false;
+    }
+    const std::string value = argv[++i];
+    if (arg == "--data") {
+      options->data_dir = value;
+    } else if (arg == "--home") {
+      options->home = value;
+    } else if (arg == "--markdown") {
+      options->markdown_path = value;
+    } else {
+      char* end = nullptr;
+      const long repeat = std::strtol(value.c_str(), &end, 10);
+      if (end == value.c_str() || *end != '\0' || repeat < 1 || repeat > 10000) {
+        std::cerr << "disparity_bench: --repeat must be an integer in [1, 10000]\n";
+        return false;
+      }
+      options->repeat = static_cast<int>(repeat);
+    }
+  }
+  return true;
+}
+
+// Adds a Middlebury pair when its three files are readable; says why it is skipped otherwise.
+void AddMiddlebury(const fs::path& root, const std::string& name, const std::string& left_file,
+                   const std::string& right_file, const std::string& gt_file, double scale,
+                   int max_disparity, std::vector<Pair>* pairs) {
+  const fs::path folder = root / "middlebury" / name;
+  Pair pair;
+  pair.name = name;
+  pair.source = "Middlebury " + name + " " + left_file + ", " + right_file + "; " + gt_file +
+                " / " + std::to_string(static_cast<int>(scale));
+  pair.max_disparity = max_disparity;
+  pair.left = cv::imread((folder / left_file).string(), cv::IMREAD_COLOR);
+  pair.right = cv::imread((folder / right_file).string(), cv::IMREAD_COLOR);
+  const cv::Mat gt = cv::imread((folder / gt_file).string(), cv::IMREAD_UNCHANGED);
+  if (pair.left.empty() || pair.right.empty() || gt.empty()) {
+    std::cerr << "disparity_bench: skipping " << name << ": cannot read " << folder.string() << "/{"
+              << left_file << ", " << right_file << ", " << gt_file << "}\n";
+    return;
+  }
+  if (gt.channels() != 1 || pair.left.size() != pair.right.size() ||
+      gt.size() != pair.left.size()) {
+    std::cerr << "disparity_bench: skipping " << name << ": unexpected sizes or channels\n";
+    return;
+  }
+  gt.convertTo(pair.ground_truth, CV_32F, 1.0 / scale);
+  pairs->push_back(pair);
+}
+
+// The lab scene at twice its size: every length in pixels doubles (image, focal length, paths,
+// oscillations), so the picture is the same one at 640x480 with twice the disparities.
+attend::Scene Doubled(attend::Scene scene) {
+  scene.width *= 2;
+  scene.height *= 2;
+  scene.focal_px *= 2.0;
+  for (attend::SceneObject& object : scene.objects) {
+    for (attend::PathKeyframe& key : object.path) {
+      key.x *= 2.0;
+      key.y *= 2.0;
+    }
+    object.oscillation.amplitude_x *= 2.0;
+    object.oscillation.amplitude_y *= 2.0;
+  }
+  return scene;
+}
+
+void AddSynthetic(const attend::Scene& scene, const std::string& name, int frame, int max_disparity,
+                  std::vector<Pair>* pairs) {
+  const attend::SceneRenderer renderer(scene);
+  const attend::RenderedFrame rendered = renderer.Render(frame);
+  Pair pair;
+  pair.name = name + " #" + std::to_string(frame);
+  pair.source = "sequences/" + fs::path(scene.source).filename().string() + " frame " +
+                std::to_string(frame) + (scene.width != 320 ? " at twice the size" : "");
+  pair.left = rendered.left;
+  pair.right = rendered.right;
+  pair.ground_truth = rendered.disparity;
+  pair.max_disparity = max_disparity;
+  pairs->push_back(pair);
+}
+
+std::vector<Pair> LoadPairs(const Options& options, cv::Size* large_size) {
+  std::vector<Pair> pairs;
+  const fs::path root = fs::path(options.data_dir).lexically_normal();
+  if (!fs::is_directory(root / "middlebury")) {
+    std::cerr << "disparity_bench: skipping the Middlebury pairs: "
+              << (root / "middlebury").string() << " not found\n";
+  } else {
+    AddMiddlebury(root, "tsukuba", "im3.png", "im4.png", "disp3.pgm", 16.0, 16, &pairs);
+    AddMiddlebury(root, "venus", "im2.png", "im6.png", "disp2.pgm", 8.0, 20, &pairs);
+    AddMiddlebury(root, "teddy", "im2.png", "im6.png", "disp2.png", 4.0, 60, &pairs);
+    AddMiddlebury(root, "cones", "im2.png", "im6.png", "disp2.png", 4.0, 60, &pairs);
+  }
+  const std::string lab_path = options.home + "/sequences/lab.yaml";
+  const std::string occlusions_path = options.home + "/sequences/occlusions.yaml";
+  try {
+    const attend::Scene lab = attend::LoadScene(lab_path);
+    for (const int frame : kLabFrames) AddSynthetic(lab, "lab", frame, kSynthMaxDisparity, &pairs);
+    const attend::Scene occlusions = attend::LoadScene(occlusions_path);
+    for (const int frame : kOcclusionFrames) {
+      AddSynthetic(occlusions, "occlusions", frame, kSynthMaxDisparity, &pairs);
+    }
+    const attend::Scene large = Doubled(lab);
+    *large_size = cv::Size(large.width, large.height);
+    AddSynthetic(large, "lab 640x480", kLargeFrame, kLargeMaxDisparity, &pairs);
+  } catch (const std::exception& e) {
+    std::cerr << "disparity_bench: skipping the synthetic pairs: " << e.what() << "\n";
+  }
+  return pairs;
+}
+
+// OpenCV's CV_16SC1 output in 1/16 px to pixels; invalid pixels (below minDisparity 0) -1.
+cv::Mat FromFixedPoint(const cv::Mat& fixed) {
+  cv::Mat disparity(fixed.size(), CV_32FC1);
+  for (int y = 0; y < fixed.rows; ++y) {
+    const int16_t* in = fixed.ptr<int16_t>(y);
+    float* out = disparity.ptr<float>(y);
+    for (int x = 0; x < fixed.cols; ++x) out[x] = in[x] < 0 ? -1.f : in[x] / 16.f;
+  }
+  return disparity;
+}
+
+// OpenCV's map with every invalid pixel filled by the estimator's own rule, the one its
+// left-right check uses: the smaller of the nearest valid disparities to its left and right on
+// its row (rows without a valid pixel become 0).
+cv::Mat FillFromRow(const cv::Mat& disparity) {
+  cv::Mat filled = disparity.clone();
+  attend::FillInvalidDisparities(&filled);
+  return filled;
+}
+
+// The ground truth without the pixels that the right view cannot see, derived from the left
+// ground truth alone: a pixel whose match x - d lies outside the right image, or whose match
+// is covered by a pixel further right landing left of it or within half a pixel of it (a
+// nearer surface), becomes unknown.
+cv::Mat NonOccluded(const cv::Mat& ground_truth) {
+  cv::Mat visible = ground_truth.clone();
+  for (int y = 0; y < ground_truth.rows; ++y) {
+    const float* d = ground_truth.ptr<float>(y);
+    float* out = visible.ptr<float>(y);
+    float leftmost = std::numeric_limits<float>::infinity();  // min over x' > x of x' - d(x')
+    for (int x = ground_truth.cols - 1; x >= 0; --x) {
+      if (!(d[x] > 0.f) || !std::isfinite(d[x])) continue;
+      const float match = static_cast<float>(x) - d[x];
+      if (match < 0.f || leftmost < match + 0.5f) out[x] = 0.f;
+      leftmost = std::min(leftmost, match);
+    }
+  }
+  return visible;
+}
+
+// The number of pixels with known ground truth, and their largest disparity.
+int CountKnown(const cv::Mat& ground_truth, double* largest = nullptr) {
+  int known = 0;
+  float max = 0.f;
+  for (int y = 0; y < ground_truth.rows; ++y) {
+    const float* d = ground_truth.ptr<float>(y);
+    for (int x = 0; x < ground_truth.cols; ++x) {
+      if (!(d[x] > 0.f) || !std::isfinite(d[x])) continue;
+      ++known;
+      max = std::max(max, d[x]);
+    }
+  }
+  if (largest != nullptr) *largest = max;
+  return known;
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t half = values.size() / 2;
+  return values.size() % 2 == 1 ? values[half] : 0.5 * (values[half - 1] + values[half]);
+}
+
+// One method on one pair: Run() is the timed call; Disparity() converts its last output to
+// pixels (CV_32FC1, invalid < 0).
+struct Method {
+  std::string name;
+  bool opencv = false;
+  std::function<void()> run;
+  std::function<cv::Mat()> disparity;
+  std::vector<double> ms;
+};
+
+std::vector<Method> MakeMethods(const Pair& pair) {
+  std::vector<Method> methods;
+  struct Variant {
+    const char* name;
+    bool subpixel;
+    bool left_right_check;
+  };
+  for (const Variant& variant :
+       {Variant{"ours", false, false}, Variant{"ours --subpixel", true, false},
+        Variant{"ours --lr-check", false, true},
+        Variant{"ours --subpixel --lr-check", true, true}}) {
+    attend::DisparityOptions options;
+    options.max_disparity = pair.max_disparity;
+    options.subpixel = variant.subpixel;
+    options.left_right_check = variant.left_right_check;
+    auto estimator = std::make_shared<attend::DisparityEstimator>(options);
+    auto output = std::make_shared<cv::Mat>();
+    methods.push_back(
+        {variant.name,
+         false,
+         [estimator, output, &pair] { estimator->Compute(pair.left, pair.right, output.get()); },
+         [output] { return output->clone(); },
+         {}});
+  }
+
+  const int disparities = OpenCvDisparities(pair.max_disparity);
+  cv::Ptr<cv::StereoBM> bm = cv::StereoBM::create(disparities, kBmBlockSize);
+  bm->setPreFilterCap(kBmPreFilterCap);
+  bm->setTextureThreshold(kBmTextureThreshold);
+  bm->setUniquenessRatio(kBmUniquenessRatio);
+  bm->setSpeckleWindowSize(kSpeckleWindowSize);
+  bm->setSpeckleRange(kSpeckleRange);
+  bm->setDisp12MaxDiff(kDisp12MaxDiff);
+  auto grey = std::make_shared<std::pair<cv::Mat, cv::Mat>>();
+  auto bm_output = std::make_shared<cv::Mat>();
+  methods.push_back({"OpenCV StereoBM",
+                     true,
+                     [bm, grey, bm_output, &pair] {
+                       cv::cvtColor(pair.left, grey->first, cv::COLOR_BGR2GRAY);
+                       cv::cvtColor(pair.right, grey->second, cv::COLOR_BGR2GRAY);
+                       bm->compute(grey->first, grey->second, *bm_output);
+                     },
+                     [bm_output] { return FromFixedPoint(*bm_output); },
+                     {}});
+
+  for (const int channels : {1, 3}) {
+    const int area = kSgbmBlockSize * kSgbmBlockSize;
+    cv::Ptr<cv::StereoSGBM> sgbm = cv::StereoSGBM::create(
+        0, disparities, kSgbmBlockSize, 8 * channels * area, 32 * channels * area, kDisp12MaxDiff,
+        kSgbmPreFilterCap, kSgbmUniquenessRatio, kSpeckleWindowSize, kSpeckleRange,
+        cv::StereoSGBM::MODE_SGBM);
+    auto sgbm_grey = std::make_shared<std::pair<cv::Mat, cv::Mat>>();
+    auto output = std::make_shared<cv::Mat>();
+    methods.push_back({channels == 1 ? "OpenCV StereoSGBM" : "OpenCV StereoSGBM on BGR",
+                       true,
+                       [sgbm, sgbm_grey, output, channels, &pair] {
+                         if (channels == 3) {
+                           sgbm->compute(pair.left, pair.right, *output);
+                           return;
+                         }
+                         cv::cvtColor(pair.left, sgbm_grey->first, cv::COLOR_BGR2GRAY);
+                         cv::cvtColor(pair.right, sgbm_grey->second, cv::COLOR_BGR2GRAY);
+                         sgbm->compute(sgbm_grey->first, sgbm_grey->second, *output);
+                       },
+                       [output] { return FromFixedPoint(*output); },
+                       {}});
+  }
+  return methods;
+}
+
+// The accuracy of one disparity map; shares of the known ground-truth pixels.
+struct Accuracy {
+  double invalid = 0.0;
+  attend::BadPixelRates all;
+  attend::BadPixelRates non_occluded;
+};
+
+Accuracy Evaluate(const cv::Mat& disparity, const cv::Mat& ground_truth,
+                  const cv::Mat& non_occluded) {
+  Accuracy accuracy;
+  accuracy.all = attend::EvaluateDisparity(disparity, ground_truth);
+  accuracy.non_occluded = attend::EvaluateDisparity(disparity, non_occluded);
+  int invalid = 0;
+  for (int y = 0; y < disparity.rows; ++y) {
+    const float* d = disparity.ptr<float>(y);
+    const float* t = ground_truth.ptr<float>(y);
+    for (int x = 0; x < disparity.cols; ++x) {
+      if (t[x] > 0.f && std::isfinite(t[x]) && !(d[x] >= 0.f && std::isfinite(d[x]))) ++invalid;
+    }
+  }
+  accuracy.invalid =
+      accuracy.all.known > 0 ? static_cast<double>(invalid) / accuracy.all.known : 0.0;
+  return accuracy;
+}
+
+struct Row {
+  std::string method;
+  double ms = 0.0;
+  bool opencv = false;
+  Accuracy raw;     // invalid counted as bad
+  Accuracy filled;  // OpenCV: invalid filled from the row; ours: the same as raw
+};
+
+struct PairResult {
+  const Pair* pair = nullptr;
+  int known = 0;
+  int non_occluded = 0;
+  double max_truth = 0.0;
+  std::vector<Row> rows;
+  std::string failure;
+};
+
+PairResult RunPair(const Pair& pair, int repeat) {
+  PairResult result;
+  result.pair = &pair;
+  const cv::Mat non_occluded = NonOccluded(pair.ground_truth);
+  result.known = CountKnown(pair.ground_truth, &result.max_truth);
+  result.non_occluded = CountKnown(non_occluded);
+  try {
+    std::vector<Method> methods = MakeMethods(pair);
+    for (Method& method : methods) method.run();  // warm-up: buffers, caches
+    for (int round = 0; round < repeat; ++round) {
+      for (Method& method : methods) {
+        const attend::Stopwatch watch;
+        method.run();
+        method.ms.push_back(watch.ElapsedMs());
+      }
+    }
+    for (Method& method : methods) {
+      Row row;
+      row.method = method.name;
+      row.opencv = method.opencv;
+      row.ms = Median(method.ms);
+      const cv::Mat disparity = method.disparity();
+      row.raw = Evaluate(disparity, pair.ground_truth, non_occluded);
+      row.filled = method.opencv ? Evaluate(FillFromRow(disparity), pair.ground_truth, non_occluded)
+                                 : row.raw;
+      result.rows.push_back(row);
+    }
+  } catch (const std::exception& e) {
+    result.failure = e.what();
+    result.rows.clear();
+  }
+  return result;
+}
+
+std::string Fixed(double value, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
+  return buffer;
+}
+
+std::string Percent(double share) { return Fixed(100.0 * share, 2); }
+
+std::string Ratio(double numerator, double denominator) {
+  return denominator > 0.0 ? Fixed(numerator / denominator, 2) : "n/a";
+}
+
+std::string CpuModel() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const size_t colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(colon + 2);
+    }
+  }
+  return "unknown";
+}
+
+std::string UtcNow() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char buffer[32];
+  std::strftime(buffer, sizeof(buffer), "%Y-%m-%d %H:%M UTC", &utc);
+  return buffer;
+}
+
+const Row* FindRow(const PairResult& result, const std::string& method) {
+  for (const Row& row : result.rows) {
+    if (row.method == method) return &row;
+  }
+  return nullptr;
+}
+
+bool IsMiddlebury(const Pair& pair) { return pair.source.rfind("Middlebury ", 0) == 0; }
+
+// Bytes held by the estimator after one Compute on `pair` with each option set.
+struct MemoryRow {
+  std::string options;
+  size_t bytes = 0;
+};
+
+std::vector<MemoryRow> MeasureMemory(const Pair& pair) {
+  std::vector<MemoryRow> rows;
+  for (const int variant : {0, 1, 2, 3}) {
+    attend::DisparityOptions options;
+    options.max_disparity = pair.max_disparity;
+    options.subpixel = (variant & 1) != 0;
+    options.left_right_check = (variant & 2) != 0;
+    attend::DisparityEstimator estimator(options);
+    cv::Mat disparity;
+    estimator.Compute(pair.left, pair.right, &disparity);
+    std::string name = "defaults";
+    if (variant == 1) name = "--subpixel";
+    if (variant == 2) name = "--lr-check";
+    if (variant == 3) name = "--subpixel --lr-check";
+    rows.push_back({name, estimator.buffer_bytes()});
+  }
+  return rows;
+}
+
+void WriteReport(const Options& options, const std::vector<PairResult>& results, const Pair* large,
+                 const std::vector<MemoryRow>& memory, std::ostream& out) {
+  const attend::DisparityOptions defaults;
+  out << "Date: " << UtcNow() << "; CPU: " << CpuModel()
+      << "; nproc: " << std::thread::hardware_concurrency() << "; OpenCV " << CV_VERSION
+      << "; cv::getNumThreads() = " << cv::getNumThreads() << "; repetitions: " << options.repeat
+      << " (median, after one warm-up round; the methods take turns, one call each per "
+         "round).\n\n";
+  out << "Ours: DisparityEstimator with window " << defaults.window << ", lr_tolerance "
+      << defaults.lr_tolerance
+      << ", disparities 0..D-1, on the BGR pair (grey conversion inside, timed). OpenCV: "
+         "numDisparities = D rounded up to a multiple of 16 (OpenCV requires it; the range "
+         "searched is then 0..numDisparities-1), minDisparity 0, grey conversion of both views "
+         "timed with the call. StereoBM: blockSize "
+      << kBmBlockSize << ", preFilterCap " << kBmPreFilterCap << ", textureThreshold "
+      << kBmTextureThreshold << ", uniquenessRatio " << kBmUniquenessRatio
+      << ". StereoSGBM (MODE_SGBM): blockSize " << kSgbmBlockSize << ", P1 = 8 cn blockSize^2, "
+      << "P2 = 32 cn blockSize^2 (cn = 1 on grey, 3 on BGR), preFilterCap " << kSgbmPreFilterCap
+      << ", uniquenessRatio " << kSgbmUniquenessRatio << ". Both: speckleWindowSize "
+      << kSpeckleWindowSize << ", speckleRange " << kSpeckleRange << ", disp12MaxDiff "
+      << kDisp12MaxDiff << ".\n\n";
+  out << "bad1, bad2: share of the pixels with known ground truth where |d - d_gt| > 1 px, "
+         "> 2 px (SPEC 4), invalid pixels counted as bad. invalid: share of those pixels "
+         "without a disparity. OpenCV rows appear twice: as computed (invalid = bad) and "
+         "filled (every invalid pixel takes the smaller of the nearest valid disparities on "
+         "its row, left and right, by attend::FillInvalidDisparities, the fill of our "
+         "--lr-check; a row without a valid pixel becomes 0). non-occ: the same over the pixels "
+         "the right view sees, "
+         "derived from the left ground truth (a pixel is occluded when its match x - d lies "
+         "outside the right image or when a pixel to its right lands left of its match or "
+         "within half a pixel of it).\n\n";
+
+  out << "### Pairs\n\n";
+  out << "| pair | source | size | known px | non-occ px | max GT disparity | D ours | D OpenCV "
+         "|\n";
+  out << "|---|---|---|---:|---:|---:|---:|---:|\n";
+  for (const PairResult& r : results) {
+    const Pair& p = *r.pair;
+    out << "| " << p.name << " | " << p.source << " | " << p.left.cols << "x" << p.left.rows
+        << " | " << r.known << " | " << r.non_occluded << " | " << Fixed(r.max_truth, 2) << " | "
+        << p.max_disparity << " | " << OpenCvDisparities(p.max_disparity) << " |\n";
+  }
+
+  out << "\n### All methods (percentages)\n\n";
+  out << "| pair | method | ms | invalid | bad1 | bad2 | bad1 non-occ | bad2 non-occ |\n";
+  out << "|---|---|---:|---:|---:|---:|---:|---:|\n";
+  for (const PairResult& r : results) {
+    if (!r.failure.empty()) {
+      out << "| " << r.pair->name << " | failed: " << r.failure << " | | | | | | |\n";
+      continue;
+    }
+    for (const Row& row : r.rows) {
+      const auto line = [&](const std::string& label, const Accuracy& a) {
+        out << "| " << r.pair->name << " | " << label << " | " << Fixed(row.ms, 1) << " | "
+            << Percent(a.invalid) << " | " << Percent(a.all.bad1) << " | " << Percent(a.all.bad2)
+            << " | " << Percent(a.non_occluded.bad1) << " | " << Percent(a.non_occluded.bad2)
+            << " |\n";
+      };
+      line(row.method, row.raw);
+      if (row.opencv) line(row.method + ", filled", row.filled);
+    }
+  }
+
+  out << "\n### Ours (defaults) against OpenCV, filled (bad1 in %, all known pixels)\n\n";
+  out << "| pair | size | D | ours ms | BM ms | SGBM ms | SGBM / ours time | ours bad1 | BM bad1 "
+         "| SGBM bad1 | SGBM on BGR bad1 | ours / BM bad1 | ours / SGBM bad1 |\n";
+  out << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const PairResult& r : results) {
+    const Row* ours = FindRow(r, "ours");
+    const Row* bm = FindRow(r, "OpenCV StereoBM");
+    const Row* sgbm = FindRow(r, "OpenCV StereoSGBM");
+    const Row* sgbm_bgr = FindRow(r, "OpenCV StereoSGBM on BGR");
+    if (ours == nullptr || bm == nullptr || sgbm == nullptr || sgbm_bgr == nullptr) continue;
+    const Pair& p = *r.pair;
+    out << "| " << p.name << " | " << p.left.cols << "x" << p.left.rows << " | " << p.max_disparity
+        << " | " << Fixed(ours->ms, 1) << " | " << Fixed(bm->ms, 1) << " | " << Fixed(sgbm->ms, 1)
+        << " | " << Ratio(sgbm->ms, ours->ms) << "x | " << Percent(ours->raw.all.bad1) << " | "
+        << Percent(bm->filled.all.bad1) << " | " << Percent(sgbm->filled.all.bad1) << " | "
+        << Percent(sgbm_bgr->filled.all.bad1) << " | "
+        << Ratio(ours->raw.all.bad1, bm->filled.all.bad1) << " | "
+        << Ratio(ours->raw.all.bad1, sgbm->filled.all.bad1) << " |\n";
+  }
+
+  // SPEC 5: faster than StereoSGBM at the same size and range; more accurate than StereoBM on
+  // the Middlebury pairs, with SGBM's accuracy as the goal.
+  out << "\n### SPEC 5 by option set (pairs where ours wins)\n\n";
+  out << "| options | faster than SGBM, all pairs | bad1 below BM as computed, Middlebury | bad1 "
+         "below BM filled, Middlebury | bad1 below SGBM filled, Middlebury |\n";
+  out << "|---|---:|---:|---:|---:|\n";
+  for (const char* variant :
+       {"ours", "ours --subpixel", "ours --lr-check", "ours --subpixel --lr-check"}) {
+    int compared = 0, faster = 0, middlebury = 0, below_bm = 0, below_bm_filled = 0, below_sgbm = 0;
+    for (const PairResult& r : results) {
+      const Row* ours = FindRow(r, variant);
+      const Row* bm = FindRow(r, "OpenCV StereoBM");
+      const Row* sgbm = FindRow(r, "OpenCV StereoSGBM");
+      if (ours == nullptr || bm == nullptr || sgbm == nullptr) continue;
+      ++compared;
+      if (ours->ms < sgbm->ms) ++faster;
+      if (!IsMiddlebury(*r.pair)) continue;
+      ++middlebury;
+      if (ours->raw.all.bad1 < bm->raw.all.bad1) ++below_bm;
+      if (ours->raw.all.bad1 < bm->filled.all.bad1) ++below_bm_filled;
+      if (ours->raw.all.bad1 < sgbm->filled.all.bad1) ++below_sgbm;
+    }
+    const auto of = [](int count, int total) {
+      return std::to_string(count) + " of " + std::to_string(total);
+    };
+    out << "| " << variant << " | " << of(faster, compared) << " | " << of(below_bm, middlebury)
+        << " | " << of(below_bm_filled, middlebury) << " | " << of(below_sgbm, middlebury)
+        << " |\n";
+  }
+
+  if (large != nullptr && !memory.empty()) {
+    out << "\n### Estimator buffers at " << large->left.cols << "x" << large->left.rows
+        << ", D = " << large->max_disparity << " (" << large->source << ")\n\n";
+    out << "| options | buffer_bytes | MB |\n|---|---:|---:|\n";
+    for (const MemoryRow& row : memory) {
+      out << "| " << row.options << " | " << row.bytes << " | "
+          << Fixed(static_cast<double>(row.bytes) / (1024.0 * 1024.0), 1) << " |\n";
+    }
+    out << "\nSPEC 5 target: under 128 MB (MB = 2^20 bytes here).\n";
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  bool help = false;
+  if (!ParseArguments(argc, argv, &options, &help)) {
+    PrintUsage(std::cerr);
+    return 2;
+  }
+  if (help) {
+    PrintUsage(std::cout);
+    return 0;
+  }
+  cv::setNumThreads(1);
+
+  cv::Size large_size;
+  const std::vector<Pair> pairs = LoadPairs(options, &large_size);
+  if (pairs.empty()) {
+    std::cerr << "disparity_bench: no pairs to run\n";
+    return 1;
+  }
+  std::vector<PairResult> results;
+  const Pair* large = nullptr;
+  for (const Pair& pair : pairs) {
+    std::cerr << "disparity_bench: " << pair.name << " (" << pair.left.cols << "x" << pair.left.rows
+              << ", D " << pair.max_disparity << ")\n";
+    results.push_back(RunPair(pair, options.repeat));
+    if (!results.back().failure.empty()) {
+      std::cerr << "disparity_bench: " << pair.name << " failed: " << results.back().failure
+                << "\n";
+    }
+    if (pair.left.size() == large_size) large = &pair;
+  }
+  std::vector<MemoryRow> memory;
+  if (large != nullptr) {
+    try {
+      memory = MeasureMemory(*large);
+    } catch (const std::exception& e) {
+      std::cerr << "disparity_bench: buffer measurement failed: " << e.what() << "\n";
+    }
+  }
+
+  std::ostringstream report;
+  WriteReport(options, results, large, memory, report);
+  std::cout << report.str();
+  if (!options.markdown_path.empty()) {
+    std::ofstream file(options.markdown_path);
+    file << report.str();
+    if (!file) {
+      std::cerr << "disparity_bench: cannot write " << options.markdown_path << "\n";
+      return 1;
+    }
+  }
+  return 0;
+}

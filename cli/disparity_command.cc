@@ -1,0 +1,325 @@
+// attend disparity: the dense disparity map of one rectified stereo pair (SPEC 2.3, 3.2;
+// docs/DISPARITY.md), with the Middlebury bad-pixel rates of SPEC 4 when ground truth is given.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <optional>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "cli/commands.h"
+#include "config/param_block.h"
+#include "io/pfm.h"
+#include "stereo/disparity.h"
+#include "util/error.h"
+
+namespace attend {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DisparityArguments {
+  std::string left;
+  std::string right;
+  std::string out;
+  std::optional<int> max_disparity;
+  std::optional<int> window;
+  bool subpixel = false;
+  bool left_right_check = false;
+  std::string gt;
+  double gt_scale = 1.0;
+  std::vector<std::string> sets;
+};
+
+std::string SizeText(const cv::Mat& image) {
+  return std::to_string(image.cols) + "x" + std::to_string(image.rows);
+}
+
+std::string Lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+// The options: DisparityOptions' defaults, then the `disparity.*` keys of --set, then the
+// flags. A key set both ways is a usage error rather than a silent choice of one of them.
+DisparityOptions ResolveOptions(const DisparityArguments& args, bool subpixel_given,
+                                bool lr_check_given) {
+  ParamBlock root = ParamBlock::Parse("", "--set");
+  for (const std::string& assignment : args.sets) {
+    if (assignment.rfind("disparity.", 0) != 0) {
+      throw ConfigError("--set " + assignment +
+                        ": attend disparity takes only disparity.KEY=VALUE, KEY one of "
+                        "max_disparity, window, subpixel, left_right_check, lr_tolerance");
+    }
+    root.Override(assignment);
+  }
+  const ParamBlock block = root.Child("disparity");
+  root.CheckNoUnknownKeys();
+
+  DisparityOptions options;
+  options.max_disparity = block.GetInt("max_disparity", options.max_disparity, Range::AtLeast(1));
+  options.window = block.GetInt("window", options.window, Range::AtLeast(1));
+  options.subpixel = block.GetBool("subpixel", options.subpixel);
+  options.left_right_check = block.GetBool("left_right_check", options.left_right_check);
+  options.lr_tolerance = block.GetInt("lr_tolerance", options.lr_tolerance, Range::AtLeast(0));
+  block.CheckNoUnknownKeys();
+
+  const auto only_one = [&block](const std::string& flag, const std::string& key) {
+    if (block.Has(key)) {
+      throw ConfigError(flag + " and " + block.Where(key) + " both set disparity." + key +
+                        "; give one");
+    }
+  };
+  if (args.max_disparity) {
+    only_one("--max-disparity", "max_disparity");
+    options.max_disparity = *args.max_disparity;
+  }
+  if (args.window) {
+    only_one("--window", "window");
+    options.window = *args.window;
+  }
+  if (subpixel_given) {
+    only_one("--subpixel", "subpixel");
+    options.subpixel = true;
+  }
+  if (lr_check_given) {
+    only_one("--lr-check", "left_right_check");
+    options.left_right_check = true;
+  }
+  const std::string error = options.Check();
+  if (!error.empty()) throw ConfigError("disparity options: " + error);
+  return options;
+}
+
+// 8-bit grey or BGR, as the estimator takes them: grey files stay grey, colour files become
+// BGR (alpha dropped) and 16-bit samples are scaled to 8 bits.
+cv::Mat ReadStereoImage(const std::string& path) {
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) throw InputError(path + ": no such image file");
+  cv::Mat image;
+  try {
+    image = cv::imread(path, cv::IMREAD_ANYCOLOR);
+  } catch (const cv::Exception& e) {
+    throw InputError(path + ": cannot be decoded: " + e.err);
+  }
+  if (image.empty()) {
+    throw InputError(path + ": cannot read as an image (empty, corrupt or unsupported format)");
+  }
+  return image;
+}
+
+// Ground truth in pixels (CV_32FC1): a one-channel PFM, or a one-channel 8- or 16-bit image,
+// each value divided by `scale`. Zero (and, in a PFM, infinity) stays unknown.
+cv::Mat ReadGroundTruth(const std::string& path, double scale) {
+  cv::Mat disparity;
+  if (Lowercase(fs::path(path).extension().string()) == ".pfm") {
+    const cv::Mat map = ReadPfm(path);
+    if (map.channels() != 1) {
+      throw InputError(path +
+                       ": ground truth must be a one-channel PFM (Pf), not a three-channel "
+                       "one");
+    }
+    disparity = map;
+  } else {
+    std::error_code error;
+    if (!fs::is_regular_file(path, error)) throw InputError(path + ": no such ground-truth file");
+    cv::Mat image;
+    try {
+      image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception& e) {
+      throw InputError(path + ": cannot be decoded: " + e.err);
+    }
+    if (image.empty()) {
+      throw InputError(path + ": cannot read as an image (empty, corrupt or unsupported format)");
+    }
+    if (image.channels() != 1 || (image.depth() != CV_8U && image.depth() != CV_16U)) {
+      throw InputError(path + ": ground truth must be one channel of 8 or 16 bits, got " +
+                       std::to_string(image.channels()) + " channel(s) of " +
+                       (image.depth() == CV_8U    ? "8"
+                        : image.depth() == CV_16U ? "16"
+                                                  : "other") +
+                       " bits");
+    }
+    image.convertTo(disparity, CV_32F);
+  }
+  if (scale != 1.0) disparity /= scale;
+  return disparity;
+}
+
+// Writes the map next to its destination and renames it into place, so that the destination
+// is either the complete new map or untouched.
+void WriteMapAtomically(const std::string& out, const cv::Mat& disparity) {
+  const fs::path path(out);
+  const fs::path parent = path.parent_path();
+  std::error_code error;
+  if (!parent.empty()) {
+    fs::create_directories(parent, error);
+    if (error) {
+      throw OutputError(parent.string() + ": cannot create the folder (" + error.message() + ")");
+    }
+  }
+  const fs::path temporary =
+      parent / ("." + path.filename().string() + ".tmp" + std::to_string(getpid()));
+  try {
+    WritePfm(temporary.string(), disparity);
+  } catch (const Error& e) {
+    fs::remove(temporary, error);
+    throw OutputError(out + ": cannot write the map (" + e.what() + ")");
+  }
+  fs::rename(temporary, path, error);
+  if (error) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw OutputError(out + ": cannot write the map (" + error.message() + ")");
+  }
+}
+
+int Disparity(const DisparityArguments& args, bool subpixel_given, bool lr_check_given) {
+  if (Lowercase(fs::path(args.out).extension().string()) != ".pfm") {
+    throw ConfigError("--out " + args.out + ": the map is written as PFM; name a .pfm file");
+  }
+  std::error_code error;
+  if (fs::is_directory(args.out, error)) {
+    throw OutputError("--out " + args.out + ": is a folder; name a .pfm file");
+  }
+  const DisparityOptions options = ResolveOptions(args, subpixel_given, lr_check_given);
+
+  // Every input is read and checked before anything is computed or written.
+  const cv::Mat left = ReadStereoImage(args.left);
+  const cv::Mat right = ReadStereoImage(args.right);
+  if (left.size() != right.size()) {
+    throw InputError(args.left + " is " + SizeText(left) + " but " + args.right + " is " +
+                     SizeText(right) + "; a stereo pair must have one size");
+  }
+  if (options.max_disparity >= left.cols) {
+    throw InputError(args.left + ": the images are " + SizeText(left) +
+                     "; the disparity range 0.." + std::to_string(options.max_disparity - 1) +
+                     " (max_disparity " + std::to_string(options.max_disparity) +
+                     ") must be below the width " + std::to_string(left.cols));
+  }
+  cv::Mat ground_truth;
+  if (!args.gt.empty()) {
+    ground_truth = ReadGroundTruth(args.gt, args.gt_scale);
+    if (ground_truth.size() != left.size()) {
+      throw InputError(args.gt + ": the ground truth is " + SizeText(ground_truth) + " but " +
+                       args.left + " is " + SizeText(left));
+    }
+  }
+
+  DisparityEstimator estimator(options);
+  cv::Mat disparity;
+  estimator.Compute(left, right, &disparity);
+  ATTEND_CHECK(disparity.type() == CV_32FC1 && disparity.size() == left.size())
+      << "the estimator returned type " << disparity.type() << " of " << SizeText(disparity);
+  WriteMapAtomically(args.out, disparity);
+
+  nlohmann::json report = {{"left", args.left},
+                           {"right", args.right},
+                           {"out", args.out},
+                           {"width", left.cols},
+                           {"height", left.rows},
+                           {"milliseconds", estimator.milliseconds()},
+                           {"buffer_bytes", estimator.buffer_bytes()},
+                           {"options",
+                            {{"max_disparity", options.max_disparity},
+                             {"window", options.window},
+                             {"subpixel", options.subpixel},
+                             {"left_right_check", options.left_right_check},
+                             {"lr_tolerance", options.lr_tolerance}}}};
+  if (!ground_truth.empty()) {
+    const BadPixelRates rates = EvaluateDisparity(disparity, ground_truth);
+    report["gt"] = args.gt;
+    report["gt_scale"] = args.gt_scale;
+    report["known_pixels"] = rates.known;
+    report["bad1"] = rates.bad1;
+    report["bad2"] = rates.bad2;
+  }
+  std::cout << report.dump(2) << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+void AddDisparityCommand(CLI::App& app, const std::string&, CommandAction* action) {
+  auto args = std::make_shared<DisparityArguments>();
+  CLI::App* command = app.add_subcommand(
+      "disparity",
+      "Dense disparity of a rectified stereo pair by box-filtered ZNCC and Sun's two-stage "
+      "dynamic programming (docs/DISPARITY.md). LEFT and RIGHT are read as 8-bit images (grey "
+      "stays grey, colour is converted to grey by the estimator, 16-bit images are scaled to 8 "
+      "bits); a left pixel (x, y) matches the right pixel (x - d, y). Writes the left view's "
+      "map to OUT as PFM in pixels and prints one JSON object: the estimator's milliseconds, "
+      "the size, the options and, with --gt, the bad-pixel rates bad1 and bad2 (shares of the "
+      "known ground-truth pixels off by more than 1 and 2 px). Options not given take "
+      "DisparityOptions' defaults; each can be given as a flag or with --set, not both.");
+  command->add_option("LEFT", args->left, "Left image")->required();
+  command->add_option("RIGHT", args->right, "Right image")->required();
+  command
+      ->add_option("--out", args->out,
+                   "Disparity map to write (.pfm; its folder is created; an existing file is "
+                   "replaced only once the new map is complete)")
+      ->required();
+  command->add_option("--max-disparity", args->max_disparity,
+                      "D: disparities 0..D-1 are searched; below the image width (default " +
+                          std::to_string(DisparityOptions{}.max_disparity) + ")");
+  command->add_option("--window", args->window,
+                      "Side of the square ZNCC window, odd (default " +
+                          std::to_string(DisparityOptions{}.window) + ")");
+  CLI::Option* subpixel =
+      command->add_flag("--subpixel", args->subpixel, "Sub-pixel refinement by a parabola fit");
+  CLI::Option* lr_check = command->add_flag(
+      "--lr-check", args->left_right_check,
+      "Left-right consistency check; inconsistent pixels are filled from their row");
+  CLI::Option* gt = command->add_option(
+      "--gt", args->gt,
+      "Ground truth of the left view: a PFM in pixels, or a one-channel 8- or 16-bit image "
+      "(PNG, PGM) holding disparity x --gt-scale; 0 (or infinity in a PFM) is unknown");
+  command
+      ->add_option("--gt-scale", args->gt_scale,
+                   "The ground truth's values are divided by this (default 1; Middlebury: "
+                   "tsukuba 16, venus 8, teddy and cones 4)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            double value = 0.0;
+            try {
+              size_t used = 0;
+              value = std::stod(text, &used);
+              if (used != text.size()) value = 0.0;
+            } catch (const std::exception&) {
+              value = 0.0;
+            }
+            return std::isfinite(value) && value > 0.0
+                       ? std::string()
+                       : "'" + text + "' is not a finite number > 0";
+          },
+          "POSITIVE"))
+      ->needs(gt);
+  command
+      ->add_option("--set", args->sets,
+                   "Set an option, the value parsed as YAML: --set disparity.KEY=VALUE with KEY "
+                   "one of max_disparity, window, subpixel, left_right_check, lr_tolerance "
+                   "(repeatable)")
+      ->type_name("KEY=VALUE")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  command->callback([args, action, subpixel, lr_check] {
+    const bool subpixel_given = subpixel->count() > 0;
+    const bool lr_check_given = lr_check->count() > 0;
+    *action = [args, subpixel_given, lr_check_given] {
+      return Disparity(*args, subpixel_given, lr_check_given);
+    };
+  });
+}
+
+}  // namespace attend
