@@ -144,11 +144,12 @@ ATTEND_VECTOR_CLONES void MaximumSurfaceRow(const float* costs, int width, int d
     for (int d = 0; d < depth; ++d) {
       // Ties keep the disparity, then take the smaller one, then a step, then the jump.
       const float same = p[d], below = p[d - 1], above = p[d + 1];
-      const float step = std::max(same, std::max(below, above));
-      const float best = std::max(step, jump);
-      code[d] = same == best ? kFromSame
-                             : (below == best ? kFromBelow : (above == best ? kFromAbove : kJump));
-      out[d] = cx[d] + best;
+      const float side = std::max(below, above);
+      const float step = std::max(same, side);
+      const uint8_t step_code =
+          same >= side ? kFromSame : (below >= above ? kFromBelow : kFromAbove);
+      code[d] = jump > step ? kJump : step_code;
+      out[d] = cx[d] + std::max(step, jump);
     }
     uint8_t* __restrict column = back + static_cast<size_t>(x) * packed;
     for (int k = 0; k < packed; ++k) {
