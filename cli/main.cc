@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   attend::AddSynthCommand(app, command_line, &action);
   attend::AddSegmentCommand(app, command_line, &action);
   attend::AddDisparityCommand(app, command_line, &action);
+  attend::AddEvalCommand(app, command_line, &action);
   attend::AddSkinTrainCommand(app, command_line, &action);
 
   try {

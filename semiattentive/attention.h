@@ -30,10 +30,10 @@
 namespace attend {
 
 struct SelectOptions {
-  float min_saliency = 0.35f;  // mean inhibited saliency of a candidate region, 0..1
+  float min_saliency = 0.2f;   // mean inhibited saliency of a candidate region, 0..1
   int min_area = 120;          // pixels, at the working size
   int max_new = 2;             // targets started in one frame
-  int max_targets = 8;         // targets active at once
+  int max_targets = 12;        // targets active at once
   // A colour region larger than this share of the image is background, never a target.
   float max_area_fraction = 0.2f;
   // T_max of the BIP that segments the saliency map, in saliency units times 255.
