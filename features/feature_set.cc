@@ -8,7 +8,7 @@
 namespace attend {
 
 struct FeatureSet::Member {
-  const FeatureRegistry::Entry* entry;
+  FeatureRegistry::Entry entry;  // a copy: the set may outlive the registry
   std::unique_ptr<FeatureMap> feature;
 };
 
@@ -23,7 +23,7 @@ FeatureSet::FeatureSet(const std::vector<FeatureSpec>& specs, const FeatureRegis
                                    "features." +
                                    spec.name + ".enabled=false)");
     }
-    members_.push_back({registry.Find(spec.name), std::move(feature)});
+    members_.push_back({*registry.Find(spec.name), std::move(feature)});
     results_.push_back({spec.name, spec.weight, cv::Mat(), 0.0});
   }
 }
@@ -38,7 +38,7 @@ void FeatureSet::Compute(const FrameContext& context, bool concurrent) {
       const Stopwatch stopwatch;
       members_[i].feature->Compute(context, &results_[i].map);
       results_[i].milliseconds = stopwatch.ElapsedMs();
-      CheckFeatureOutput(*members_[i].entry, results_[i].map, context.size());
+      CheckFeatureOutput(members_[i].entry, results_[i].map, context.size());
     } catch (...) {
       errors[i] = std::current_exception();
     }

@@ -1,0 +1,213 @@
+// The semi-attentive stage (SPEC 2.4): the whole per-frame pipeline on rendered scenes whose
+// ground truth is exact, and the stage alone on drawn frames with chosen saliency maps.
+#include "semiattentive/attention.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "colour/colour.h"
+#include "features/builtin.h"
+#include "pipeline/frame_pipeline.h"
+#include "pipeline/run_evaluation.h"
+#include "synth/renderer.h"
+#include "synth/scene.h"
+#include "tests/support/temp_dir.h"
+
+namespace attend {
+namespace {
+
+// Runs the pipeline (default configuration without disparity, for speed) over a scene's
+// frames; returns the records and the ground truth.
+struct SceneRun {
+  std::vector<FrameRecord> records;
+  std::vector<GtObject> truth;
+  std::vector<cv::Mat> inhibited;
+};
+
+SceneRun RunScene(const std::string& scene_yaml, int frames) {
+  const SceneRenderer renderer(ParseScene(scene_yaml, "test scene"));
+  AttendOptions options;
+  options.features = ReadFeatureList(
+      ParamBlock::Parse("features: [{name: colour_contrast}, {name: intensity_contrast}, "
+                        "{name: skin}]",
+                        "test.yaml"),
+      "features");
+  options.threads = 1;
+  FeatureSetup setup;
+  setup.home = testing::ProjectRoot();
+  options.attention.skin_model = setup.home + "/configs/skin_tsl.yaml";
+  FramePipeline pipeline(options, BuiltinFeatures(), setup);
+  SceneRun run;
+  for (int i = 0; i < frames; ++i) {
+    const RenderedFrame rendered = renderer.Render(i);
+    StereoFrame frame;
+    frame.index = i;
+    frame.left = rendered.left;
+    frame.right = rendered.right;
+    FrameRecord record;
+    record.frame = i;
+    pipeline.Process(frame, &record);
+    run.records.push_back(record);
+    run.truth.insert(run.truth.end(), rendered.objects.begin(), rendered.objects.end());
+    run.inhibited.push_back(pipeline.inhibited().clone());
+  }
+  return run;
+}
+
+const char kHeader[] = R"(
+width: 320
+height: 240
+frames: 60
+seed: 3
+camera: {focal_px: 300, baseline_m: 0.12}
+noise: {left: 1.0, right: 1.0}
+background: {depth: 6.0, colour: [130, 130, 130], texture: 10}
+objects:
+)";
+
+TEST(Attention, ThreeSalientObjectsAreAttendedOnceEach) {
+  const std::string scene = std::string(kHeader) + R"(
+  - {id: 1, shape: rectangle, size: [0.4, 0.3], colour: [210, 40, 40], path: [{frame: 0, x: 70, y: 70, depth: 3}]}
+  - {id: 2, shape: ellipse, size: [0.3, 0.3], colour: [40, 80, 210], path: [{frame: 0, x: 230, y: 80, depth: 3}]}
+  - {id: 3, shape: rectangle, size: [0.35, 0.35], colour: [40, 180, 60], path: [{frame: 0, x: 160, y: 180, depth: 3}]}
+)";
+  const SceneRun run = RunScene(scene, 20);
+  const AttentionScores scores = EvaluateAttention(run.records, run.truth);
+  EXPECT_EQ(scores.objects, 3);
+  EXPECT_EQ(scores.attended, 3);
+  for (const ObjectScore& object : scores.per_object) {
+    EXPECT_GE(object.first_attended, 0) << "object " << object.id;
+    EXPECT_LT(object.first_attended, 5) << "object " << object.id;
+  }
+  EXPECT_EQ(scores.revisits, 0);
+  EXPECT_EQ(scores.identity_switches, 0);
+}
+
+TEST(Attention, AnObjectEnteringIsAttendedWithinFiveFrames) {
+  const std::string scene = std::string(kHeader) + R"(
+  - {id: 1, shape: rectangle, size: [0.4, 0.3], colour: [210, 40, 40], path: [{frame: 0, x: 80, y: 80, depth: 3}]}
+  - {id: 2, shape: rectangle, size: [0.4, 0.4], colour: [230, 200, 30], entry: 30,
+     path: [{frame: 30, x: 200, y: 150, depth: 3}]}
+)";
+  const SceneRun run = RunScene(scene, 40);
+  const AttentionScores scores = EvaluateAttention(run.records, run.truth);
+  ASSERT_EQ(scores.objects, 2);
+  const ObjectScore& entering = scores.per_object[1];
+  EXPECT_EQ(entering.first_visible, 30);
+  EXPECT_GE(entering.first_attended, 30);
+  EXPECT_LE(entering.first_attended, 35);
+  EXPECT_EQ(scores.revisits, 0);
+}
+
+TEST(Attention, AMovingObjectKeepsItsIdentityAndItsInhibition) {
+  const std::string scene = std::string(kHeader) + R"(
+  - {id: 1, shape: ellipse, size: [0.35, 0.35], colour: [40, 80, 210],
+     path: [{frame: 0, x: 60, y: 120, depth: 3}, {frame: 40, x: 260, y: 110, depth: 3}]}
+)";
+  const SceneRun run = RunScene(scene, 40);
+  const AttentionScores scores = EvaluateAttention(run.records, run.truth);
+  EXPECT_EQ(scores.attended, 1);
+  EXPECT_EQ(scores.identity_switches, 0);
+  EXPECT_EQ(scores.revisits, 0);
+  int tracked = 0;
+  for (size_t f = 0; f < run.records.size(); ++f) {
+    for (const TargetRecord& target : run.records[f].targets) {
+      EXPECT_EQ(target.id, 1) << "frame " << f;
+      if (target.state != "tracked") continue;
+      ++tracked;
+      // The inhibited saliency inside the target's box is near zero: inhibition moves with it.
+      EXPECT_LT(cv::mean(run.inhibited[f](target.bbox))[0], 0.02) << "frame " << f;
+    }
+  }
+  EXPECT_GE(tracked, 35);
+}
+
+// The stage alone, on drawn frames with a drawn saliency map.
+struct Drawn {
+  cv::Mat bgr, tsl, saliency;
+  Segmentation segmentation;
+};
+
+Drawn Draw(const std::vector<std::pair<cv::Rect, cv::Scalar>>& boxes,
+           const std::vector<cv::Rect>& salient, unsigned seed) {
+  Drawn d;
+  d.bgr.create(120, 160, CV_8UC3);
+  d.bgr.setTo(cv::Scalar(128, 128, 128));
+  cv::Mat noise(d.bgr.size(), CV_8UC3);
+  cv::RNG(seed).fill(noise, cv::RNG::UNIFORM, 0, 5);
+  d.bgr += noise;
+  for (const auto& [box, colour] : boxes) d.bgr(box).setTo(colour);
+  BgrToTsl(d.bgr, &d.tsl);
+  d.saliency = cv::Mat::zeros(d.bgr.size(), CV_32FC1);
+  for (const cv::Rect& box : salient) d.saliency(box).setTo(1.f);
+  Segmenter segmenter;
+  segmenter.Segment(d.bgr, &d.segmentation);
+  return d;
+}
+
+SkinModel ShippedSkinModel() {
+  return LoadSkinModel(testing::ProjectRoot() + "/configs/skin_tsl.yaml");
+}
+
+AttentionFrame Step(AttentionStage* stage, const Drawn& d) {
+  AttentionFrame frame;
+  stage->Track(d.bgr, d.tsl);
+  stage->Select(d.bgr, d.saliency, d.segmentation, &frame);
+  return frame;
+}
+
+TEST(Attention, ATargetWhoseSaliencyDropsIsReleased) {
+  AttentionOptions options;
+  options.drop.frames = 4;
+  AttentionStage stage(options, ShippedSkinModel());
+  const cv::Rect box(60, 40, 30, 24);
+  const cv::Scalar red(40, 40, 210);
+  AttentionFrame frame = Step(&stage, Draw({{box, red}}, {box}, 0));
+  ASSERT_EQ(frame.new_ids, std::vector<int>{1});
+  // From frame 1 on the object is no longer salient (the saliency map is empty).
+  for (int f = 1; f <= 4; ++f) {
+    frame = Step(&stage, Draw({{box, red}}, {}, f));
+    ASSERT_EQ(frame.targets.size(), 1u) << "frame " << f;
+    EXPECT_EQ(frame.targets[0].state, f < 4 ? "tracked" : "released") << "frame " << f;
+  }
+  frame = Step(&stage, Draw({{box, red}}, {}, 5));
+  EXPECT_TRUE(frame.targets.empty());
+}
+
+TEST(Attention, AShortOcclusionKeepsTheIdentityAndIsNotReselected) {
+  AttentionStage stage(AttentionOptions{}, ShippedSkinModel());
+  const cv::Rect box(60, 40, 30, 24);
+  const cv::Scalar red(40, 40, 210), blue(200, 90, 30);
+  Step(&stage, Draw({{box, red}}, {box}, 0));
+  for (int f = 1; f <= 12; ++f) {
+    // Frames 3..7: a blue panel covers the object; the object stays salient when visible.
+    const bool hidden = f >= 3 && f <= 7;
+    const cv::Rect panel(box.x - 4, box.y - 4, box.width + 8, box.height + 8);
+    const Drawn d =
+        hidden ? Draw({{box, red}, {panel, blue}}, {}, f) : Draw({{box, red}}, {box}, f);
+    const AttentionFrame frame = Step(&stage, d);
+    ASSERT_FALSE(frame.targets.empty()) << "frame " << f;
+    EXPECT_EQ(frame.targets[0].id, 1) << "frame " << f;
+    EXPECT_TRUE(frame.new_ids.empty()) << "frame " << f;
+    if (hidden) EXPECT_EQ(frame.targets[0].state, "occluded") << "frame " << f;
+    if (f >= 10) EXPECT_EQ(frame.targets[0].state, "tracked") << "frame " << f;
+  }
+}
+
+TEST(Attention, ASkinObjectIsTrackedWithTheSkinSimilarity) {
+  AttentionStage stage(AttentionOptions{}, ShippedSkinModel());
+  const cv::Rect face(70, 30, 26, 34), box(20, 70, 30, 24);
+  const cv::Scalar skin(140, 172, 224), green(60, 180, 50);
+  AttentionFrame frame = Step(&stage, Draw({{face, skin}, {box, green}}, {face, box}, 0));
+  ASSERT_EQ(frame.targets.size(), 2u);
+  for (const AttendedTarget& target : frame.targets) {
+    const bool on_face = (target.box & face).area() > 0;
+    EXPECT_EQ(target.skin, on_face) << target.id;
+  }
+  frame = Step(&stage, Draw({{face + cv::Point(3, 1), skin}, {box, green}}, {}, 1));
+  for (const AttendedTarget& target : frame.targets) EXPECT_EQ(target.state, "tracked");
+}
+
+}  // namespace
+}  // namespace attend
