@@ -17,6 +17,7 @@ void AddDisparityCommand(CLI::App& app, const std::string& command_line, Command
 void AddTrackCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 void AddEvalTrackingCommand(CLI::App& app, const std::string& command_line,
                             CommandAction* action);
+void AddEvalCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 void AddSkinTrainCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 
 }  // namespace attend

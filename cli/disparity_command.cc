@@ -59,7 +59,8 @@ DisparityOptions ResolveOptions(const DisparityArguments& args, bool subpixel_gi
     if (assignment.rfind("disparity.", 0) != 0) {
       throw ConfigError("--set " + assignment +
                         ": attend disparity takes only disparity.KEY=VALUE, KEY one of "
-                        "max_disparity, window, subpixel, left_right_check, lr_tolerance");
+                        "max_disparity, window, subpixel, left_right_check, lr_tolerance, "
+                        "smoothness, jump_penalty");
     }
     root.Override(assignment);
   }
@@ -72,6 +73,9 @@ DisparityOptions ResolveOptions(const DisparityArguments& args, bool subpixel_gi
   options.subpixel = block.GetBool("subpixel", options.subpixel);
   options.left_right_check = block.GetBool("left_right_check", options.left_right_check);
   options.lr_tolerance = block.GetInt("lr_tolerance", options.lr_tolerance, Range::AtLeast(0));
+  options.smoothness = block.GetChoice("smoothness", options.smoothness, {"hard", "penalty"});
+  options.jump_penalty =
+      static_cast<float>(block.GetDouble("jump_penalty", options.jump_penalty, Range::AtLeast(0)));
   block.CheckNoUnknownKeys();
 
   const auto only_one = [&block](const std::string& flag, const std::string& key) {
@@ -93,8 +97,8 @@ DisparityOptions ResolveOptions(const DisparityArguments& args, bool subpixel_gi
     options.subpixel = true;
   }
   if (lr_check_given) {
-    only_one("--lr-check", "left_right_check");
-    options.left_right_check = true;
+    only_one("--lr-check/--no-lr-check", "left_right_check");
+    options.left_right_check = args.left_right_check;
   }
   const std::string error = options.Check();
   if (!error.empty()) throw ConfigError("disparity options: " + error);
@@ -235,7 +239,9 @@ int Disparity(const DisparityArguments& args, bool subpixel_given, bool lr_check
                              {"window", options.window},
                              {"subpixel", options.subpixel},
                              {"left_right_check", options.left_right_check},
-                             {"lr_tolerance", options.lr_tolerance}}}};
+                             {"lr_tolerance", options.lr_tolerance},
+                             {"smoothness", options.smoothness},
+                             {"jump_penalty", options.jump_penalty}}}};
   if (!ground_truth.empty()) {
     const BadPixelRates rates = EvaluateDisparity(disparity, ground_truth);
     report["gt"] = args.gt;
@@ -278,8 +284,8 @@ void AddDisparityCommand(CLI::App& app, const std::string&, CommandAction* actio
   CLI::Option* subpixel =
       command->add_flag("--subpixel", args->subpixel, "Sub-pixel refinement by a parabola fit");
   CLI::Option* lr_check = command->add_flag(
-      "--lr-check", args->left_right_check,
-      "Left-right consistency check; inconsistent pixels are filled from their row");
+      "--lr-check,!--no-lr-check", args->left_right_check,
+      "Left-right consistency check (default on); inconsistent pixels are filled from their row");
   CLI::Option* gt = command->add_option(
       "--gt", args->gt,
       "Ground truth of the left view: a PFM in pixels, or a one-channel 8- or 16-bit image "
@@ -307,8 +313,8 @@ void AddDisparityCommand(CLI::App& app, const std::string&, CommandAction* actio
   command
       ->add_option("--set", args->sets,
                    "Set an option, the value parsed as YAML: --set disparity.KEY=VALUE with KEY "
-                   "one of max_disparity, window, subpixel, left_right_check, lr_tolerance "
-                   "(repeatable)")
+                   "one of max_disparity, window, subpixel, left_right_check, lr_tolerance, "
+                   "smoothness (hard or penalty), jump_penalty (repeatable)")
       ->type_name("KEY=VALUE")
       ->expected(1)
       ->allow_extra_args(false)

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   attend::AddDisparityCommand(app, command_line, &action);
   attend::AddTrackCommand(app, command_line, &action);
   attend::AddEvalTrackingCommand(app, command_line, &action);
+  attend::AddEvalCommand(app, command_line, &action);
   attend::AddSkinTrainCommand(app, command_line, &action);
 
   try {

@@ -30,12 +30,17 @@ class DisparityFeature : public FeatureMap {
 
 std::unique_ptr<FeatureMap> CreateDisparityFeature(const ParamBlock& params, const FeatureSetup&) {
   DisparityOptions options;
-  options.max_disparity = params.GetInt("max_disparity", 32, Range::Closed(2, 1024));
-  options.window = params.GetInt("window", 9, Range::Closed(1, 31));
+  options.max_disparity =
+      params.GetInt("max_disparity", options.max_disparity, Range::Closed(2, 1024));
+  options.window = params.GetInt("window", options.window, Range::Closed(1, 31));
   if (options.window % 2 == 0) params.Fail("window", "must be odd");
-  options.subpixel = params.GetBool("subpixel", false);
-  options.left_right_check = params.GetBool("left_right_check", false);
-  options.lr_tolerance = params.GetInt("lr_tolerance", 1, Range::Closed(0, 1024));
+  options.subpixel = params.GetBool("subpixel", options.subpixel);
+  options.left_right_check = params.GetBool("left_right_check", options.left_right_check);
+  options.lr_tolerance =
+      params.GetInt("lr_tolerance", options.lr_tolerance, Range::Closed(0, 1024));
+  options.smoothness = params.GetChoice("smoothness", options.smoothness, {"hard", "penalty"});
+  options.jump_penalty =
+      static_cast<float>(params.GetDouble("jump_penalty", options.jump_penalty, Range::AtLeast(0)));
   const bool per_region = params.GetBool("per_region", false);
   return std::make_unique<DisparityFeature>(options, per_region);
 }

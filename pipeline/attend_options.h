@@ -9,6 +9,7 @@
 #include "io/sequence.h"
 #include "pyramid/segmentation.h"
 #include "saliency/saliency.h"
+#include "semiattentive/attention.h"
 
 namespace attend {
 
@@ -42,6 +43,8 @@ struct AttendOptions {
   std::vector<FeatureSpec> features;
   // How the feature maps become the saliency map.
   SaliencyOptions saliency;
+  // The semi-attentive stage: selection, release, inhibition and the trackers.
+  AttentionOptions attention;
   // Out-of-tree plugin libraries loaded at start.
   std::vector<std::string> plugins;
   // Threads for the stages that can share a frame's work (the feature plugins): 0 = one per

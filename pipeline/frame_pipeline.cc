@@ -1,8 +1,12 @@
 #include "pipeline/frame_pipeline.h"
 
+#include <filesystem>
+
 #include "features/builtin.h"
 #include "features/plugin_loader.h"
+#include "features/skin_model.h"
 #include "saliency/saliency.h"
+#include "util/error.h"
 #include "util/timer.h"
 
 namespace attend {
@@ -15,11 +19,31 @@ FeatureRegistry LoadFeatureRegistry(const std::vector<std::string>& plugins) {
   return registry;
 }
 
+namespace {
+
+// The skin model of the attention stage: a path as given if it exists, else below `home`.
+SkinModel LoadAttentionSkinModel(const std::string& path, const std::string& home) {
+  std::string resolved = path;
+  if (!std::filesystem::path(path).is_absolute() && !std::filesystem::exists(path) &&
+      !home.empty() && std::filesystem::exists(std::filesystem::path(home) / path)) {
+    resolved = (std::filesystem::path(home) / path).string();
+  }
+  try {
+    return LoadSkinModel(resolved);
+  } catch (const ConfigError& e) {
+    throw ConfigError(std::string("select.skin_model: ") + e.what());
+  }
+}
+
+}  // namespace
+
 FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry& registry,
                              const FeatureSetup& setup)
     : options_(options),
       context_(options.segmentation),
-      features_(options.features, registry, setup) {
+      features_(options.features, registry, setup),
+      attention_(options.attention,
+                 LoadAttentionSkinModel(options.attention.skin_model, setup.home)) {
   normalised_.resize(features_.results().size());
   for (const FeatureResult& result : features_.results()) weights_.push_back(result.weight);
 }
@@ -30,6 +54,9 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   Stopwatch stage;
   context_.Regions();
   record->timings.Add("segment", stage.ElapsedMs());
+
+  // Existing targets first, so that their saliency is inhibited in this frame (SPEC 1).
+  attention_.Track(frame.left, context_.Tsl());
 
   stage.Restart();
   features_.Compute(context_, options_.threads != 1);
@@ -45,6 +72,24 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   }
   CombineMaps(normalised_, weights_, context_.size(), &saliency_);
   record->timings.Add("saliency", stage.ElapsedMs());
+
+  attention_.Select(frame.left, saliency_, context_.Regions(), &attended_);
+  record->timings.Add("track", attended_.track_ms);
+  record->timings.Add("inhibit", attended_.inhibit_ms);
+  record->timings.Add("select", attended_.select_ms);
+  record->targets.clear();
+  for (const AttendedTarget& target : attended_.targets) {
+    TargetRecord out;
+    out.id = target.id;
+    out.bbox = target.box;
+    out.area = target.area;
+    out.saliency = target.saliency;
+    out.state = target.state;
+    out.kind = target.skin ? "skin" : "object";
+    out.similarity = target.skin ? "skin" : "hsv";
+    record->targets.push_back(out);
+  }
+  record->new_ids = attended_.new_ids;
 }
 
 }  // namespace attend

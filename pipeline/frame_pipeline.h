@@ -12,6 +12,7 @@
 #include "io/sequence.h"
 #include "pipeline/attend_options.h"
 #include "pipeline/frame_record.h"
+#include "semiattentive/attention.h"
 
 namespace attend {
 
@@ -25,9 +26,10 @@ class FramePipeline {
   FramePipeline(const AttendOptions& options, const FeatureRegistry& registry,
                 const FeatureSetup& setup);
 
-  // Runs the stages on `frame`, adding their times to record->timings: `segment` (colour
-  // conversion and BIP segmentation), `features` (all plugins, wall time), `feature.<name>`
-  // (each plugin's own time) and `saliency`.
+  // Runs the stages of SPEC 1 on `frame` and fills `record` (targets, new ids) and its times:
+  // `segment` (colour conversion and BIP segmentation), `track` (the existing targets),
+  // `features` (all plugins, wall time), `feature.<name>` (each plugin's own time), `saliency`,
+  // `inhibit` and `select`.
   void Process(const StereoFrame& frame, FrameRecord* record);
 
   // Results of the last frame.
@@ -36,6 +38,9 @@ class FramePipeline {
   // Each feature's map normalised to [0, 1], in the order of features().
   const std::vector<cv::Mat>& normalised() const { return normalised_; }
   const cv::Mat& saliency() const { return saliency_; }
+  const cv::Mat& inhibition() const { return attention_.inhibition(); }
+  const cv::Mat& inhibited() const { return attention_.inhibited(); }
+  int targets_attended() const { return attention_.targets_attended(); }
 
  private:
   const AttendOptions options_;
@@ -44,6 +49,8 @@ class FramePipeline {
   std::vector<cv::Mat> normalised_;
   std::vector<double> weights_;
   cv::Mat saliency_;
+  AttentionStage attention_;
+  AttentionFrame attended_;
 };
 
 }  // namespace attend

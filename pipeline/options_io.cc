@@ -53,6 +53,38 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("local_maxima_window", &o->saliency.local_maxima_window, Range::Closed(3, 1001));
   v.EndSection([o] { return o->saliency.Check(); });
 
+  v.BeginSection("select");
+  v.Field("min_saliency", &o->attention.select.min_saliency, Range::Closed(0, 1));
+  v.Field("min_area", &o->attention.select.min_area, Range::Closed(1, 1e8));
+  v.Field("max_new", &o->attention.select.max_new, Range::Closed(1, 1000));
+  v.Field("max_targets", &o->attention.select.max_targets, Range::Closed(1, 1000));
+  v.Field("max_area_fraction", &o->attention.select.max_area_fraction, Range::Closed(0.001, 1));
+  v.Field("saliency_t_max", &o->attention.select.saliency_t_max, Range::Closed(0.001, 1000));
+  v.Field("skin_fraction", &o->attention.skin_fraction, Range::Closed(0, 1));
+  v.Field("skin_model", &o->attention.skin_model);
+  v.EndSection([o] { return o->attention.Check(); });
+
+  v.BeginSection("drop");
+  v.Field("min_saliency", &o->attention.drop.min_saliency, Range::Closed(0, 1));
+  v.Field("frames", &o->attention.drop.frames, Range::Closed(1, 1e6));
+  v.EndSection([o] { return o->attention.Check(); });
+
+  v.BeginSection("inhibition");
+  v.Field("margin", &o->attention.inhibition.margin, Range::Closed(0, 1000));
+  v.Field("keep_occluded", &o->attention.inhibition.keep_occluded);
+  v.EndSection([o] { return o->attention.Check(); });
+
+  v.BeginSection("tracker");
+  v.Field("t_colour", &o->attention.tracker.t_colour, Range::Closed(0.001, 1000));
+  v.Field("t_oversegment", &o->attention.tracker.t_oversegment, Range::Closed(0.001, 1000));
+  v.Field("t_refine", &o->attention.tracker.t_refine, Range::Closed(0, 1000));
+  v.Field("alpha", &o->attention.tracker.alpha, Range::Closed(0.001, 1));
+  v.Field("epsilon", &o->attention.tracker.epsilon, Range::Closed(0, 1000));
+  v.Field("epsilon_max", &o->attention.tracker.epsilon_max, Range::Closed(0, 1000));
+  v.Field("working_area", &o->attention.tracker.working_area, Range::Closed(0.01, 1));
+  v.Field("min_overlap", &o->attention.tracker.min_overlap, Range::Closed(0.01, 1));
+  v.EndSection([o] { return o->attention.Check(); });
+
   v.Field("threads", &o->threads, Range::Closed(0, 256));
 }
 
@@ -194,7 +226,8 @@ class KeyLister {
 }  // namespace
 
 const std::vector<std::string>& OutputOptions::DumpKinds() {
-  static const std::vector<std::string> kinds = {"overlay", "regions", "features", "saliency"};
+  static const std::vector<std::string> kinds = {"overlay",  "regions",    "features",
+                                                 "saliency", "inhibition", "inhibited"};
   return kinds;
 }
 
@@ -213,8 +246,9 @@ std::string OutputOptions::Check() const {
     }
   }
   if (video && !Dumps("overlay")) return "video needs 'overlay' in dump";
-  if ((Dumps("features") || Dumps("saliency")) && map_formats.empty()) {
-    return "map_formats is empty, so the features and saliency dumps would write nothing";
+  if ((Dumps("features") || Dumps("saliency") || Dumps("inhibition") || Dumps("inhibited")) &&
+      map_formats.empty()) {
+    return "map_formats is empty, so the map dumps would write nothing";
   }
   return "";
 }

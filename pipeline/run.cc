@@ -74,6 +74,12 @@ void WriteDumps(const OutputOptions& output, const FramePipeline& pipeline, int 
   if (output.Dumps("saliency")) {
     folder->WriteMap("saliency", frame, pipeline.saliency(), pipeline.saliency(), pfm, png);
   }
+  if (output.Dumps("inhibition")) {
+    folder->WriteMap("inhibition", frame, pipeline.inhibition(), pipeline.inhibition(), pfm, png);
+  }
+  if (output.Dumps("inhibited")) {
+    folder->WriteMap("inhibited", frame, pipeline.inhibited(), pipeline.inhibited(), pfm, png);
+  }
 }
 
 }  // namespace
@@ -162,6 +168,7 @@ RunSummary RunSequence(const RunRequest& request) {
 
       for (const auto& [name, ms] : record.timings.stages()) totals.Add(name, ms);
       ++summary.frames;
+      summary.targets_attended = pipeline.targets_attended();
       if (request.on_progress) {
         const double seconds = wall.ElapsedMs() / 1000.0;
         request.on_progress(

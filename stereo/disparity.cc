@@ -23,6 +23,7 @@ constexpr float kFlatSigma = 1e-3f;
 constexpr uint8_t kFromBelow = 0;  // t = -1
 constexpr uint8_t kFromSame = 1;   // t = 0
 constexpr uint8_t kFromAbove = 2;  // t = +1
+constexpr uint8_t kJump = 3;       // d(x - 1) is the best disparity of column x - 1 (penalty mode)
 
 // Mean and standard deviation over the window around every pixel (borders replicated).
 void WindowStatistics(const cv::Mat& image, int window, cv::Mat* mean, cv::Mat* sigma,
@@ -110,22 +111,45 @@ ATTEND_VECTOR_CLONES void ZnccRow(const float* column_sums, const float* left_me
 
 // Stage 1 over one row of costs ([x][d]): leaves Y(width - 1, d) in `previous` and writes the
 // 2-bit back-pointers, `packed` bytes a column. `previous` and `current` point one past a -inf
-// pad and have one more -inf pad after depth floats; `codes` holds 4 * packed bytes.
+// pad and have one more -inf pad after depth floats; `codes` holds 4 * packed bytes. With
+// `jump_penalty` >= 0, d may also jump from the best disparity of the previous column at that
+// cost (whose index goes to `jump_from[x]`); otherwise |d(x) - d(x - 1)| <= 1 holds.
 ATTEND_VECTOR_CLONES void MaximumSurfaceRow(const float* costs, int width, int depth, int packed,
-                                            float* previous, float* current, uint8_t* codes,
-                                            uint8_t* back) {
+                                            float jump_penalty, float* previous, float* current,
+                                            uint8_t* codes, uint8_t* back, int16_t* jump_from) {
   std::copy(costs, costs + depth, previous);
+  const bool jumps = jump_penalty >= 0.f;
   for (int x = 1; x < width; ++x) {
     const float* __restrict cx = costs + static_cast<size_t>(x) * depth;
     const float* __restrict p = previous;
     float* __restrict out = current;
     uint8_t* __restrict code = codes;
+    float jump = -std::numeric_limits<float>::infinity();
+    if (jumps) {
+      // The column's best value in eight lanes (a loop the compiler vectorises, unlike a
+      // running maximum), then its first position.
+      float lanes[8];
+      std::fill(lanes, lanes + 8, p[0]);
+      int d = 0;
+      for (; d + 8 <= depth; d += 8) {
+        for (int k = 0; k < 8; ++k) lanes[k] = std::max(lanes[k], p[d + k]);
+      }
+      for (; d < depth; ++d) lanes[0] = std::max(lanes[0], p[d]);
+      const float best = *std::max_element(lanes, lanes + 8);
+      int from = 0;
+      while (p[from] != best) ++from;
+      jump = best - jump_penalty;
+      jump_from[x] = static_cast<int16_t>(from);
+    }
     for (int d = 0; d < depth; ++d) {
-      // Ties keep the disparity, then take the smaller one.
+      // Ties keep the disparity, then take the smaller one, then a step, then the jump.
       const float same = p[d], below = p[d - 1], above = p[d + 1];
-      const float best = std::max(same, std::max(below, above));
-      code[d] = same == best ? kFromSame : (below == best ? kFromBelow : kFromAbove);
-      out[d] = cx[d] + best;
+      const float side = std::max(below, above);
+      const float step = std::max(same, side);
+      const uint8_t step_code =
+          same >= side ? kFromSame : (below >= above ? kFromBelow : kFromAbove);
+      code[d] = jump > step ? kJump : step_code;
+      out[d] = cx[d] + std::max(step, jump);
     }
     uint8_t* __restrict column = back + static_cast<size_t>(x) * packed;
     for (int k = 0; k < packed; ++k) {
@@ -137,6 +161,34 @@ ATTEND_VECTOR_CLONES void MaximumSurfaceRow(const float* costs, int width, int d
   // After an odd number of swaps the result is in the caller's `current` array (which
   // `previous` now points to): copy it to the caller's `previous` array.
   if ((width - 1) % 2 == 1) std::copy(previous, previous + depth, current);
+}
+
+// One left pixel's correlations `c` (for d = 0..count-1) offered to the right pixels x - d,
+// whose best correlation and disparity so far are `best` and `best_d` at index d.
+inline void OfferToRightPixels(const float* __restrict c, float* __restrict best,
+                               int32_t* __restrict best_d, int count) {
+  for (int d = 0; d < count; ++d) {
+    const bool better = c[d] > best[d];
+    best[d] = better ? c[d] : best[d];
+    best_d[d] = better ? d : best_d[d];
+  }
+}
+
+// The right view's disparities of one row, winner-take-all over the same correlations: the
+// right pixel xr's correlation at d is the left pixel xr + d's, C(xr + d, d); the best d wins,
+// the smaller on ties (as OpenCV's SGBM makes its right view for its check). It is a pass over
+// the left pixels that keeps each right pixel's best so far, stored mirrored (right pixel xr at
+// width - 1 - xr) so that the loop over d runs forward through memory.
+ATTEND_VECTOR_CLONES void RightViewRow(const float* costs, int width, int depth, float* best,
+                                       int32_t* best_d, float* out) {
+  std::fill(best, best + width, -std::numeric_limits<float>::infinity());
+  std::fill(best_d, best_d + width, 0);
+  for (int x = 0; x < width; ++x) {
+    // Right pixel x - d sits at width - 1 - x + d.
+    OfferToRightPixels(costs + static_cast<size_t>(x) * depth, best + (width - 1 - x),
+                       best_d + (width - 1 - x), std::min(depth, x + 1));
+  }
+  for (int xr = 0; xr < width; ++xr) out[xr] = static_cast<float>(best_d[width - 1 - xr]);
 }
 
 // The ZNCC volume, one row at a time. Window sums of L(x) R(x - d) are kept per column for
@@ -211,21 +263,39 @@ std::string DisparityOptions::Check() const {
   if (max_disparity < 1) return "max_disparity must be at least 1";
   if (window < 1 || window > 31 || window % 2 == 0) return "window must be odd, 1..31";
   if (lr_tolerance < 0) return "lr_tolerance must be >= 0";
+  if (smoothness != "hard" && smoothness != "penalty") {
+    return "smoothness must be hard or penalty, not '" + smoothness + "'";
+  }
+  if (!(jump_penalty >= 0.f)) return "jump_penalty must be >= 0";
   return "";
 }
+
+// The dynamic programming of one view: stage 1's back-pointers and row ends, stage 2's codes
+// and the end disparity of every row.
+struct SurfaceState {
+  std::vector<uint8_t> back;         // [y][x][d / 4], 2 bits a voxel
+  std::vector<int16_t> jump_from;    // [y][x]: the best disparity of column x - 1 (penalty mode)
+  std::vector<float> row_ends;       // [y][d]: Y(width - 1, y, d)
+  std::vector<uint8_t> column_back;  // [y][d]: stage 2's codes
+  std::vector<int> ends;             // per row: the end disparity chosen by stage 2
+
+  size_t bytes() const {
+    return back.capacity() + jump_from.capacity() * sizeof(int16_t) +
+           row_ends.capacity() * sizeof(float) + column_back.capacity() +
+           ends.capacity() * sizeof(int);
+  }
+};
 
 struct DisparityEstimator::Buffers {
   cv::Mat left_grey, right_grey;         // CV_8UC1
   std::vector<float> costs;              // one row of the volume: [x][d]
+  std::vector<float> right_best;         // one row of the right view: best correlation so far
+  std::vector<int32_t> right_best_d;     // and its disparity
   std::vector<int16_t> volume;           // [y][x][d], ZNCC * kCostScale; only for `subpixel`
-  std::vector<uint8_t> back;             // [y][x][d / 4], 2 bits a voxel
   std::vector<uint8_t> codes;            // one column's codes before packing
-  std::vector<float> row_ends;           // [y][d]: Y(width - 1, y, d)
-  std::vector<uint8_t> column_back;      // [y][d]: stage 2's codes
   std::vector<float> previous, current;  // D + 2 floats, padded with -inf at both ends
-  std::vector<int> ends;                 // per row: the end disparity chosen by stage 2
+  SurfaceState left;                     // the left view's dynamic programming
   cv::Mat right_view;                    // the right image's disparity, for the left-right check
-  cv::Mat flipped_left, flipped_right;
 };
 
 DisparityEstimator::DisparityEstimator(DisparityOptions options)
@@ -238,13 +308,11 @@ DisparityEstimator::~DisparityEstimator() { delete buffers_; }
 
 size_t DisparityEstimator::buffer_bytes() const {
   const Buffers& b = *buffers_;
-  size_t bytes = b.costs.capacity() * sizeof(float) + b.volume.capacity() * sizeof(int16_t) +
-                 b.back.capacity() + b.codes.capacity() + b.row_ends.capacity() * sizeof(float) +
-                 b.column_back.capacity() +
-                 (b.previous.capacity() + b.current.capacity()) * sizeof(float) +
-                 b.ends.capacity() * sizeof(int);
-  for (const cv::Mat* m :
-       {&b.left_grey, &b.right_grey, &b.right_view, &b.flipped_left, &b.flipped_right}) {
+  size_t bytes = (b.costs.capacity() + b.right_best.capacity()) * sizeof(float) +
+                 b.right_best_d.capacity() * sizeof(int32_t) +
+                 b.volume.capacity() * sizeof(int16_t) + b.codes.capacity() +
+                 (b.previous.capacity() + b.current.capacity()) * sizeof(float) + b.left.bytes();
+  for (const cv::Mat* m : {&b.left_grey, &b.right_grey, &b.right_view}) {
     bytes += m->total() * m->elemSize();
   }
   return bytes;
@@ -307,35 +375,91 @@ void DisparityEstimator::Compute(const cv::Mat& left, const cv::Mat& right, cv::
   grey(right, &b.right_grey);
   Estimate(b.left_grey, b.right_grey, disparity);
   if (options_.left_right_check) {
-    // The right view's map: the same estimation on the mirrored pair, with the roles swapped.
-    cv::flip(b.right_grey, b.flipped_left, 1);
-    cv::flip(b.left_grey, b.flipped_right, 1);
-    cv::Mat mirrored;
-    Estimate(b.flipped_left, b.flipped_right, &mirrored);
-    cv::flip(mirrored, b.right_view, 1);
     CheckLeftRight(b.right_view, options_.lr_tolerance, disparity);
     FillInvalidDisparities(disparity);
   }
   milliseconds_ = stopwatch.ElapsedMs();
 }
 
+namespace {
+
+// Stage 2 (along y over the rows' ends, with |delta d| <= 1) and its backtracking: fills
+// state->ends. `previous` and `current` are padded as for MaximumSurfaceRow().
+void ChooseRowEnds(int height, int depth, float* previous, float* current, SurfaceState* state) {
+  state->column_back.assign(static_cast<size_t>(height) * depth, kFromSame);
+  std::copy(state->row_ends.begin(), state->row_ends.begin() + depth, previous);
+  for (int y = 1; y < height; ++y) {
+    const float* ends = state->row_ends.data() + static_cast<size_t>(y) * depth;
+    uint8_t* back = state->column_back.data() + static_cast<size_t>(y) * depth;
+    for (int d = 0; d < depth; ++d) {
+      uint8_t code = kFromSame;
+      float best = previous[d];
+      if (previous[d - 1] > best) best = previous[d - 1], code = kFromBelow;
+      if (previous[d + 1] > best) best = previous[d + 1], code = kFromAbove;
+      current[d] = ends[d] + best;
+      back[d] = code;
+    }
+    std::swap(previous, current);
+  }
+  state->ends.resize(height);
+  int d = static_cast<int>(std::max_element(previous, previous + depth) - previous);
+  for (int y = height - 1; y >= 0; --y) {
+    state->ends[y] = d;
+    d += static_cast<int>(state->column_back[static_cast<size_t>(y) * depth + d]) - 1;
+  }
+}
+
+// Backtracks row y of a view from its end: out[x] for x = width-1 down to 0, calling
+// `at(x, d)` for every pixel.
+template <typename Visit>
+void BacktrackRow(const SurfaceState& state, int y, int width, int packed, Visit at) {
+  int d = state.ends[y];
+  for (int x = width - 1; x >= 0; --x) {
+    at(x, d);
+    if (x == 0) break;
+    const uint8_t byte = state.back[(static_cast<size_t>(y) * width + x) * packed + (d >> 2)];
+    const int code = (byte >> ((d & 3) * 2)) & 3;
+    d = code == kJump ? state.jump_from[static_cast<size_t>(y) * width + x] : d + code - 1;
+  }
+}
+
+}  // namespace
+
 void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right_grey,
                                   cv::Mat* disparity) {
   Buffers& b = *buffers_;
   const int width = left_grey.cols, height = left_grey.rows;
   const int depth = options_.max_disparity;
-  const int window = options_.window;
   const int packed = (depth + 3) / 4;
+  const bool both = options_.left_right_check;
+  const float jump_penalty = options_.smoothness == "penalty" ? options_.jump_penalty : -1.f;
 
-  // Stage 1, row by row as the volume is computed: Y(x, d) = C(x, d) + max_t Y(x - 1, d + t).
   constexpr float kNone = -std::numeric_limits<float>::infinity();
-  b.back.assign(static_cast<size_t>(width) * height * packed, 0);
   b.codes.resize(static_cast<size_t>(packed) * 4);
-  b.row_ends.resize(static_cast<size_t>(height) * depth);
   b.previous.assign(depth + 2, kNone);
   b.current.assign(depth + 2, kNone);
+  float* previous = b.previous.data() + 1;  // previous[-1] and previous[depth] stay -inf
+  float* current = b.current.data() + 1;
+  b.left.back.assign(static_cast<size_t>(width) * height * packed, 0);
+  b.left.row_ends.resize(static_cast<size_t>(height) * depth);
+  b.left.jump_from.resize(jump_penalty >= 0.f ? static_cast<size_t>(width) * height : 0);
   if (options_.subpixel) b.volume.resize(static_cast<size_t>(width) * height * depth);
-  CostRows rows(left_grey, right_grey, depth, window);
+  if (both) {
+    b.right_view.create(height, width, CV_32FC1);
+    b.right_best.resize(width);
+    b.right_best_d.resize(width);
+  }
+
+  // Stage 1, row by row as the volume is computed: Y(x, d) = C(x, d) + max_t Y(x - 1, d + t).
+  auto stage1 = [&](const float* costs, int y, SurfaceState* state) {
+    MaximumSurfaceRow(costs, width, depth, packed, jump_penalty, previous, current, b.codes.data(),
+                      state->back.data() + static_cast<size_t>(y) * width * packed,
+                      state->jump_from.empty()
+                          ? nullptr
+                          : state->jump_from.data() + static_cast<size_t>(y) * width);
+    std::copy(previous, previous + depth, state->row_ends.data() + static_cast<size_t>(y) * depth);
+  };
+  CostRows rows(left_grey, right_grey, depth, options_.window);
   rows.ForEachRow(&b.costs, [&](int y, const float* c) {
     if (options_.subpixel) {
       int16_t* v = b.volume.data() + static_cast<size_t>(y) * width * depth;
@@ -343,49 +467,19 @@ void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right
         v[i] = static_cast<int16_t>(std::lround(c[i] * kCostScale));
       }
     }
-    float* previous = b.previous.data() + 1;  // previous[-1] and previous[depth] stay -inf
-    float* current = b.current.data() + 1;
-    MaximumSurfaceRow(c, width, depth, packed, previous, current, b.codes.data(),
-                      b.back.data() + static_cast<size_t>(y) * width * packed);
-    std::copy(previous, previous + depth, b.row_ends.data() + static_cast<size_t>(y) * depth);
+    stage1(c, y, &b.left);
+    if (both) {
+      RightViewRow(c, width, depth, b.right_best.data(), b.right_best_d.data(),
+                   b.right_view.ptr<float>(y));
+    }
   });
 
-  // Stage 2: along y over the rows' last columns, then backtrack the end disparities.
-  b.column_back.assign(static_cast<size_t>(height) * depth, kFromSame);
-  {
-    float* previous = b.previous.data() + 1;
-    float* current = b.current.data() + 1;
-    std::copy(b.row_ends.begin(), b.row_ends.begin() + depth, previous);
-    for (int y = 1; y < height; ++y) {
-      const float* ends = b.row_ends.data() + static_cast<size_t>(y) * depth;
-      uint8_t* back = b.column_back.data() + static_cast<size_t>(y) * depth;
-      for (int d = 0; d < depth; ++d) {
-        uint8_t code = kFromSame;
-        float best = previous[d];
-        if (previous[d - 1] > best) best = previous[d - 1], code = kFromBelow;
-        if (previous[d + 1] > best) best = previous[d + 1], code = kFromAbove;
-        current[d] = ends[d] + best;
-        back[d] = code;
-      }
-      std::swap(previous, current);
-    }
-    b.ends.resize(height);
-    int d = static_cast<int>(std::max_element(previous, previous + depth) - previous);
-    for (int y = height - 1; y >= 0; --y) {
-      b.ends[y] = d;
-      d += static_cast<int>(b.column_back[static_cast<size_t>(y) * depth + d]) - 1;
-    }
-    // The padding may have been overwritten by the swaps; restore it for the next call.
-    b.previous.front() = b.previous.back() = kNone;
-    b.current.front() = b.current.back() = kNone;
-  }
-
-  // Backtrack every row from its end disparity.
+  // Stage 2, then every row backtracked from its end disparity.
+  ChooseRowEnds(height, depth, previous, current, &b.left);
   disparity->create(height, width, CV_32FC1);
   for (int y = 0; y < height; ++y) {
     float* out = disparity->ptr<float>(y);
-    int d = b.ends[y];
-    for (int x = width - 1; x >= 0; --x) {
+    BacktrackRow(b.left, y, width, packed, [&](int x, int d) {
       out[x] = static_cast<float>(d);
       if (options_.subpixel && d > 0 && d < depth - 1) {
         const int16_t* c = b.volume.data() + (static_cast<size_t>(y) * width + x) * depth + d;
@@ -395,10 +489,7 @@ void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right
           out[x] += std::clamp(0.5f * (minus - plus) / curvature, -0.5f, 0.5f);
         }
       }
-      if (x == 0) break;
-      const uint8_t byte = b.back[(static_cast<size_t>(y) * width + x) * packed + (d >> 2)];
-      d += static_cast<int>((byte >> ((d & 3) * 2)) & 3) - 1;
-    }
+    });
   }
 }
 

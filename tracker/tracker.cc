@@ -270,48 +270,71 @@ struct MultiTracker::Impl {
       const TemplateLevel& t = target.levels[l];
       if (t.Empty()) continue;
       const BipLevel& level = h.bip->level(l);
-      // The template's occupied cells and their total weight.
+      // The template's vertices, as crop cells at zero displacement, and their total weight.
+      struct Vertex {
+        int cell;   // crop cell index at zero displacement
+        int index;  // in the template level
+        float weight;
+      };
+      std::vector<Vertex> vertices;
       cv::Rect occupied;
       double total = 0.0;
-      std::vector<int> vertices;
+      const int ox = h.origin.x >> l, oy = h.origin.y >> l;
       for (int y = t.cells.y; y < t.cells.y + t.cells.height; ++y) {
         for (int x = t.cells.x; x < t.cells.x + t.cells.width; ++x) {
           const size_t i = t.Index(x, y);
           if (t.weight[i] <= 0.f) continue;
-          vertices.push_back(static_cast<int>(i));
+          vertices.push_back({(y - oy) * level.cols + (x - ox), static_cast<int>(i), t.weight[i]});
           total += t.weight[i];
           occupied |= cv::Rect(x, y, 1, 1);
         }
       }
       if (total <= 0.0) continue;
+      // Displacements that keep the occupied cells inside the ROI (whose cells all lie in the
+      // crop), nearest to the previous motion first, so that among equal overlaps the nearest
+      // wins by coming first.
       const cv::Rect roi = CellsInside(target.roi, l);
-      // Displacements that keep the occupied cells inside the ROI.
       const int dx0 = roi.x - occupied.x, dx1 = roi.x + roi.width - (occupied.x + occupied.width);
       const int dy0 = roi.y - occupied.y, dy1 = roi.y + roi.height - (occupied.y + occupied.height);
       const cv::Point prior(
           static_cast<int>(std::lround(target.motion.x / static_cast<double>(1 << l))),
           static_cast<int>(std::lround(target.motion.y / static_cast<double>(1 << l))));
-      double best = -1.0;
-      cv::Point best_d;
+      std::vector<std::pair<int, cv::Point>> displacements;
       for (int dy = dy0; dy <= dy1; ++dy) {
         for (int dx = dx0; dx <= dx1; ++dx) {
-          double overlap = 0.0;
-          for (const int i : vertices) {
-            const int x = t.cells.x + i % t.cells.width + dx;
-            const int y = t.cells.y + i / t.cells.width + dy;
-            const int cell = h.Cell(l, x, y);
-            if (cell < 0 || !level.hom[cell]) continue;
-            if (SquaredDistance(&t.colour[3 * static_cast<size_t>(i)], level.Feature(cell)) < t2) {
-              overlap += t.weight[i];
-            }
-          }
-          overlap /= total;
-          const cv::Point d(dx, dy);
-          const bool better =
-              overlap > best || (overlap == best && cv::norm(d - prior) < cv::norm(best_d - prior));
-          if (better) best = overlap, best_d = d;
+          const int ex = dx - prior.x, ey = dy - prior.y;
+          displacements.push_back({ex * ex + ey * ey, {dx, dy}});
         }
       }
+      std::stable_sort(displacements.begin(), displacements.end(),
+                       [](const auto& a, const auto& b) { return a.first < b.first; });
+      // Every displacement is scored, but one stops counting as soon as the weight it has
+      // missed shows that it cannot beat the best so far: the result is the exhaustive one.
+      double best_weight = -1.0;
+      cv::Point best_d;
+      for (const auto& [distance, d] : displacements) {
+        const int offset = d.y * level.cols + d.x;
+        double missed = 0.0;
+        bool pruned = false;
+        for (const Vertex& v : vertices) {
+          const int cell = v.cell + offset;
+          const bool match =
+              level.hom[cell] && SquaredDistance(&t.colour[3 * static_cast<size_t>(v.index)],
+                                                 level.Feature(cell)) < t2;
+          if (!match) {
+            missed += v.weight;
+            if (total - missed <= best_weight) {
+              pruned = true;
+              break;
+            }
+          }
+        }
+        if (!pruned && total - missed > best_weight) {
+          best_weight = total - missed;
+          best_d = d;
+        }
+      }
+      const double best = best_weight / total;
       if (best > best_match.overlap) {
         best_match.overlap = best;
         best_match.level = l;
@@ -319,12 +342,12 @@ struct MultiTracker::Impl {
       if (best > options.min_overlap) {
         best_match = {true, l, best_d, best};
         // The matched ROI vertices' regions are the target (first stage of 4.2.4).
-        for (const int i : vertices) {
-          const int x = t.cells.x + i % t.cells.width + best_d.x;
-          const int y = t.cells.y + i / t.cells.width + best_d.y;
-          const int cell = h.Cell(l, x, y);
-          if (cell < 0 || !level.hom[cell]) continue;
-          if (SquaredDistance(&t.colour[3 * static_cast<size_t>(i)], level.Feature(cell)) < t2) {
+        const int offset = best_d.y * level.cols + best_d.x;
+        for (const Vertex& v : vertices) {
+          const int cell = v.cell + offset;
+          if (!level.hom[cell]) continue;
+          if (SquaredDistance(&t.colour[3 * static_cast<size_t>(v.index)], level.Feature(cell)) <
+              t2) {
             const int r = h.region[l][cell];
             if (r >= 0) (*in_target)[r] = 1;
           }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "io/pfm.h"
+#include "stereo/disparity.h"
 #include "tests/cli/attend_cli.h"
 #include "tests/support/attend_process.h"
 #include "tests/support/temp_dir.h"
@@ -136,10 +137,11 @@ TEST(DisparityCommand, WritesTheMapAndReportsItsAccuracy) {
   EXPECT_GT(report["milliseconds"].get<double>(), 0.0);
   EXPECT_GT(report["buffer_bytes"].get<double>(), 0.0);
   EXPECT_EQ(report["options"]["max_disparity"], 16);
-  EXPECT_EQ(report["options"]["window"], 9);
+  EXPECT_EQ(report["options"]["window"], DisparityOptions{}.window);
   EXPECT_EQ(report["options"]["subpixel"], false);
-  EXPECT_EQ(report["options"]["left_right_check"], false);
+  EXPECT_EQ(report["options"]["left_right_check"], DisparityOptions{}.left_right_check);
   EXPECT_EQ(report["options"]["lr_tolerance"], 1);
+  EXPECT_EQ(report["options"]["smoothness"], "hard");
   EXPECT_EQ(report["gt"], "truth.pfm");
   EXPECT_EQ(report["gt_scale"], 1.0);
 

@@ -32,6 +32,7 @@ nlohmann::json ReadJson(const std::string& path) {
 
 RunRequest TinyRequest(const testing::TempDir& dir, int frames) {
   RunRequest request;
+  request.home = testing::ProjectRoot();
   request.options.sequence.folder = testing::MakeFolderSequence(dir.File("seq"), frames, 32, 24);
   request.options.sequence.resize = "native";
   request.out_dir = dir.File("run");
@@ -109,6 +110,7 @@ TEST(RunSequence, CorruptFrameKeepsEarlierFramesAndNamesTheFrame) {
 TEST(RunSequence, BadSourceFailsBeforeCreatingTheRunFolder) {
   testing::TempDir dir;
   RunRequest request;
+  request.home = testing::ProjectRoot();
   request.options.sequence.folder = dir.File("missing");
   request.out_dir = dir.File("run");
   EXPECT_THROW(RunSequence(request), InputError);
@@ -118,6 +120,7 @@ TEST(RunSequence, BadSourceFailsBeforeCreatingTheRunFolder) {
 TEST(RunSequence, DisparityOnAMonocularSourceIsAConfigurationError) {
   testing::TempDir dir;
   RunRequest request;
+  request.home = testing::ProjectRoot();
   request.options = ReadOptions(ParamBlock::Parse(
       "features:\n  - {name: colour_contrast}\n  - {name: disparity}\n", "c.yaml"));
   request.options.sequence.folder = testing::MakeFolderSequence(dir.File("mono"), 2, 48, 32, false);
@@ -140,6 +143,7 @@ TEST(RunSequence, DisparityOnAMonocularSourceIsAConfigurationError) {
 TEST(RunSequence, UnknownFeatureIsAConfigurationErrorBeforeTheRunFolder) {
   testing::TempDir dir;
   RunRequest request;
+  request.home = testing::ProjectRoot();
   request.options = ReadOptions(ParamBlock::Parse(
       "features:\n  - {name: colour_contrast}\n  - {name: disparty}\n", "c.yaml"));
   request.options.sequence.folder = testing::MakeFolderSequence(dir.File("mono"), 2, 16, 16, false);

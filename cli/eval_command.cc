@@ -1,0 +1,122 @@
+// attend eval: the attention metrics of a run against ground truth (SPEC 3.2, 4).
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "io/ground_truth.h"
+#include "io/pfm.h"
+#include "pipeline/options_io.h"
+#include "pipeline/run_evaluation.h"
+#include "stereo/disparity.h"
+#include "util/error.h"
+
+namespace attend {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct EvalArguments {
+  std::string run;
+  std::string gt;
+};
+
+// The disparity maps dumped by the run (RUN/features/disparity/*.pfm, in [0, 1]) against
+// gt/disparity/*.pfm: mean bad-pixel rates over the frames that have both.
+nlohmann::ordered_json DisparityScores(const std::string& run, const std::string& gt,
+                                       const AttendOptions& options) {
+  const fs::path maps = fs::path(run) / "features" / "disparity";
+  const fs::path truth = fs::path(gt) / "disparity";
+  if (!fs::is_directory(maps) || !fs::is_directory(truth)) return nullptr;
+  int max_disparity = DisparityOptions{}.max_disparity;
+  for (const FeatureSpec& spec : options.features) {
+    if (spec.name == "disparity")
+      max_disparity = spec.params.GetInt("max_disparity", max_disparity);
+  }
+  double bad1 = 0.0, bad2 = 0.0;
+  int frames = 0;
+  for (const auto& entry : fs::directory_iterator(maps)) {
+    if (entry.path().extension() != ".pfm") continue;
+    const fs::path gt_path = truth / entry.path().filename();
+    if (!fs::exists(gt_path)) continue;
+    cv::Mat map = ReadPfm(entry.path().string());
+    map *= static_cast<float>(max_disparity - 1);
+    const cv::Mat ground_truth = ReadPfm(gt_path.string());
+    if (map.size() != ground_truth.size()) {
+      throw InputError(gt_path.string() + ": ground truth of " + std::to_string(ground_truth.cols) +
+                       "x" + std::to_string(ground_truth.rows) + " for a map of " +
+                       std::to_string(map.cols) + "x" + std::to_string(map.rows));
+    }
+    const BadPixelRates rates = EvaluateDisparity(map, ground_truth);
+    bad1 += rates.bad1;
+    bad2 += rates.bad2;
+    ++frames;
+  }
+  if (frames == 0) return nullptr;
+  return {{"frames", frames}, {"mean_bad1", bad1 / frames}, {"mean_bad2", bad2 / frames}};
+}
+
+int Eval(const EvalArguments& args) {
+  const fs::path run(args.run);
+  if (!fs::is_directory(run) || !fs::exists(run / "frames.jsonl")) {
+    throw InputError(args.run + ": not a run folder (no frames.jsonl)");
+  }
+  const AttendOptions options = LoadOptions((run / "config.yaml").string(), {});
+  std::string gt = args.gt;
+  if (gt.empty()) {
+    if (options.sequence.folder.empty()) {
+      throw ConfigError(args.run + ": the run's source is not a sequence folder; give --gt");
+    }
+    gt = (fs::path(options.sequence.folder) / "gt").string();
+  }
+  const fs::path objects = fs::path(gt) / "objects.csv";
+  if (!fs::exists(objects)) throw InputError(objects.string() + ": no ground-truth objects");
+  const std::vector<FrameRecord> frames = ReadFrameRecords((run / "frames.jsonl").string());
+  const AttentionScores scores = EvaluateAttention(frames, ReadObjectsCsv(objects.string()));
+
+  nlohmann::ordered_json per_object = nlohmann::ordered_json::array();
+  for (const ObjectScore& object : scores.per_object) {
+    per_object.push_back({{"id", object.id},
+                          {"kind", object.kind},
+                          {"first_visible", object.first_visible},
+                          {"first_attended", object.first_attended < 0
+                                                 ? nlohmann::ordered_json()
+                                                 : nlohmann::ordered_json(object.first_attended)},
+                          {"identity_switches", object.switches}});
+  }
+  nlohmann::ordered_json report = {{"run", args.run},
+                                   {"gt", gt},
+                                   {"frames", scores.frames},
+                                   {"objects", scores.objects},
+                                   {"attended", scores.attended},
+                                   {"coverage", scores.coverage},
+                                   {"mean_latency", scores.mean_latency},
+                                   {"revisits", scores.revisits},
+                                   {"identity_switches", scores.identity_switches},
+                                   {"mean_iou", scores.mean_iou},
+                                   {"per_object", per_object}};
+  const nlohmann::ordered_json disparity = DisparityScores(args.run, gt, options);
+  if (!disparity.is_null()) report["disparity"] = disparity;
+  std::cout << report.dump() << "\n";
+  return 0;
+}
+
+}  // namespace
+
+void AddEvalCommand(CLI::App& app, const std::string&, CommandAction* action) {
+  auto args = std::make_shared<EvalArguments>();
+  CLI::App* eval = app.add_subcommand(
+      "eval",
+      "Score a run against ground truth (SPEC 4): coverage, latency, revisits, identity "
+      "switches and mean IoU of the attended objects; with dumped disparity maps and "
+      "gt/disparity, their bad-pixel rates. Prints one JSON object.");
+  eval->add_option("RUN", args->run, "A run folder written by attend run")->required();
+  eval->add_option("--gt", args->gt,
+                   "Ground-truth folder holding objects.csv (default: the run's sequence "
+                   "folder's gt/)");
+  eval->callback([args, action] { *action = [args] { return Eval(*args); }; });
+}
+
+}  // namespace attend

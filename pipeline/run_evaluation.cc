@@ -1,0 +1,158 @@
+#include "pipeline/run_evaluation.h"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "util/error.h"
+
+namespace attend {
+
+namespace {
+
+double Iou(const cv::Rect2d& a, const cv::Rect2d& b) {
+  const double inter = (a & b).area();
+  const double uni = a.area() + b.area() - inter;
+  return uni > 0.0 ? inter / uni : 0.0;
+}
+
+}  // namespace
+
+std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot read (is this a run folder?)");
+  std::vector<FrameRecord> frames;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    try {
+      const nlohmann::json json = nlohmann::json::parse(line);
+      FrameRecord record;
+      record.frame = json.at("frame").get<int>();
+      for (const nlohmann::json& t : json.at("targets")) {
+        TargetRecord target;
+        target.id = t.at("id").get<int>();
+        const std::vector<int> box = t.at("bbox").get<std::vector<int>>();
+        if (box.size() != 4) throw std::runtime_error("bbox needs 4 numbers");
+        target.bbox = cv::Rect(box[0], box[1], box[2], box[3]);
+        target.area = t.at("area").get<int>();
+        target.saliency = t.at("saliency").get<double>();
+        target.state = t.at("state").get<std::string>();
+        target.kind = t.at("kind").get<std::string>();
+        target.similarity = t.at("similarity").get<std::string>();
+        record.targets.push_back(target);
+      }
+      record.new_ids = json.at("new").get<std::vector<int>>();
+      for (const auto& [stage, ms] : json.at("timings_ms").items()) {
+        record.timings.Add(stage, ms.get<double>());
+      }
+      frames.push_back(std::move(record));
+    } catch (const std::exception& e) {
+      throw InputError(path + ":" + std::to_string(number) + ": not a frame record (" + e.what() +
+                       ")");
+    }
+  }
+  return frames;
+}
+
+AttentionScores EvaluateAttention(const std::vector<FrameRecord>& frames,
+                                  const std::vector<GtObject>& truth,
+                                  const EvaluationOptions& options) {
+  // Ground truth by frame.
+  std::map<int, std::vector<const GtObject*>> by_frame;
+  for (const GtObject& object : truth) by_frame[object.frame].push_back(&object);
+
+  AttentionScores scores;
+  scores.frames = static_cast<int>(frames.size());
+  std::map<int, ObjectScore> objects;   // by object id
+  std::map<int, int> current_target;    // object id -> target id last on it
+  std::map<int, int> object_of_target;  // target id -> object id it was last on
+  double iou_sum = 0.0;
+  for (const FrameRecord& record : frames) {
+    const auto found = by_frame.find(record.frame);
+    if (found == by_frame.end()) continue;
+    std::vector<const GtObject*> visible;
+    for (const GtObject* object : found->second) {
+      if (object->visible_fraction >= options.min_visible &&
+          object->box.area() >= options.min_area) {
+        visible.push_back(object);
+        ObjectScore& score = objects[object->id];
+        score.id = object->id;
+        score.kind = object->kind;
+        if (score.first_visible < 0) score.first_visible = record.frame;
+      }
+    }
+    // The targets still active (tracked or occluded) this frame, and the objects they were on.
+    std::set<int> active_objects;
+    for (const TargetRecord& target : record.targets) {
+      if (target.state == "tracked" || target.state == "occluded") {
+        const auto on = object_of_target.find(target.id);
+        if (on != object_of_target.end()) active_objects.insert(on->second);
+      }
+    }
+    // One-to-one matching, greedy by IoU: every visible target with every visible object.
+    struct Pair {
+      double iou;
+      const TargetRecord* target;
+      const GtObject* object;
+    };
+    std::vector<Pair> pairs;
+    for (const TargetRecord& target : record.targets) {
+      if (target.state != "new" && target.state != "tracked") continue;
+      for (const GtObject* object : visible) {
+        const double iou = Iou(cv::Rect2d(target.bbox), object->box);
+        if (iou >= options.match_iou) pairs.push_back({iou, &target, object});
+      }
+    }
+    std::stable_sort(pairs.begin(), pairs.end(),
+                     [](const Pair& a, const Pair& b) { return a.iou > b.iou; });
+    std::set<int> used_targets, used_objects;
+    for (const Pair& pair : pairs) {
+      const TargetRecord& target = *pair.target;
+      const GtObject* best = pair.object;
+      if (used_targets.count(target.id) > 0 || used_objects.count(best->id) > 0) continue;
+      used_targets.insert(target.id);
+      used_objects.insert(best->id);
+      ++scores.matches;
+      iou_sum += pair.iou;
+      ObjectScore& score = objects[best->id];
+      if (score.first_attended < 0) score.first_attended = record.frame;
+      const auto previous = current_target.find(best->id);
+      if (previous != current_target.end() && previous->second != target.id) ++score.switches;
+      current_target[best->id] = target.id;
+      object_of_target[target.id] = best->id;
+    }
+    // A new target whose best-overlapping object another active target was already on is a
+    // revisit, whether or not it won the object in the matching.
+    for (const TargetRecord& target : record.targets) {
+      if (target.state != "new") continue;
+      const GtObject* best = nullptr;
+      double best_iou = options.match_iou;
+      for (const GtObject* object : visible) {
+        const double iou = Iou(cv::Rect2d(target.bbox), object->box);
+        if (iou >= best_iou) best = object, best_iou = iou;
+      }
+      if (best != nullptr && active_objects.count(best->id) > 0) ++scores.revisits;
+    }
+  }
+
+  double latency = 0.0;
+  for (const auto& [id, score] : objects) {
+    ++scores.objects;
+    if (score.first_attended >= 0) {
+      ++scores.attended;
+      latency += std::max(0, score.first_attended - score.first_visible);
+    }
+    scores.identity_switches += score.switches;
+    scores.per_object.push_back(score);
+  }
+  scores.coverage =
+      scores.objects > 0 ? static_cast<double>(scores.attended) / scores.objects : 0.0;
+  scores.mean_latency = scores.attended > 0 ? latency / scores.attended : 0.0;
+  scores.mean_iou = scores.matches > 0 ? iou_sum / scores.matches : 0.0;
+  return scores;
+}
+
+}  // namespace attend

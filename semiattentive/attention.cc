@@ -1,0 +1,227 @@
+#include "semiattentive/attention.h"
+
+#include <algorithm>
+#include <map>
+#include <opencv2/imgproc.hpp>
+
+#include "features/skin.h"
+#include "pyramid/similarity.h"
+#include "util/error.h"
+#include "util/timer.h"
+
+namespace attend {
+
+struct AttentionStage::Active {
+  int id = 0;
+  bool skin = false;
+  int low_frames = 0;  // consecutive frames below drop.min_saliency
+};
+
+std::string AttentionOptions::Check() const {
+  if (!(select.min_saliency >= 0.f && select.min_saliency <= 1.f)) {
+    return "select.min_saliency must be in [0, 1]";
+  }
+  if (select.min_area < 1) return "select.min_area must be >= 1";
+  if (select.max_new < 1) return "select.max_new must be >= 1";
+  if (select.max_targets < 1) return "select.max_targets must be >= 1";
+  if (!(select.max_area_fraction > 0.f && select.max_area_fraction <= 1.f)) {
+    return "select.max_area_fraction must be in (0, 1]";
+  }
+  if (!(select.saliency_t_max > 0.f)) return "select.saliency_t_max must be > 0";
+  if (!(drop.min_saliency >= 0.f && drop.min_saliency <= 1.f)) {
+    return "drop.min_saliency must be in [0, 1]";
+  }
+  if (drop.frames < 1) return "drop.frames must be >= 1";
+  if (inhibition.margin < 0) return "inhibition.margin must be >= 0";
+  if (!(skin_fraction >= 0.f && skin_fraction <= 1.f)) return "skin_fraction must be in [0, 1]";
+  const std::string tracker_error = tracker.Check();
+  if (!tracker_error.empty()) return "tracker." + tracker_error;
+  return "";
+}
+
+AttentionStage::AttentionStage(const AttentionOptions& options, SkinModel skin_model)
+    : options_(options), skin_model_(std::move(skin_model)), tracker_(options.tracker) {
+  const std::string error = options_.Check();
+  if (!error.empty()) throw ConfigError(error);
+}
+
+AttentionStage::~AttentionStage() = default;
+
+void AttentionStage::Track(const cv::Mat& bgr, const cv::Mat& tsl) {
+  const Stopwatch stopwatch;
+  cv::Mat skin_map;
+  SkinMap(tsl, skin_model_, SkinOutput::kBinary, &skin_map);
+  skin_map.convertTo(skin_, CV_8U, 255.0);
+  results_.clear();
+  tracker_.Track(bgr, &results_, skin_);
+  track_ms_ = stopwatch.ElapsedMs();
+}
+
+namespace {
+
+double MeanOver(const cv::Mat& map, const cv::Mat& mask) {
+  return cv::countNonZero(mask) > 0 ? cv::mean(map, mask)[0] : 0.0;
+}
+
+}  // namespace
+
+void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
+                            const Segmentation& segmentation, AttentionFrame* frame) {
+  frame->targets.clear();
+  frame->new_ids.clear();
+  frame->track_ms = track_ms_;
+  const cv::Rect image(0, 0, bgr.cols, bgr.rows);
+
+  // The states of the targets tracked this frame, their saliency and the drop rule.
+  Stopwatch stage;
+  inhibition_.create(bgr.size(), CV_32FC1);
+  inhibition_.setTo(0.f);
+  covered_.create(bgr.size(), CV_8UC1);
+  covered_.setTo(0);
+  const int margin = options_.inhibition.margin;
+  const cv::Mat kernel =
+      cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * margin + 1, 2 * margin + 1));
+  std::vector<int> removed;
+  for (const TrackResult& result : results_) {
+    auto active = std::find_if(active_.begin(), active_.end(),
+                               [&](const Active& a) { return a.id == result.id; });
+    if (active == active_.end()) continue;
+    AttendedTarget target;
+    target.id = result.id;
+    target.box = result.box & image;
+    target.skin = active->skin;
+    const cv::Mat mask = result.state == TrackState::kFound ? tracker_.Mask(result.id) : cv::Mat();
+    if (result.state == TrackState::kFound && !mask.empty()) {
+      target.state = "tracked";
+      target.area = result.area;
+      target.saliency = MeanOver(saliency, mask);
+      // Inhibit the mask, dilated, within its box plus the margin.
+      const cv::Rect around =
+          cv::Rect(target.box.x - margin, target.box.y - margin, target.box.width + 2 * margin,
+                   target.box.height + 2 * margin) &
+          image;
+      cv::Mat grown;
+      cv::dilate(mask(around), grown, kernel);
+      inhibition_(around).setTo(1.f, grown);
+      covered_.setTo(255, mask);
+      active->low_frames =
+          target.saliency < options_.drop.min_saliency ? active->low_frames + 1 : 0;
+      if (active->low_frames >= options_.drop.frames) {
+        target.state = "released";
+        removed.push_back(result.id);
+      }
+    } else if (result.state == TrackState::kOccluded) {
+      target.state = "occluded";
+      target.saliency = target.box.empty() ? 0.0 : cv::mean(saliency(target.box))[0];
+      if (options_.inhibition.keep_occluded && !target.box.empty()) {
+        inhibition_(target.box).setTo(1.f);
+        covered_(target.box).setTo(255);
+      }
+    } else {
+      target.state = "lost";
+      removed.push_back(result.id);
+    }
+    frame->targets.push_back(target);
+  }
+  for (const int id : removed) {
+    tracker_.Remove(id);
+    active_.erase(std::remove_if(active_.begin(), active_.end(),
+                                 [id](const Active& a) { return a.id == id; }),
+                  active_.end());
+  }
+  cv::subtract(cv::Scalar(1.f), inhibition_, inhibited_);
+  cv::multiply(saliency, inhibited_, inhibited_);
+  frame->inhibit_ms = stage.ElapsedMs();
+
+  // Candidates: regions of homogeneous inhibited saliency (a BIP over the saliency map).
+  stage.Restart();
+  const int free_slots = options_.select.max_targets - static_cast<int>(active_.size());
+  if (free_slots > 0) {
+    cv::Mat scaled, features;
+    inhibited_.convertTo(scaled, CV_32F, 255.0);
+    const cv::Mat zero = cv::Mat::zeros(scaled.size(), CV_32FC1);
+    cv::merge(std::vector<cv::Mat>{scaled, zero, zero}, features);
+    const Bip& bip =
+        saliency_builder_.Build(features, HsvSimilarity(options_.select.saliency_t_max));
+    cv::Mat labels;
+    const int count = bip.LabelRoots(&labels);
+    std::vector<double> sum(count, 0.0);
+    std::vector<int> area(count, 0);
+    for (int y = 0; y < labels.rows; ++y) {
+      const int* label = labels.ptr<int>(y);
+      const float* s = inhibited_.ptr<float>(y);
+      for (int x = 0; x < labels.cols; ++x) {
+        if (label[x] < 0) continue;
+        sum[label[x]] += s[x];
+        ++area[label[x]];
+      }
+    }
+    std::vector<std::pair<double, int>> ranked;  // (mean * area, region)
+    for (int r = 0; r < count; ++r) {
+      const double mean = area[r] > 0 ? sum[r] / area[r] : 0.0;
+      if (mean >= options_.select.min_saliency && area[r] >= options_.select.min_area) {
+        ranked.push_back({mean * area[r], r});
+      }
+    }
+    std::stable_sort(ranked.begin(), ranked.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+
+    if (!ranked.empty()) {
+      // The colour regions under each candidate, and those an active target covers.
+      std::vector<int> candidate_of(count, -1);
+      for (size_t k = 0; k < ranked.size(); ++k)
+        candidate_of[ranked[k].second] = static_cast<int>(k);
+      std::vector<std::map<int, int>> overlaps(ranked.size());
+      const cv::Mat& colour = segmentation.labels;
+      std::vector<uint8_t> taken(segmentation.regions.size(), 0);
+      for (int y = 0; y < labels.rows; ++y) {
+        const int* label = labels.ptr<int>(y);
+        const int* region = colour.ptr<int>(y);
+        const uchar* covered = covered_.ptr<uchar>(y);
+        for (int x = 0; x < labels.cols; ++x) {
+          if (region[x] < 0) continue;
+          if (covered[x]) taken[region[x]] = 1;
+          if (label[x] >= 0 && candidate_of[label[x]] >= 0) {
+            ++overlaps[candidate_of[label[x]]][region[x]];
+          }
+        }
+      }
+      const double max_area = options_.select.max_area_fraction * bgr.total();
+      int started = 0;
+      for (size_t k = 0; k < ranked.size(); ++k) {
+        if (started >= std::min(options_.select.max_new, free_slots)) break;
+        int best = -1, best_count = 0;
+        for (const auto& [region, pixels] : overlaps[k]) {
+          if (pixels > best_count) best = region, best_count = pixels;
+        }
+        if (best < 0 || taken[best] || segmentation.regions[best].area > max_area) continue;
+        taken[best] = 1;
+        const cv::Mat mask = colour == best;
+        const double skin_share =
+            static_cast<double>(cv::countNonZero(skin_ & mask)) / segmentation.regions[best].area;
+        const bool skin = skin_share >= options_.skin_fraction;
+        const int id = tracker_.StartFromMask(
+            bgr, mask, skin ? TrackSimilarity::kSkin : TrackSimilarity::kColour, skin_);
+        if (id < 0) continue;
+        active_.push_back({id, skin, 0});
+        ++attended_;
+        ++started;
+        AttendedTarget target;
+        target.id = id;
+        const cv::Mat own = tracker_.Mask(id);
+        target.box = cv::boundingRect(own);
+        target.area = cv::countNonZero(own);
+        target.saliency = MeanOver(saliency, own);
+        target.state = "new";
+        target.skin = skin;
+        frame->targets.push_back(target);
+        frame->new_ids.push_back(id);
+      }
+    }
+  }
+  std::sort(frame->targets.begin(), frame->targets.end(),
+            [](const AttendedTarget& a, const AttendedTarget& b) { return a.id < b.id; });
+  frame->select_ms = stage.ElapsedMs();
+}
+
+}  // namespace attend

@@ -1,0 +1,114 @@
+// The semi-attentive stage and inhibition of return (thesis 5.1.2, 5.1.3; SPEC 1, 2.4).
+//
+// Every frame, after the trackers have searched for the targets already attended and the
+// saliency map is made:
+//   inhibition = the union of the tracked targets' masks, dilated by `inhibition.margin`
+//                (occluded targets keep inhibiting their last box while keep_occluded);
+//   inhibited  = saliency * (1 - inhibition);
+//   the inhibited saliency is segmented into regions of homogeneous saliency (a BIP over the
+//   saliency map); regions with mean saliency >= select.min_saliency and area >=
+//   select.min_area are candidates, ranked by mean saliency times area; each candidate becomes
+//   the colour region of the frame's segmentation that it overlaps most, unless that region
+//   overlaps an active target (its mask, or its box while occluded) or is larger than
+//   select.max_area_fraction of the image; at most
+//   select.max_new targets start a frame, select.max_targets are active at once. A region that
+//   is mostly skin starts a skin-similarity tracker.
+// Lifecycle: new (the frame it starts) -> tracked (found) / occluded (not found) -> lost (its
+// template forgotten). A target whose own uninhibited saliency (mean over its mask) stays
+// below drop.min_saliency for drop.frames frames in a row is released.
+#pragma once
+
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "features/skin_model.h"
+#include "pyramid/segmentation.h"
+#include "tracker/tracker.h"
+
+namespace attend {
+
+struct SelectOptions {
+  float min_saliency = 0.2f;   // mean inhibited saliency of a candidate region, 0..1
+  int min_area = 120;          // pixels, at the working size
+  int max_new = 2;             // targets started in one frame
+  int max_targets = 12;        // targets active at once
+  // A colour region larger than this share of the image is background, never a target.
+  float max_area_fraction = 0.2f;
+  // T_max of the BIP that segments the saliency map, in saliency units times 255.
+  float saliency_t_max = 40.f;
+};
+
+struct DropOptions {
+  float min_saliency = 0.1f;  // a target below this, uninhibited, for `frames` is released
+  int frames = 15;
+};
+
+struct InhibitionOptions {
+  int margin = 3;             // pixels of dilation around each tracked mask
+  bool keep_occluded = true;  // occluded targets inhibit their last box
+};
+
+struct AttentionOptions {
+  SelectOptions select;
+  DropOptions drop;
+  InhibitionOptions inhibition;
+  TrackerOptions tracker;
+  // A target is a skin target when at least this share of its colour region is skin, by the
+  // skin model in `skin_model` (a file as made by attend skin-train).
+  float skin_fraction = 0.5f;
+  std::string skin_model = "configs/skin_tsl.yaml";
+  // "" when valid; otherwise names the field and the broken constraint.
+  std::string Check() const;
+};
+
+// One target in one frame (SPEC 3.3).
+struct AttendedTarget {
+  int id = 0;
+  cv::Rect box;
+  int area = 0;
+  double saliency = 0.0;  // mean uninhibited saliency over its mask (or its box when hidden)
+  std::string state;      // new, tracked, occluded, lost, released
+  bool skin = false;
+};
+
+struct AttentionFrame {
+  std::vector<AttendedTarget> targets;
+  std::vector<int> new_ids;
+  // Milliseconds of the stage's parts: tracking, inhibition, selection.
+  double track_ms = 0.0, inhibit_ms = 0.0, select_ms = 0.0;
+};
+
+class AttentionStage {
+ public:
+  // `skin_model`: classifies pixels as skin for skin trackers and for choosing the similarity.
+  AttentionStage(const AttentionOptions& options, SkinModel skin_model);
+  ~AttentionStage();
+
+  // Tracks the existing targets in the frame (8-bit BGR, its TSL image). Call first.
+  void Track(const cv::Mat& bgr, const cv::Mat& tsl);
+  // Builds the inhibition from the targets, inhibits `saliency`, selects and starts new
+  // targets on the colour regions of `segmentation`, and fills `frame`.
+  void Select(const cv::Mat& bgr, const cv::Mat& saliency, const Segmentation& segmentation,
+              AttentionFrame* frame);
+
+  const cv::Mat& inhibition() const { return inhibition_; }  // CV_32FC1, 0 or 1
+  const cv::Mat& inhibited() const { return inhibited_; }    // CV_32FC1
+  int targets_attended() const { return attended_; }
+
+ private:
+  struct Active;
+  AttentionOptions options_;
+  SkinModel skin_model_;
+  MultiTracker tracker_;
+  std::vector<Active> active_;
+  std::vector<TrackResult> results_;
+  cv::Mat skin_, inhibition_, inhibited_;
+  cv::Mat covered_;  // pixels of the active targets (masks, or boxes while occluded)
+  BipBuilder saliency_builder_;
+  int attended_ = 0;
+  double track_ms_ = 0.0;
+};
+
+}  // namespace attend
