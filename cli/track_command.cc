@@ -22,6 +22,7 @@
 #include "config/param_block.h"
 #include "io/ground_truth.h"
 #include "io/sequence.h"
+#include "pipeline/options_io.h"
 #include "pipeline/overlay.h"
 #include "tracker/evaluation.h"
 #include "tracker/tracker.h"
@@ -40,10 +41,16 @@ const std::vector<std::string>& DumpKinds() {
   return kinds;
 }
 
+// The keys of the configuration's tracker block (pipeline/options_io.h binds them to
+// TrackerOptions), without the "tracker." prefix.
 const std::vector<std::string>& TrackerKeys() {
-  static const std::vector<std::string> keys = {"t_colour",     "t_oversegment", "t_refine",
-                                                "alpha",        "epsilon",       "epsilon_max",
-                                                "working_area", "min_overlap"};
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> result;
+    for (const std::string& key : ConfigurationKeys()) {
+      if (key.rfind("tracker.", 0) == 0) result.push_back(key.substr(8));
+    }
+    return result;
+  }();
   return keys;
 }
 
@@ -108,7 +115,8 @@ cv::Rect ParseBox(const std::string& text) {
   return {value[0], value[1], value[2], value[3]};
 }
 
-// The `tracker.*` keys of --set over TrackerOptions' defaults.
+// The `tracker.*` keys of --set over TrackerOptions' defaults, read by the configuration's one
+// binding (pipeline/options_io.h), so that keys, ranges and messages are those of `attend run`.
 TrackerOptions ResolveTrackerOptions(const std::vector<std::string>& sets) {
   ParamBlock root = ParamBlock::Parse("", "--set");
   for (const std::string& assignment : sets) {
@@ -119,27 +127,7 @@ TrackerOptions ResolveTrackerOptions(const std::vector<std::string>& sets) {
     }
     root.Override(assignment);
   }
-  const ParamBlock block = root.Child("tracker");
-  root.CheckNoUnknownKeys();
-
-  TrackerOptions options;
-  const Range positive = Range::Above(0);
-  const Range fraction{0.0, 1.0, true, false};  // (0, 1]
-  auto get = [&block](const std::string& key, float value, Range range) {
-    return static_cast<float>(block.GetDouble(key, value, range));
-  };
-  options.t_colour = get("t_colour", options.t_colour, positive);
-  options.t_oversegment = get("t_oversegment", options.t_oversegment, positive);
-  options.t_refine = get("t_refine", options.t_refine, Range::AtLeast(0));
-  options.alpha = get("alpha", options.alpha, fraction);
-  options.epsilon = get("epsilon", options.epsilon, Range::AtLeast(0));
-  options.epsilon_max = get("epsilon_max", options.epsilon_max, Range::AtLeast(0));
-  options.working_area = get("working_area", options.working_area, fraction);
-  options.min_overlap = get("min_overlap", options.min_overlap, fraction);
-  block.CheckNoUnknownKeys();
-  const std::string error = options.Check();
-  if (!error.empty()) throw ConfigError("tracker options: " + error);
-  return options;
+  return ReadOptions(root).attention.tracker;
 }
 
 struct Dumps {
@@ -640,7 +628,8 @@ void AddTrackCommand(CLI::App& app, const std::string&, CommandAction* action) {
       ->add_option("--set", args->sets,
                    "Set a tracker option, the value parsed as YAML: --set tracker.KEY=VALUE with "
                    "KEY one of " +
-                       Join(TrackerKeys(), ", ") + " (tracker/tracker.h; repeatable)")
+                       Join(TrackerKeys(), ", ") +
+                       " (configs/README.md, tracker/tracker.h; repeatable)")
       ->type_name("KEY=VALUE")
       ->expected(1)
       ->allow_extra_args(false)
