@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
   attend::AddSynthCommand(app, command_line, &action);
   attend::AddSegmentCommand(app, command_line, &action);
   attend::AddDisparityCommand(app, command_line, &action);
+  attend::AddTrackCommand(app, command_line, &action);
+  attend::AddEvalTrackingCommand(app, command_line, &action);
   attend::AddEvalCommand(app, command_line, &action);
   attend::AddSkinTrainCommand(app, command_line, &action);
 

@@ -1,1 +1,213 @@
+#include "tracker/evaluation.h"
 
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "util/error.h"
+#include "util/strings.h"
+
+namespace attend {
+
+namespace {
+
+constexpr const char* kTracksCsvHeader = "frame,id,x,y,w,h,state";
+constexpr int kThresholds = 21;  // 0, 0.05, ..., 1
+constexpr double kPrecisionPixels = 20.0;
+
+std::string Trim(const std::string& text) {
+  const size_t begin = text.find_first_not_of(" \t\r");
+  if (begin == std::string::npos) return "";
+  const size_t end = text.find_last_not_of(" \t\r");
+  return text.substr(begin, end - begin + 1);
+}
+
+std::string Where(const std::string& path, int line) { return path + ":" + std::to_string(line); }
+
+// A finite number, or with `allow_nan` also "nan" (OTB's mark for a frame without a box).
+double ParseNumber(const std::string& text, const std::string& path, int line, const char* field,
+                   bool allow_nan = false) {
+  try {
+    size_t used = 0;
+    const double value = std::stod(text, &used);
+    if (used == text.size() && (std::isfinite(value) || (allow_nan && std::isnan(value)))) {
+      return value;
+    }
+  } catch (const std::exception&) {
+  }
+  throw InputError(Where(path, line) + ": field '" + field + "' is not a number: '" + text + "'");
+}
+
+int ParseInteger(const std::string& text, const std::string& path, int line, const char* field) {
+  const double value = ParseNumber(text, path, line, field);
+  if (value != std::floor(value) || std::fabs(value) > std::numeric_limits<int>::max()) {
+    throw InputError(Where(path, line) + ": field '" + field + "' is not an integer: '" + text +
+                     "'");
+  }
+  return static_cast<int>(value);
+}
+
+bool IsEmpty(const cv::Rect2d& box) { return !(box.width > 0.0) || !(box.height > 0.0); }
+
+// Intersection over union of two non-empty boxes, as areas of continuous rectangles (the OTB
+// toolkit's calcRectInt gives the same value for its 1-based inclusive pixel boxes).
+double Iou(const cv::Rect2d& a, const cv::Rect2d& b) {
+  const double w = std::min(a.x + a.width, b.x + b.width) - std::max(a.x, b.x);
+  const double h = std::min(a.y + a.height, b.y + b.height) - std::max(a.y, b.y);
+  if (w <= 0.0 || h <= 0.0) return 0.0;
+  const double intersection = w * h;
+  return intersection / (a.area() + b.area() - intersection);
+}
+
+double CentreDistance(const cv::Rect2d& a, const cv::Rect2d& b) {
+  return std::hypot((a.x + 0.5 * a.width) - (b.x + 0.5 * b.width),
+                    (a.y + 0.5 * a.height) - (b.y + 0.5 * b.height));
+}
+
+}  // namespace
+
+std::vector<TrackRow> ReadTracksCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot read the tracks file");
+  std::vector<TrackRow> rows;
+  std::string text;
+  int line = 0;
+  bool header = false;
+  while (std::getline(in, text)) {
+    ++line;
+    text = Trim(text);
+    if (text.empty()) continue;
+    if (!header) {
+      if (text != kTracksCsvHeader) {
+        throw InputError(Where(path, line) + ": expected the header '" + kTracksCsvHeader +
+                         "', got '" + text + "'");
+      }
+      header = true;
+      continue;
+    }
+    std::vector<std::string> fields = Split(text, ',');
+    if (fields.size() != 7) {
+      throw InputError(Where(path, line) + ": expected 7 fields (" + kTracksCsvHeader + "), got " +
+                       std::to_string(fields.size()));
+    }
+    for (std::string& field : fields) field = Trim(field);
+    TrackRow row;
+    row.frame = ParseInteger(fields[0], path, line, "frame");
+    row.id = ParseInteger(fields[1], path, line, "id");
+    row.box.x = ParseNumber(fields[2], path, line, "x");
+    row.box.y = ParseNumber(fields[3], path, line, "y");
+    row.box.width = ParseNumber(fields[4], path, line, "w");
+    row.box.height = ParseNumber(fields[5], path, line, "h");
+    row.state = fields[6];
+    if (row.frame < 0 || row.id < 0) {
+      throw InputError(Where(path, line) + ": frame and id must be >= 0");
+    }
+    if (row.box.width < 0.0 || row.box.height < 0.0) {
+      throw InputError(Where(path, line) + ": w and h must be >= 0");
+    }
+    if (row.state != "found" && row.state != "occluded" && row.state != "lost") {
+      throw InputError(Where(path, line) + ": state must be found, occluded or lost, got '" +
+                       row.state + "'");
+    }
+    rows.push_back(row);
+  }
+  if (!header) throw InputError(path + ": empty; expected the header '" + kTracksCsvHeader + "'");
+  return rows;
+}
+
+void WriteTracksCsv(const std::string& path, const std::vector<TrackRow>& rows) {
+  std::ofstream out(path);
+  if (!out) throw OutputError(path + ": cannot write the tracks file");
+  out << kTracksCsvHeader << "\n";
+  out.precision(17);
+  for (const TrackRow& row : rows) {
+    out << row.frame << "," << row.id << "," << row.box.x << "," << row.box.y << ","
+        << row.box.width << "," << row.box.height << "," << row.state << "\n";
+  }
+  out.close();
+  if (!out) throw OutputError(path + ": error while writing the tracks file");
+}
+
+std::vector<cv::Rect2d> ReadOtbGroundTruth(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot read the ground-truth file");
+  std::vector<std::string> lines;
+  std::string text;
+  while (std::getline(in, text)) lines.push_back(Trim(text));
+  while (!lines.empty() && lines.back().empty()) lines.pop_back();
+  if (lines.empty()) throw InputError(path + ": no boxes (expected one 'x y w h' a line)");
+
+  std::vector<cv::Rect2d> boxes;
+  boxes.reserve(lines.size());
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const int line = static_cast<int>(i) + 1;
+    // Fields are separated by any run of tabs, spaces and commas.
+    std::vector<std::string> fields;
+    std::string field;
+    for (const char c : lines[i] + " ") {
+      if (c == ' ' || c == '\t' || c == ',') {
+        if (!field.empty()) fields.push_back(field);
+        field.clear();
+      } else {
+        field += c;
+      }
+    }
+    if (fields.size() != 4) {
+      throw InputError(Where(path, line) + ": expected 4 numbers 'x y w h', got " +
+                       std::to_string(fields.size()) + " field(s)" +
+                       (fields.empty() ? " (an empty line: frame " + std::to_string(line - 1) +
+                                             " would have no box)"
+                                       : ""));
+    }
+    const char* names[] = {"x", "y", "w", "h"};
+    double value[4];
+    for (int k = 0; k < 4; ++k) value[k] = ParseNumber(fields[k], path, line, names[k], true);
+    if (value[2] < 0.0 || value[3] < 0.0) {
+      throw InputError(Where(path, line) + ": w and h must be >= 0");
+    }
+    const bool missing = std::isnan(value[0]) || std::isnan(value[1]) || std::isnan(value[2]) ||
+                         std::isnan(value[3]) || value[2] == 0.0 || value[3] == 0.0;
+    boxes.push_back(missing ? cv::Rect2d()
+                            : cv::Rect2d(value[0] - 1.0, value[1] - 1.0, value[2], value[3]));
+  }
+  return boxes;
+}
+
+TrackingScores ScoreTracking(const std::vector<cv::Rect2d>& predicted,
+                             const std::vector<cv::Rect2d>& truth) {
+  TrackingScores scores;
+  scores.success.assign(kThresholds, 0.0);
+  int precise = 0;
+  double iou_sum = 0.0;
+  for (size_t frame = 0; frame < truth.size(); ++frame) {
+    if (IsEmpty(truth[frame])) continue;
+    ++scores.frames;
+    double iou = 0.0;
+    double error = std::numeric_limits<double>::infinity();
+    if (frame < predicted.size() && !IsEmpty(predicted[frame])) {
+      iou = Iou(predicted[frame], truth[frame]);
+      error = CentreDistance(predicted[frame], truth[frame]);
+    }
+    for (int k = 0; k < kThresholds; ++k) {
+      // k / 20.0 is the double nearest to 0.05 k; 0.05 * k is not always.
+      if (iou > k / 20.0) scores.success[k] += 1.0;
+    }
+    if (error <= kPrecisionPixels) ++precise;
+    iou_sum += iou;
+  }
+  if (scores.frames == 0) return scores;
+  double sum = 0.0;
+  for (double& rate : scores.success) {
+    rate /= scores.frames;
+    sum += rate;
+  }
+  scores.success_auc = sum / kThresholds;
+  scores.precision_20 = static_cast<double>(precise) / scores.frames;
+  scores.mean_iou = iou_sum / scores.frames;
+  return scores;
+}
+
+}  // namespace attend

@@ -1,0 +1,679 @@
+// attend track: the BIP template tracker (tracker/tracker.h) over a sequence, started from boxes
+// on its first frame; attend eval-tracking: the OTB one-pass scores of its tracks.csv (SPEC 3.2,
+// 4; docs/TRACKING.md).
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <set>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "cli/commands.h"
+#include "config/param_block.h"
+#include "io/ground_truth.h"
+#include "io/sequence.h"
+#include "pipeline/options_io.h"
+#include "pipeline/overlay.h"
+#include "tracker/evaluation.h"
+#include "tracker/tracker.h"
+#include "util/error.h"
+#include "util/output_folder.h"
+#include "util/strings.h"
+
+namespace attend {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string>& DumpKinds() {
+  static const std::vector<std::string> kinds = {"masks", "overlay"};
+  return kinds;
+}
+
+// The keys of the configuration's tracker block (pipeline/options_io.h binds them to
+// TrackerOptions), without the "tracker." prefix.
+const std::vector<std::string>& TrackerKeys() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> result;
+    for (const std::string& key : ConfigurationKeys()) {
+      if (key.rfind("tracker.", 0) == 0) result.push_back(key.substr(8));
+    }
+    return result;
+  }();
+  return keys;
+}
+
+// A frame range FIRST:LAST, inclusive; either side may be empty (LAST -1: to the end).
+struct FrameRange {
+  int first = 0;
+  int last = -1;
+};
+
+FrameRange ParseFrameRange(const std::string& text) {
+  FrameRange range;
+  const size_t colon = text.find(':');
+  if (colon == std::string::npos) {
+    throw ConfigError("--frames " + text + ": expected FIRST:LAST (for example 10:50 or 10:)");
+  }
+  auto parse = [&](const std::string& part, int* value) {
+    if (part.empty()) return;
+    try {
+      size_t used = 0;
+      *value = std::stoi(part, &used);
+      if (used != part.size() || *value < 0) throw std::invalid_argument(part);
+    } catch (const std::exception&) {
+      throw ConfigError("--frames " + text + ": expected FIRST:LAST with non-negative integers");
+    }
+  };
+  parse(text.substr(0, colon), &range.first);
+  parse(text.substr(colon + 1), &range.last);
+  if (range.last >= 0 && range.last < range.first) {
+    throw ConfigError("--frames " + text + ": the range ends (" + std::to_string(range.last) +
+                      ") before it starts (" + std::to_string(range.first) + ")");
+  }
+  return range;
+}
+
+std::string BoxText(const cv::Rect& box) {
+  return std::to_string(box.x) + "," + std::to_string(box.y) + "," + std::to_string(box.width) +
+         "," + std::to_string(box.height);
+}
+
+// "x,y,w,h": four integers, 0-based pixels of the first frame, w and h > 0.
+cv::Rect ParseBox(const std::string& text) {
+  const std::vector<std::string> fields = Split(text, ',');
+  int value[4] = {0, 0, 0, 0};
+  bool ok = fields.size() == 4;
+  for (size_t i = 0; ok && i < 4; ++i) {
+    try {
+      size_t used = 0;
+      value[i] = std::stoi(fields[i], &used);
+      ok = used == fields[i].size() && !fields[i].empty();
+    } catch (const std::exception&) {
+      ok = false;
+    }
+  }
+  if (!ok) {
+    throw ConfigError("--init " + text +
+                      ": expected x,y,w,h (four integers: the box's top-left corner and size in "
+                      "0-based pixels of the first frame)");
+  }
+  if (value[2] <= 0 || value[3] <= 0) {
+    throw ConfigError("--init " + text + ": the box's width and height must be > 0");
+  }
+  return {value[0], value[1], value[2], value[3]};
+}
+
+// The `tracker.*` keys of --set over TrackerOptions' defaults, read by the configuration's one
+// binding (pipeline/options_io.h), so that keys, ranges and messages are those of `attend run`.
+TrackerOptions ResolveTrackerOptions(const std::vector<std::string>& sets) {
+  ParamBlock root = ParamBlock::Parse("", "--set");
+  for (const std::string& assignment : sets) {
+    if (assignment.rfind("tracker.", 0) != 0) {
+      throw ConfigError("--set " + assignment +
+                        ": attend track takes only tracker.KEY=VALUE, KEY one of " +
+                        Join(TrackerKeys(), ", "));
+    }
+    root.Override(assignment);
+  }
+  return ReadOptions(root).attention.tracker;
+}
+
+struct Dumps {
+  bool masks = false;
+  bool overlay = false;
+};
+
+Dumps ParseDumps(const std::string& text) {
+  Dumps dumps;
+  if (text.empty()) return dumps;
+  for (const std::string& kind : Split(text, ',')) {
+    if (kind == "masks") {
+      dumps.masks = true;
+    } else if (kind == "overlay") {
+      dumps.overlay = true;
+    } else {
+      throw ConfigError("--dump " + text + ": unknown output '" + kind + "'" +
+                        DidYouMean(kind, DumpKinds()) + "; choose from " + Join(DumpKinds(), ", "));
+    }
+  }
+  return dumps;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Frames: a sequence folder (left view only) or a plain folder of images.
+
+struct TrackFrame {
+  int index = 0;
+  cv::Mat bgr;
+  std::string path;
+};
+
+class TrackInput {
+ public:
+  virtual ~TrackInput() = default;
+  // The next frame of the range; false at the end. InputError for a frame that cannot be used.
+  virtual bool Next(TrackFrame* frame) = 0;
+  virtual std::string Describe() const = 0;
+};
+
+// A SPEC 3.1 sequence folder at its native size; only the left view is tracked.
+class SequenceInput final : public TrackInput {
+ public:
+  SequenceInput(const std::string& folder, const FrameRange& range) : folder_(folder) {
+    std::error_code error;
+    if (fs::is_directory(folder, error) && !fs::is_directory(fs::path(folder) / "left", error) &&
+        fs::is_directory(fs::path(folder) / "img", error)) {
+      throw InputError("folder " + folder + ": no left/ folder, but an img/ folder (an OTB " +
+                       "sequence?); track a plain folder of images with --images " +
+                       (fs::path(folder) / "img").string());
+    }
+    SequenceOptions options;
+    options.folder = folder;
+    options.first_frame = range.first;
+    options.last_frame = range.last;
+    // Boxes are in the source's pixels, as the ground truth is.
+    options.resize = "native";
+    source_ = FrameSource::Open(options);
+  }
+  bool Next(TrackFrame* frame) override {
+    StereoFrame stereo;
+    if (!source_->Next(&stereo)) return false;
+    frame->index = stereo.index;
+    frame->bgr = stereo.left;
+    frame->path = stereo.left_path;
+    return true;
+  }
+  std::string Describe() const override { return "folder " + folder_; }
+
+ private:
+  std::string folder_;
+  std::unique_ptr<FrameSource> source_;
+};
+
+// The image files of a folder in sorted file-name order (the frame index is the position), with
+// the extensions and decoding of sequence folders (docs/SEQUENCES.md).
+class ImageFolderInput final : public TrackInput {
+ public:
+  ImageFolderInput(const std::string& folder, const FrameRange& range) : folder_(folder) {
+    std::error_code error;
+    if (!fs::exists(folder, error)) throw InputError("--images " + folder + ": no such folder");
+    if (!fs::is_directory(folder, error)) throw InputError("--images " + folder + ": not a folder");
+    const std::vector<std::string> extensions = {".png", ".jpg", ".jpeg", ".ppm", ".pgm"};
+    try {
+      for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+        std::string extension = entry.path().extension().string();
+        std::transform(extension.begin(), extension.end(), extension.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        if (entry.is_regular_file() &&
+            std::find(extensions.begin(), extensions.end(), extension) != extensions.end()) {
+          files_.push_back(entry.path());
+        }
+      }
+    } catch (const fs::filesystem_error& e) {
+      throw InputError("--images " + folder + ": cannot list the images: " + e.what());
+    }
+    std::sort(files_.begin(), files_.end(), [](const fs::path& a, const fs::path& b) {
+      return a.filename().string() < b.filename().string();
+    });
+    if (files_.empty()) {
+      throw InputError("--images " + folder + ": no images (expected files ending in " +
+                       Join(extensions, ", ") + ")");
+    }
+    const int count = static_cast<int>(files_.size());
+    if (range.first >= count) {
+      throw InputError("--images " + folder + ": the frame range starts at frame " +
+                       std::to_string(range.first) + " but the folder has " +
+                       std::to_string(count) + " frames (0.." + std::to_string(count - 1) + ")");
+    }
+    next_ = range.first;
+    last_ = range.last < 0 ? count - 1 : std::min(range.last, count - 1);
+  }
+
+  bool Next(TrackFrame* frame) override {
+    if (next_ > last_) return false;
+    const int index = next_++;
+    const std::string path = files_[index].string();
+    const std::string where = "frame " + std::to_string(index) + " (" + path + ")";
+    cv::Mat bgr;
+    try {
+      bgr = cv::imread(path, cv::IMREAD_COLOR);
+    } catch (const cv::Exception& e) {
+      throw InputError(where + ": cannot be decoded: " + e.what());
+    }
+    if (bgr.empty()) throw InputError(where + ": cannot be read or decoded as an image");
+    if (size_.empty()) size_ = bgr.size();
+    if (bgr.size() != size_) {
+      throw InputError(where + ": size " + std::to_string(bgr.cols) + "x" +
+                       std::to_string(bgr.rows) + " differs from the first frame's " +
+                       std::to_string(size_.width) + "x" + std::to_string(size_.height));
+    }
+    frame->index = index;
+    frame->bgr = bgr;
+    frame->path = path;
+    return true;
+  }
+  std::string Describe() const override { return "images " + folder_; }
+
+ private:
+  std::string folder_;
+  std::vector<fs::path> files_;
+  int next_ = 0;
+  int last_ = -1;
+  cv::Size size_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// attend track
+
+struct TrackArguments {
+  std::string sequence;
+  std::string images;
+  std::vector<std::string> inits;
+  std::string out;
+  std::vector<std::string> sets;
+  std::string frames;
+  std::string dump;
+  bool overwrite = false;
+};
+
+// One target in one frame, as written and drawn.
+struct TargetView {
+  int id = 0;
+  std::string state;
+  cv::Rect box;
+  cv::Rect roi;  // empty on the first frame
+  cv::Mat mask;  // empty when not found
+};
+
+// The frame with each target's pixels tinted, its box (thick when found) and its ROI (thin), in
+// the colour of its id.
+cv::Mat DrawTrackOverlay(const cv::Mat& frame, int index, const std::vector<TargetView>& views) {
+  cv::Mat overlay = frame.clone();
+  for (const TargetView& view : views) {
+    if (view.mask.empty()) continue;
+    cv::Mat tinted(frame.size(), CV_8UC3, TargetColour(view.id));
+    cv::addWeighted(frame, 0.55, tinted, 0.45, 0.0, tinted);
+    tinted.copyTo(overlay, view.mask);
+  }
+  const double font_scale = std::max(0.35, frame.cols / 900.0);
+  for (const TargetView& view : views) {
+    const cv::Scalar colour = TargetColour(view.id);
+    const bool found = view.state == "found";
+    if (!view.roi.empty()) cv::rectangle(overlay, view.roi, colour, 1, cv::LINE_4);
+    cv::rectangle(overlay, view.box, colour, found ? 2 : 1, cv::LINE_8);
+    std::string label = "#" + std::to_string(view.id);
+    if (!found) label += " (" + view.state + ")";
+    const cv::Point anchor(view.box.x, std::max(10, view.box.y - 3));
+    cv::putText(overlay, label, anchor, cv::FONT_HERSHEY_SIMPLEX, font_scale, cv::Scalar(0, 0, 0),
+                3, cv::LINE_AA);
+    cv::putText(overlay, label, anchor, cv::FONT_HERSHEY_SIMPLEX, font_scale, colour, 1,
+                cv::LINE_AA);
+  }
+  const std::string caption = "frame " + std::to_string(index);
+  const cv::Point corner(4, frame.rows - 6);
+  cv::putText(overlay, caption, corner, cv::FONT_HERSHEY_SIMPLEX, font_scale, cv::Scalar(0, 0, 0),
+              3, cv::LINE_AA);
+  cv::putText(overlay, caption, corner, cv::FONT_HERSHEY_SIMPLEX, font_scale,
+              cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  return overlay;
+}
+
+void WriteImage(const fs::path& path, const cv::Mat& image) {
+  std::error_code error;
+  fs::create_directories(path.parent_path(), error);
+  bool written = false;
+  try {
+    written = !error && cv::imwrite(path.string(), image);
+  } catch (const cv::Exception&) {
+    written = false;
+  }
+  if (!written) throw OutputError(path.string() + ": cannot write the image");
+}
+
+void DumpFrame(const fs::path& out, const Dumps& dumps, const TrackFrame& frame,
+               const std::vector<TargetView>& views) {
+  const std::string stem = FrameStem(frame.index) + ".png";
+  if (dumps.masks) {
+    for (const TargetView& view : views) {
+      const cv::Mat mask =
+          view.mask.empty() ? cv::Mat(frame.bgr.size(), CV_8UC1, cv::Scalar(0)) : view.mask;
+      WriteImage(out / "masks" / std::to_string(view.id) / stem, mask);
+    }
+  }
+  if (dumps.overlay)
+    WriteImage(out / "overlay" / stem, DrawTrackOverlay(frame.bgr, frame.index, views));
+}
+
+int Track(const TrackArguments& args) {
+  // Everything on the command line is checked before any frame is read.
+  const TrackerOptions options = ResolveTrackerOptions(args.sets);
+  const FrameRange range = args.frames.empty() ? FrameRange() : ParseFrameRange(args.frames);
+  const Dumps dumps = ParseDumps(args.dump);
+  std::vector<cv::Rect> boxes;
+  for (const std::string& init : args.inits) boxes.push_back(ParseBox(init));
+
+  std::unique_ptr<TrackInput> input;
+  if (!args.images.empty()) {
+    input = std::make_unique<ImageFolderInput>(args.images, range);
+  } else {
+    input = std::make_unique<SequenceInput>(args.sequence, range);
+  }
+  TrackFrame frame;
+  if (!input->Next(&frame)) {
+    throw InputError(input->Describe() + ": no frame in the range " +
+                     (args.frames.empty() ? std::string("0:") : args.frames));
+  }
+  const int first_frame = frame.index;
+
+  // Targets start on the first frame of the range, one per box, ids 1, 2, ... in order.
+  MultiTracker tracker(options);
+  const cv::Rect image(0, 0, frame.bgr.cols, frame.bgr.rows);
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    const int id = tracker.StartFromBox(frame.bgr, boxes[i]);
+    if (id >= 0) continue;
+    const std::string what = "--init " + BoxText(boxes[i]) + " (target " + std::to_string(i + 1) +
+                             ", frame " + std::to_string(frame.index) + ", " + frame.path + ")";
+    if ((boxes[i] & image).empty()) {
+      throw InputError(what + ": the box lies outside the " + std::to_string(image.width) + "x" +
+                       std::to_string(image.height) + " frame");
+    }
+    throw InputError(what +
+                     ": no target: no region of the frame's over-segmentation lies mostly inside "
+                     "the box, or the target is too thin for a template");
+  }
+
+  const fs::path out(args.out);
+  PrepareOutputFolder(
+      args.out, args.overwrite,
+      {"track output", {"tracks.csv", "masks", "overlay"}, [](const std::string& folder) {
+         std::error_code error;
+         return fs::is_regular_file(fs::path(folder) / "tracks.csv", error);
+       }});
+  const std::string tracks_path = (out / "tracks.csv").string();
+
+  std::vector<TrackRow> rows;
+  std::vector<TargetView> views;
+  for (const int id : tracker.ids()) {
+    const cv::Mat mask = tracker.Mask(id).clone();
+    const cv::Rect box = cv::boundingRect(mask);
+    rows.push_back({frame.index, id, cv::Rect2d(box), "found"});
+    views.push_back({id, "found", box, cv::Rect(), mask});
+  }
+  DumpFrame(out, dumps, frame, views);
+
+  int frames = 1;
+  int last_frame = frame.index;
+  double track_ms = 0.0;
+  std::vector<int> lost;
+  std::vector<TrackResult> results;
+  try {
+    while (!tracker.ids().empty() && input->Next(&frame)) {
+      results.clear();
+      tracker.Track(frame.bgr, &results);
+      track_ms += tracker.milliseconds();
+      ++frames;
+      last_frame = frame.index;
+      views.clear();
+      for (const TrackResult& result : results) {
+        const std::string state = TrackStateName(result.state);
+        rows.push_back({frame.index, result.id, cv::Rect2d(result.box), state});
+        if (result.state == TrackState::kLost) lost.push_back(result.id);
+        const cv::Mat mask =
+            result.state == TrackState::kFound ? tracker.Mask(result.id) : cv::Mat();
+        views.push_back({result.id, state, result.box, result.roi, mask});
+      }
+      DumpFrame(out, dumps, frame, views);
+    }
+  } catch (const InputError& e) {
+    WriteTracksCsv(tracks_path, rows);
+    throw InputError(std::string(e.what()) + " (" + tracks_path + " holds frames " +
+                     std::to_string(first_frame) + ".." + std::to_string(last_frame) + ")");
+  }
+  WriteTracksCsv(tracks_path, rows);
+
+  const nlohmann::json summary = {{"source", input->Describe()},
+                                  {"out", args.out},
+                                  {"first_frame", first_frame},
+                                  {"last_frame", last_frame},
+                                  {"frames", frames},
+                                  {"targets", boxes.size()},
+                                  {"lost", lost},
+                                  {"ms_per_frame", frames > 1 ? track_ms / (frames - 1) : 0.0}};
+  std::cout << summary.dump() << std::endl;
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// attend eval-tracking
+
+struct EvalTrackingArguments {
+  std::string tracks;
+  std::string gt;
+  std::optional<int> id;
+  std::optional<int> gt_id;
+  std::string frames;
+};
+
+// The ground truth indexed by frame (empty boxes where there is none), and how it was read.
+struct GroundTruth {
+  std::vector<cv::Rect2d> boxes;
+  std::string format;
+  std::optional<int> id;
+};
+
+bool IsObjectsCsv(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    const size_t begin = line.find_first_not_of(" \t\r");
+    if (begin == std::string::npos) continue;
+    return line.compare(begin, 6, "frame,") == 0;
+  }
+  return false;
+}
+
+GroundTruth ReadGroundTruth(const EvalTrackingArguments& args) {
+  std::error_code error;
+  if (!fs::is_regular_file(args.gt, error)) throw InputError(args.gt + ": no such file");
+  GroundTruth truth;
+  if (!IsObjectsCsv(args.gt)) {
+    if (args.gt_id) {
+      throw ConfigError("--gt-id " + std::to_string(*args.gt_id) + ": " + args.gt +
+                        " is an OTB box list of one object; --gt-id picks an object of an "
+                        "`attend synth` gt/objects.csv");
+    }
+    truth.format = "otb";
+    truth.boxes = ReadOtbGroundTruth(args.gt);
+    return truth;
+  }
+  truth.format = "objects.csv";
+  const std::vector<GtObject> objects = ReadObjectsCsv(args.gt);
+  std::set<int> ids;
+  for (const GtObject& object : objects) ids.insert(object.id);
+  std::vector<std::string> id_texts;
+  for (const int id : ids) id_texts.push_back(std::to_string(id));
+  if (!args.gt_id) {
+    if (ids.size() != 1) {
+      throw ConfigError(args.gt + " holds objects " + Join(id_texts, ", ") +
+                        "; choose the one to score against with --gt-id");
+    }
+    truth.id = *ids.begin();
+  } else {
+    if (ids.count(*args.gt_id) == 0) {
+      throw ConfigError("--gt-id " + std::to_string(*args.gt_id) + ": " + args.gt +
+                        " has no such object (it holds " +
+                        (ids.empty() ? std::string("none") : Join(id_texts, ", ")) + ")");
+    }
+    truth.id = *args.gt_id;
+  }
+  for (const GtObject& object : objects) {
+    if (object.id != *truth.id) continue;
+    if (object.frame >= static_cast<int>(truth.boxes.size())) truth.boxes.resize(object.frame + 1);
+    truth.boxes[object.frame] = object.box;  // empty while hidden
+  }
+  return truth;
+}
+
+int EvalTracking(const EvalTrackingArguments& args) {
+  const bool has_range = !args.frames.empty();
+  const FrameRange range = has_range ? ParseFrameRange(args.frames) : FrameRange();
+  const std::vector<TrackRow> rows = ReadTracksCsv(args.tracks);
+  if (rows.empty()) throw InputError(args.tracks + ": no rows; nothing to score");
+  const GroundTruth truth = ReadGroundTruth(args);
+
+  // Each target's boxes by frame, whatever its state: a target not found keeps its last known
+  // box, as the OTB toolkit carries a tracker's last result over the frames it fails in.
+  std::map<int, std::vector<cv::Rect2d>> predicted;
+  std::map<int, int> first_frame, rows_of, found_of;
+  std::set<std::pair<int, int>> seen;  // (id, frame)
+  for (const TrackRow& row : rows) {
+    if (!seen.emplace(row.id, row.frame).second) {
+      throw InputError(args.tracks + ": target " + std::to_string(row.id) +
+                       " has two rows for frame " + std::to_string(row.frame));
+    }
+    std::vector<cv::Rect2d>& boxes = predicted[row.id];
+    if (row.frame >= static_cast<int>(boxes.size())) boxes.resize(row.frame + 1);
+    boxes[row.frame] = row.box;
+    const auto [it, inserted] = first_frame.emplace(row.id, row.frame);
+    if (!inserted) it->second = std::min(it->second, row.frame);
+    ++rows_of[row.id];
+    if (row.state == "found") ++found_of[row.id];
+  }
+  std::vector<int> ids;
+  if (args.id) {
+    if (!predicted.count(*args.id)) {
+      std::vector<std::string> present;
+      for (const auto& [id, boxes] : predicted) present.push_back(std::to_string(id));
+      throw ConfigError("--id " + std::to_string(*args.id) + ": " + args.tracks +
+                        " has no such target (it holds " + Join(present, ", ") + ")");
+    }
+    ids.push_back(*args.id);
+  } else {
+    for (const auto& [id, boxes] : predicted) ids.push_back(id);
+  }
+
+  nlohmann::json targets = nlohmann::json::array();
+  const int truth_last = static_cast<int>(truth.boxes.size()) - 1;
+  for (const int id : ids) {
+    // From the target's first frame (or FIRST) to the end of the ground truth (or LAST).
+    const int first = has_range ? range.first : first_frame[id];
+    const int last = range.last >= 0 ? std::min(range.last, truth_last) : truth_last;
+    std::vector<cv::Rect2d> scored = truth.boxes;
+    for (int f = 0; f < static_cast<int>(scored.size()); ++f) {
+      if (f < first || f > last) scored[f] = cv::Rect2d();
+    }
+    const TrackingScores scores = ScoreTracking(predicted[id], scored);
+    targets.push_back({{"id", id},
+                       {"first_frame", first},
+                       {"last_frame", last},
+                       {"frames", scores.frames},
+                       {"rows", rows_of[id]},
+                       {"found", found_of[id]},
+                       {"success_auc", scores.success_auc},
+                       {"precision_20", scores.precision_20},
+                       {"mean_iou", scores.mean_iou},
+                       {"success", scores.success}});
+  }
+  const nlohmann::json report = {{"tracks", args.tracks},
+                                 {"gt", args.gt},
+                                 {"gt_format", truth.format},
+                                 {"gt_id", truth.id ? nlohmann::json(*truth.id) : nullptr},
+                                 {"targets", targets}};
+  std::cout << report.dump(2) << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+void AddTrackCommand(CLI::App& app, const std::string&, CommandAction* action) {
+  auto args = std::make_shared<TrackArguments>();
+  CLI::App* command = app.add_subcommand(
+      "track",
+      "Track objects with the BIP template tracker (thesis chapter 4; docs/TRACKING.md). "
+      "Targets start on the first frame of the range, one per --init box (ids 1, 2, ... in "
+      "order), and are tracked over the following frames at the source's native size. Writes "
+      "OUT/tracks.csv (frame,id,x,y,w,h,state; one row per target per frame, the box the last "
+      "known one when the state is occluded or lost) and prints a one-line JSON summary whose "
+      "ms_per_frame is the mean time of MultiTracker::Track. A lost target has no further rows; "
+      "the command stops when every target is lost.");
+  CLI::Option* sequence = command->add_option(
+      "--sequence", args->sequence,
+      "Sequence folder (SPEC 3.1): frames in SEQ/left (a right/ view is ignored)");
+  CLI::Option* images = command->add_option(
+      "--images", args->images,
+      "A plain folder of images, frames in sorted file-name order (an OTB sequence's img/)");
+  sequence->excludes(images);
+  command
+      ->add_option("--init", args->inits,
+                   "A target's box x,y,w,h in 0-based pixels of the first frame (repeatable)")
+      ->type_name("X,Y,W,H")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->required();
+  command->add_option("--out", args->out, "Output folder, created if missing")->required();
+  command
+      ->add_option("--set", args->sets,
+                   "Set a tracker option, the value parsed as YAML: --set tracker.KEY=VALUE with "
+                   "KEY one of " +
+                       Join(TrackerKeys(), ", ") +
+                       " (configs/README.md, tracker/tracker.h; repeatable)")
+      ->type_name("KEY=VALUE")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  command->add_option(
+      "--frames", args->frames,
+      "Frame range FIRST:LAST, inclusive (10:50, 10:, :99); targets start on FIRST");
+  command->add_option("--dump", args->dump,
+                      "Also write masks (OUT/masks/<id>/NNNNNN.png, 255 on the target's pixels) "
+                      "and/or overlay (OUT/overlay/NNNNNN.png): --dump masks,overlay");
+  command->add_flag("--overwrite", args->overwrite,
+                    "Replace a previous track output (tracks.csv, masks/, overlay/) in OUT");
+  command->callback([args, action, sequence, images] {
+    if (sequence->count() == 0 && images->count() == 0) {
+      throw CLI::RequiredError("--sequence or --images");
+    }
+    *action = [args] { return Track(*args); };
+  });
+}
+
+void AddEvalTrackingCommand(CLI::App& app, const std::string&, CommandAction* action) {
+  auto args = std::make_shared<EvalTrackingArguments>();
+  CLI::App* command = app.add_subcommand(
+      "eval-tracking",
+      "Score tracks.csv against ground truth with the OTB one-pass evaluation (Wu, Lim, Yang, "
+      "CVPR 2013; docs/TRACKING.md): success AUC over IoU thresholds 0, 0.05, ..., 1 (success "
+      "at t: IoU > t) and precision at 20 px (centre error <= 20). Each target is scored from its "
+      "first frame to the last frame of the ground truth, over the frames that have a true box; "
+      "a frame without a row for the target scores 0, and a target not found keeps its last "
+      "known box. Prints one JSON object with the scores per target id.");
+  command->add_option("TRACKS", args->tracks, "tracks.csv written by attend track")->required();
+  command
+      ->add_option("--gt", args->gt,
+                   "Ground truth: an OTB groundtruth_rect.txt (line i + 1 is frame i, 1-based "
+                   "pixels), or the gt/objects.csv of an `attend synth` sequence")
+      ->required();
+  command->add_option("--id", args->id, "Score only this target id (default: every target)");
+  command->add_option("--gt-id", args->gt_id,
+                      "The object of gt/objects.csv to score against (needed when it holds more "
+                      "than one)");
+  command->add_option("--frames", args->frames,
+                      "Score only frames FIRST:LAST, inclusive (default: from each target's "
+                      "first frame to the end of the ground truth)");
+  command->callback([args, action] { *action = [args] { return EvalTracking(*args); }; });
+}
+
+}  // namespace attend
