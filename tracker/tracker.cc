@@ -8,6 +8,7 @@
 
 #include "colour/colour.h"
 #include "pyramid/bip.h"
+#include "pyramid/segmentation.h"
 #include "pyramid/similarity.h"
 #include "util/error.h"
 #include "util/timer.h"
@@ -160,6 +161,7 @@ struct MultiTracker::Impl {
   std::vector<Target> targets;
   int next_id = 1;
   Hierarchy hierarchies[2];  // colour and skin
+  Segmenter segmenter;       // chooses a target's regions in a box (thesis 4.2.1)
   cv::Mat union_mask;
 
   explicit Impl(const TrackerOptions& o) : options(o) {}
@@ -557,10 +559,37 @@ int MultiTracker::StartFromMask(const cv::Mat& frame, const cv::Mat& mask,
 int MultiTracker::StartFromBox(const cv::Mat& frame, const cv::Rect& box,
                                TrackSimilarity similarity, const cv::Mat& skin) {
   CheckFrame(frame, similarity, skin);
-  const cv::Rect inside = box & cv::Rect(0, 0, frame.cols, frame.rows);
+  const cv::Rect image(0, 0, frame.cols, frame.rows);
+  const cv::Rect inside = box & image;
   if (inside.empty()) return -1;
   cv::Mat mask(frame.size(), CV_8UC1, cv::Scalar(0));
-  mask(inside).setTo(255);
+  if (similarity == TrackSimilarity::kSkin) {
+    mask(inside).setTo(255, skin(inside));
+    return StartFromMask(frame, mask, similarity, skin);
+  }
+  // The target is what the colour segmentation (thesis 4.2.1, chapter 3) finds mostly inside
+  // the box. The box's surroundings, as wide as the box, are segmented with it, so that the
+  // background in the box's corners joins the background outside and stays out.
+  const cv::Rect context = cv::Rect(inside.x - inside.width, inside.y - inside.height,
+                                    3 * inside.width, 3 * inside.height) &
+                           image;
+  Segmentation segmentation;
+  impl_->segmenter.Segment(frame(context), &segmentation);
+  const cv::Rect local = inside - context.tl();
+  std::vector<int> within(segmentation.regions.size(), 0);
+  for (int y = local.y; y < local.y + local.height; ++y) {
+    const int* label = segmentation.labels.ptr<int>(y);
+    for (int x = local.x; x < local.x + local.width; ++x) {
+      if (label[x] >= 0) ++within[label[x]];
+    }
+  }
+  for (int y = 0; y < context.height; ++y) {
+    const int* label = segmentation.labels.ptr<int>(y);
+    uchar* out = mask.ptr<uchar>(y + context.y) + context.x;
+    for (int x = 0; x < context.width; ++x) {
+      if (label[x] >= 0 && 2 * within[label[x]] > segmentation.regions[label[x]].area) out[x] = 255;
+    }
+  }
   return StartFromMask(frame, mask, similarity, skin);
 }
 

@@ -68,8 +68,9 @@ class MultiTracker {
   MultiTracker& operator=(const MultiTracker&) = delete;
 
   // Starts a target in `frame` (8-bit BGR) from a mask of its pixels (CV_8UC1, frame size,
-  // non-zero = target) or from a box: the box is over-segmented and the regions lying mostly
-  // inside it are the target. For skin targets `skin` is the frame's binary skin map (CV_8UC1).
+  // non-zero = target) or from a box: the box and its surroundings are segmented with the BIP
+  // (default options, thesis 4.2.1) and the regions lying mostly inside the box are the target;
+  // a skin target from a box is the skin pixels in it. For skin targets `skin` is the frame's binary skin map (CV_8UC1).
   // Returns the new target's id (1, 2, ... in order of starting), or -1 when the mask or box
   // holds no usable target (empty, or too thin for a template).
   int StartFromMask(const cv::Mat& frame, const cv::Mat& mask,
