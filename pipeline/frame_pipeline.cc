@@ -1,6 +1,8 @@
 #include "pipeline/frame_pipeline.h"
 
+#include <exception>
 #include <filesystem>
+#include <opencv2/core/utility.hpp>
 
 #include "features/builtin.h"
 #include "features/plugin_loader.h"
@@ -55,11 +57,36 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   context_.Regions();
   record->timings.Add("segment", stage.ElapsedMs());
 
-  // Existing targets first, so that their saliency is inhibited in this frame (SPEC 1).
-  attention_.Track(frame.left, context_.Tsl());
-
+  // Existing targets first, so that their saliency is inhibited in this frame (SPEC 1). The
+  // features do not depend on the targets, so with more than one thread the two run side by
+  // side; both only read the frame context. Errors are rethrown in a fixed order.
   stage.Restart();
-  features_.Compute(context_, options_.threads != 1);
+  if (options_.threads == 1) {
+    attention_.Track(frame.left, context_.Tsl());
+    stage.Restart();
+    features_.Compute(context_, false);
+  } else {
+    std::exception_ptr errors[2];
+    cv::parallel_for_(
+        cv::Range(0, 2),
+        [&](const cv::Range& range) {
+          for (int task = range.start; task < range.end; ++task) {
+            try {
+              if (task == 0) {
+                attention_.Track(frame.left, context_.Tsl());
+              } else {
+                features_.Compute(context_, true);
+              }
+            } catch (...) {
+              errors[task] = std::current_exception();
+            }
+          }
+        },
+        2);
+    for (const std::exception_ptr& error : errors) {
+      if (error) std::rethrow_exception(error);
+    }
+  }
   record->timings.Add("features", stage.ElapsedMs());
   for (const FeatureResult& result : features_.results()) {
     record->timings.Add("feature." + result.name, result.milliseconds);

@@ -28,8 +28,9 @@ class FramePipeline {
 
   // Runs the stages of SPEC 1 on `frame` and fills `record` (targets, new ids) and its times:
   // `segment` (colour conversion and BIP segmentation), `track` (the existing targets),
-  // `features` (all plugins, wall time), `feature.<name>` (each plugin's own time), `saliency`,
-  // `inhibit` and `select`.
+  // `features` (wall time of the plugins, and of the tracking too when it runs beside them on a
+  // second thread), `feature.<name>` (each plugin's own time), `saliency`, `inhibit` and
+  // `select`.
   void Process(const StereoFrame& frame, FrameRecord* record);
 
   // Results of the last frame.
