@@ -25,7 +25,7 @@ struct SceneRun {
   std::vector<cv::Mat> inhibited;
 };
 
-SceneRun RunScene(const std::string& scene_yaml, int frames) {
+SceneRun RunScene(const std::string& scene_yaml, int frames, int threads = 1) {
   const SceneRenderer renderer(ParseScene(scene_yaml, "test scene"));
   AttendOptions options;
   options.features = ReadFeatureList(
@@ -33,7 +33,7 @@ SceneRun RunScene(const std::string& scene_yaml, int frames) {
                         "{name: skin}]",
                         "test.yaml"),
       "features");
-  options.threads = 1;
+  options.threads = threads;
   FeatureSetup setup;
   setup.home = testing::ProjectRoot();
   options.attention.skin_model = setup.home + "/configs/skin_tsl.yaml";
@@ -121,6 +121,26 @@ TEST(Attention, AMovingObjectKeepsItsIdentityAndItsInhibition) {
     }
   }
   EXPECT_GE(tracked, 35);
+}
+
+TEST(Attention, TwoThreadsGiveTheSameTargets) {
+  const std::string scene = std::string(kHeader) + R"(
+  - {id: 1, shape: rectangle, size: [0.4, 0.3], colour: [210, 40, 40], path: [{frame: 0, x: 70, y: 70, depth: 3}, {frame: 15, x: 120, y: 90, depth: 3}]}
+  - {id: 2, shape: ellipse, size: [0.3, 0.3], colour: [40, 80, 210], path: [{frame: 0, x: 230, y: 80, depth: 3}]}
+)";
+  const SceneRun one = RunScene(scene, 15, 1);
+  const SceneRun two = RunScene(scene, 15, 2);
+  ASSERT_EQ(one.records.size(), two.records.size());
+  for (size_t f = 0; f < one.records.size(); ++f) {
+    ASSERT_EQ(one.records[f].targets.size(), two.records[f].targets.size()) << "frame " << f;
+    for (size_t i = 0; i < one.records[f].targets.size(); ++i) {
+      EXPECT_EQ(one.records[f].targets[i].id, two.records[f].targets[i].id);
+      EXPECT_EQ(one.records[f].targets[i].bbox, two.records[f].targets[i].bbox);
+      EXPECT_EQ(one.records[f].targets[i].state, two.records[f].targets[i].state);
+    }
+    EXPECT_EQ(cv::norm(one.inhibited[f], two.inhibited[f], cv::NORM_INF), 0.0) << "frame " << f;
+  }
+  EXPECT_FALSE(one.records.front().targets.empty());
 }
 
 // The stage alone, on drawn frames with a drawn saliency map.
