@@ -50,6 +50,37 @@ inline uint64_t NeighbourKey(float d2, int position) {
   return (uint64_t{std::bit_cast<uint32_t>(d2)} << 3) | static_cast<uint64_t>(position);
 }
 
+// The loops over whole planes below are compiled twice, for AVX2 and for the baseline x86-64
+// (SSE2), and the processor picks one at run time: the same operations in the same order (no
+// FMA), so the same results on every machine. As in stereo/disparity.cc.
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ATTEND_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define ATTEND_VECTOR_CLONES
+#endif
+
+// Interleaved 3-float features to one plane per component.
+ATTEND_VECTOR_CLONES void SplitPlanes(const float* __restrict feature, size_t count,
+                                      float* __restrict p0, float* __restrict p1,
+                                      float* __restrict p2) {
+  for (size_t i = 0; i < count; ++i) {
+    p0[i] = feature[3 * i];
+    p1[i] = feature[3 * i + 1];
+    p2[i] = feature[3 * i + 2];
+  }
+}
+
+// d[i] = |f(i) - f(i + offset)|^2 for i in [begin, end), f given as three planes.
+ATTEND_VECTOR_CLONES void PlaneDistances(const float* p0, const float* p1, const float* p2,
+                                         size_t begin, size_t end, size_t offset,
+                                         float* __restrict d) {
+  for (size_t i = begin; i < end; ++i) {
+    const float a = p0[i] - p0[i + offset], b = p1[i] - p1[i + offset],
+                c = p2[i] - p2[i + offset];
+    d[i] = a * a + b * b + c * c;
+  }
+}
+
 }  // namespace
 
 std::string BipOptions::Check() const {
@@ -122,10 +153,11 @@ void BipBuilder::BuildLevel(int l, float threshold) {
   up.num_virtual = 0;
   up.num_regular = 0;
   const size_t cells = static_cast<size_t>(up.cols) * up.rows;
-  up.hom.assign(cells, 0);
-  up.area.assign(cells, 0);
+  // Regular decimation writes every cell's Hom, area and feature.
+  up.hom.resize(cells);
+  up.area.resize(cells);
   up.parent.assign(cells, -1);
-  up.feature.assign(3 * cells, 0.f);
+  up.feature.resize(3 * cells);
   up.edges.clear();
 
   const float t2 = threshold * threshold;
@@ -154,22 +186,12 @@ void BipBuilder::NeighbourDistances(int l) {
   for (auto& plane : planes_) {
     if (plane.size() < cells) plane.resize(cells);
   }
-  float* p0 = planes_[0].data();
-  float* p1 = planes_[1].data();
-  float* p2 = planes_[2].data();
-  const float* f = cur.feature.data();
-  for (size_t i = 0; i < cells; ++i) {
-    p0[i] = f[3 * i];
-    p1[i] = f[3 * i + 1];
-    p2[i] = f[3 * i + 2];
-  }
-  // d[i] = |f(i) - f(i + offset)|^2 for i in [begin, end).
+  const float* p0 = planes_[0].data();
+  const float* p1 = planes_[1].data();
+  const float* p2 = planes_[2].data();
+  SplitPlanes(cur.feature.data(), cells, planes_[0].data(), planes_[1].data(), planes_[2].data());
   auto distances = [&](float* d, size_t begin, size_t end, size_t offset) {
-    for (size_t i = begin; i < end; ++i) {
-      const float a = p0[i] - p0[i + offset], b = p1[i] - p1[i + offset],
-                  c = p2[i] - p2[i + offset];
-      d[i] = a * a + b * b + c * c;
-    }
+    PlaneDistances(p0, p1, p2, begin, end, offset, d);
   };
   float* east = distance_[kEast].data();
   float* south = distance_[kSouth].data();
@@ -196,7 +218,9 @@ void BipBuilder::NeighbourDistances(int l) {
 }
 
 // Stage 1: (i, j, l+1) is a regular vertex iff its four sons are regular and pairwise similar.
-// Its area and (not yet divided) feature sum are accumulated here.
+// Its area and (not yet divided) feature sum are set here. Every cell of l + 1 is written, and
+// every window's sons get their parent or -1 (which they hold already), without a branch:
+// which windows pass is unpredictable in textured areas.
 void BipBuilder::RegularDecimation(int l, float t2) {
   BipLevel& cur = levels_[l];
   BipLevel& up = levels_[l + 1];
@@ -208,25 +232,27 @@ void BipBuilder::RegularDecimation(int l, float t2) {
     for (int col = 0; col < up.cols; ++col) {
       const int a = 2 * row * cur.cols + 2 * col;
       const int b = a + 1, c = a + cur.cols, d = c + 1;
-      if ((cur.hom[a] & cur.hom[b] & cur.hom[c] & cur.hom[d]) == 0) continue;
-      // The six pairs of the 2x2 window.
-      if (!(east[a] < t2 && east[c] < t2 && south[a] < t2 && south[b] < t2 && south_east[a] < t2 &&
-            south_west[b] < t2)) {
-        continue;
-      }
+      // The four sons exist, and the six pairs of the 2x2 window are similar.
+      const bool regular = (cur.hom[a] & cur.hom[b] & cur.hom[c] & cur.hom[d]) &
+                           (east[a] < t2) & (east[c] < t2) & (south[a] < t2) & (south[b] < t2) &
+                           (south_east[a] < t2) & (south_west[b] < t2);
       const int id = row * up.cols + col;
-      up.hom[id] = 1;
-      ++up.num_regular;
-      float* sum = &up.feature[3 * static_cast<size_t>(id)];
+      float sum[3] = {0.f, 0.f, 0.f};
+      int area = 0;
       for (int son : {a, b, c, d}) {
-        cur.parent[son] = id;
+        cur.parent[son] = regular ? id : -1;
         const float weight = static_cast<float>(cur.area[son]);
         const float* f = cur.Feature(son);
         sum[0] += weight * f[0];
         sum[1] += weight * f[1];
         sum[2] += weight * f[2];
-        up.area[id] += cur.area[son];
+        area += cur.area[son];
       }
+      up.hom[id] = regular;
+      up.num_regular += regular;
+      up.area[id] = regular ? area : 0;
+      float* feature = &up.feature[3 * static_cast<size_t>(id)];
+      for (int k = 0; k < 3; ++k) feature[k] = regular ? sum[k] : 0.f;
     }
   }
 }
@@ -295,12 +321,12 @@ void BipBuilder::RegularOrphans(int l, float t2) {
   const int cols = cur.cols;
   const int grid[8] = {-cols - 1, -cols, -cols + 1, -1, 1, cols - 1, cols, cols + 1};
   // The most similar neighbour among those of one kind, from its key.
+  // Both are chosen rather than branched on: whether there is one is unpredictable.
   auto best_of = [&](int id, uint64_t key) {
+    const bool found = key != kNoNeighbour;
     Best best;
-    if (key != kNoNeighbour) {
-      best.id = id + grid[key & 7];
-      best.distance2 = std::bit_cast<float>(static_cast<uint32_t>(key >> 3));
-    }
+    best.id = found ? id + grid[key & 7] : -1;
+    best.distance2 = found ? std::bit_cast<float>(static_cast<uint32_t>(key >> 3)) : kFar;
     return best;
   };
   row_orphans_.resize(cols);
@@ -332,7 +358,9 @@ void BipBuilder::RegularOrphans(int l, float t2) {
         uint64_t parented_key = kNoNeighbour, orphan_key = kNoNeighbour;
         for (int k = 0; k < 8; ++k) {
           const int n = id + grid[k];
-          const uint64_t key = cur.hom[n] != 0 ? NeighbourKey(d2[k], k) : kNoNeighbour;
+          // A hole (Hom = 0, held as 0 or 1) sets every bit: no neighbour. Arithmetic rather
+          // than a choice, so that the compiler does not branch on it.
+          const uint64_t key = NeighbourKey(d2[k], k) | (uint64_t{cur.hom[n]} - 1);
           const bool has_parent = cur.parent[n] >= 0;
           parented_key = std::min(parented_key, has_parent ? key : kNoNeighbour);
           orphan_key = std::min(orphan_key, has_parent ? kNoNeighbour : key);
@@ -413,9 +441,10 @@ void BipBuilder::UpdateParents(int l) {
     sum[2] += weight * son[2];
     up.area[p] += cur.area[id];
   }
+  // Holes (area 0) keep their zero feature: they are multiplied by 1 rather than skipped, as
+  // whether a cell is a hole is unpredictable.
   for (int id = 0; id < up.num_ids(); ++id) {
-    if (up.area[id] == 0) continue;
-    const float inverse = 1.f / static_cast<float>(up.area[id]);
+    const float inverse = 1.f / static_cast<float>(std::max(up.area[id], 1));
     float* mean = &up.feature[3 * static_cast<size_t>(id)];
     mean[0] *= inverse;
     mean[1] *= inverse;
@@ -510,20 +539,25 @@ void BipBuilder::IntraLevelEdges(int l) {
   if (options_.link_across_kinds) DistantRegularEdges(l);
   if (up.num_virtual == 0) return;
   // The sons of each virtual parent, grouped (counting sort by parent). Only stages 2 and 3
-  // give a vertex a virtual parent, so the linked sons are all there is to look at.
+  // give a vertex a virtual parent, so the linked sons are all there is to look at. Sons of
+  // regular parents go to a bucket of their own (0), so that no branch asks for the kind of
+  // parent: it is unpredictable. Virtual parent v's sons are bucket v + 1.
   const int first_virtual = up.num_cells();
   const int parents = up.num_ids();
-  son_offsets_.assign(up.num_virtual + 1, 0);
-  for (int id : linked_) {
-    if (cur.parent[id] >= first_virtual) ++son_offsets_[cur.parent[id] - first_virtual + 1];
-  }
-  for (int v = 0; v < up.num_virtual; ++v) son_offsets_[v + 1] += son_offsets_[v];
-  sons_.resize(son_offsets_[up.num_virtual]);
+  auto bucket = [&](int son) { return std::max(cur.parent[son] - first_virtual + 1, 0); };
+  son_offsets_.assign(up.num_virtual + 2, 0);
+  for (int id : linked_) ++son_offsets_[bucket(id) + 1];
+  for (int b = 0; b <= up.num_virtual; ++b) son_offsets_[b + 1] += son_offsets_[b];
+  sons_.resize(linked_.size());
   stamp_.assign(son_offsets_.begin(), son_offsets_.end() - 1);  // fill cursor
-  for (int id : linked_) {
-    const int p = cur.parent[id];
-    if (p >= first_virtual) sons_[stamp_[p - first_virtual]++] = id;
-  }
+  for (int id : linked_) sons_[stamp_[bucket(id)]++] = id;
+  // Every visit writes its pair and keeps it by counting it or not, again without a branch:
+  // whether a neighbour's parent is new to p is unpredictable. Room for every visit: eight
+  // grid neighbours per son and its explicit ones.
+  const size_t most = 8 * sons_.size() + adjacency_.size();
+  if (edge_scratch_.size() < most) edge_scratch_.resize(most);
+  uint64_t* found = edge_scratch_.data();
+  size_t count = 0;
   // stamp_[q + 1] == p once p has seen parent q; slot 0 stands for "no parent" (q = -1).
   stamp_.assign(parents + 1, -1);
   const int cols = cur.cols, rows = cur.rows;
@@ -536,9 +570,11 @@ void BipBuilder::IntraLevelEdges(int l) {
       const int q = cur.parent[neighbour];
       const bool seen = stamp_[q + 1] == p;
       stamp_[q + 1] = p;
-      if (!seen && (q < first_virtual || q > p)) up.edges.push_back(EdgeKey(p, q));
+      found[count] = EdgeKey(p, q);
+      count += !seen & (q < first_virtual || q > p);
     };
-    for (int k = son_offsets_[p - first_virtual]; k < son_offsets_[p - first_virtual + 1]; ++k) {
+    const int v = p - first_virtual;
+    for (int k = son_offsets_[v + 1]; k < son_offsets_[v + 2]; ++k) {
       const int son = sons_[k];
       if (!cur.IsVirtual(son)) {
         const int row = son / cols, col = son - row * cols;
@@ -554,6 +590,7 @@ void BipBuilder::IntraLevelEdges(int l) {
       for (int e = AdjacencyBegin(son); e < AdjacencyEnd(son); ++e) visit(adjacency_[e]);
     }
   }
+  up.edges.insert(up.edges.end(), found, found + count);
 }
 
 int Bip::CountRoots() const {
