@@ -157,6 +157,7 @@ class BipBuilder {
   // The sons of each virtual vertex of the level being built (CSR), and a stamp per vertex.
   std::vector<int32_t> son_offsets_;
   std::vector<int32_t> sons_;
+  std::vector<int32_t> virtual_sons_;  // ungrouped
   std::vector<int32_t> stamp_;
   // Candidate edges of stage 4, grown only.
   std::vector<uint64_t> edge_scratch_;
