@@ -80,8 +80,7 @@ ATTEND_VECTOR_CLONES void PlaneDistances(const float* p0, const float* p1, const
                                          size_t begin, size_t end, size_t offset,
                                          float* __restrict d) {
   for (size_t i = begin; i < end; ++i) {
-    const float a = p0[i] - p0[i + offset], b = p1[i] - p1[i + offset],
-                c = p2[i] - p2[i + offset];
+    const float a = p0[i] - p0[i + offset], b = p1[i] - p1[i + offset], c = p2[i] - p2[i + offset];
     d[i] = a * a + b * b + c * c;
   }
 }
@@ -586,7 +585,9 @@ void BipBuilder::IntraLevelEdges(int l) {
     num_sons += cur.parent[id] >= first_virtual;
   }
   son_offsets_.assign(up.num_virtual + 1, 0);
-  for (int k = 0; k < num_sons; ++k) ++son_offsets_[cur.parent[virtual_sons_[k]] - first_virtual + 1];
+  for (int k = 0; k < num_sons; ++k) {
+    ++son_offsets_[cur.parent[virtual_sons_[k]] - first_virtual + 1];
+  }
   for (int v = 0; v < up.num_virtual; ++v) son_offsets_[v + 1] += son_offsets_[v];
   sons_.resize(num_sons);
   stamp_.assign(son_offsets_.begin(), son_offsets_.end() - 1);  // fill cursor
@@ -594,13 +595,6 @@ void BipBuilder::IntraLevelEdges(int l) {
     const int id = virtual_sons_[k];
     sons_[stamp_[cur.parent[id] - first_virtual]++] = id;
   }
-  // Every visit writes its pair and keeps it by counting it or not, again without a branch:
-  // whether a neighbour's parent is new to p is unpredictable. Room for every visit: eight
-  // grid neighbours per son and its explicit ones.
-  const size_t most = 8 * sons_.size() + adjacency_.size();
-  if (edge_scratch_.size() < most) edge_scratch_.resize(most);
-  uint64_t* found = edge_scratch_.data();
-  size_t count = 0;
   // stamp_[q + 1] == p once p has seen parent q; slot 0 stands for "no parent" (q = -1).
   stamp_.assign(parents + 1, -1);
   const int cols = cur.cols, rows = cur.rows;
@@ -613,8 +607,7 @@ void BipBuilder::IntraLevelEdges(int l) {
       const int q = cur.parent[neighbour];
       const bool seen = stamp_[q + 1] == p;
       stamp_[q + 1] = p;
-      found[count] = EdgeKey(p, q);
-      count += !seen & (q < first_virtual || q > p);
+      if (!seen && (q < first_virtual || q > p)) up.edges.push_back(EdgeKey(p, q));
     };
     for (int k = son_offsets_[p - first_virtual]; k < son_offsets_[p - first_virtual + 1]; ++k) {
       const int son = sons_[k];
@@ -632,7 +625,6 @@ void BipBuilder::IntraLevelEdges(int l) {
       for (int e = AdjacencyBegin(son); e < AdjacencyEnd(son); ++e) visit(adjacency_[e]);
     }
   }
-  up.edges.insert(up.edges.end(), found, found + count);
 }
 
 int Bip::CountRoots() const {

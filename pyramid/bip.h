@@ -159,8 +159,6 @@ class BipBuilder {
   std::vector<int32_t> sons_;
   std::vector<int32_t> virtual_sons_;  // ungrouped
   std::vector<int32_t> stamp_;
-  // Candidate edges of stage 4, grown only.
-  std::vector<uint64_t> edge_scratch_;
   // Row and column of each cell of the level being built (variant edges).
   std::vector<int32_t> cell_row_;
   std::vector<int32_t> cell_col_;
