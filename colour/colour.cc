@@ -11,6 +11,15 @@ namespace {
 
 constexpr float kSqrt3 = 1.7320508075688772f;
 
+// CylinderRow() is compiled twice, for AVX2 and for the baseline x86-64 (SSE2), and the
+// processor picks one at run time: the same operations in the same order (no FMA), so the same
+// results on every machine. As in stereo/disparity.cc.
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ATTEND_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define ATTEND_VECTOR_CLONES
+#endif
+
 // With x = (R-G)+(R-B) and y = sqrt(3)(G-B), H = atan2(y, x), so cos H = x/r and
 // sin H = y/r with r = |(x, y)|: no trigonometry is needed.
 inline void Cylinder(float r, float g, float b, float* out) {
@@ -92,7 +101,7 @@ __attribute__((noinline)) void TslRow(const float* __restrict r, const float* __
 //   under its default -fmath-errno.
 // Every other float operation is Cylinder()'s, on the same values in the same order, so the
 // results are the same to the bit.
-void CylinderRow(const uchar* bgr, int n, float* out) {
+ATTEND_VECTOR_CLONES void CylinderRow(const uchar* bgr, int n, float* out) {
   constexpr int kChunk = 128;
   int32_t blue[kChunk], green[kChunk], red[kChunk];
   float x[kChunk], y[kChunk], s[kChunk], v[kChunk], length[kChunk];

@@ -41,13 +41,67 @@ struct Best {
   }
 };
 
+// The squared distance stored for a pair of cells of which one is a hole (Hom = 0): the NaN
+// whose bits are all ones, which no arithmetic produces. It fails every "< threshold" test.
+constexpr uint32_t kHoleBits = ~uint32_t{0};
+
 // A neighbour of the 8-neighbourhood as one integer: its squared distance above its position
 // (0..7, raster order). The bits of non-negative floats order like their values, so the
 // smallest key is the most similar neighbour and, among equals, the first in raster order;
 // comparing integers lets the choice run without branches and with short dependency chains.
-constexpr uint64_t kNoNeighbour = ~uint64_t{0};
+// Keys from kNoNeighbour up (a hole's, or none) stand for no neighbour.
+constexpr uint64_t kNoNeighbour = uint64_t{kHoleBits} << 3;
 inline uint64_t NeighbourKey(float d2, int position) {
   return (uint64_t{std::bit_cast<uint32_t>(d2)} << 3) | static_cast<uint64_t>(position);
+}
+
+// The loops over whole planes below are compiled twice, for AVX2 and for the baseline x86-64
+// (SSE2), and the processor picks one at run time: the same operations in the same order (no
+// FMA), so the same results on every machine. As in stereo/disparity.cc.
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ATTEND_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define ATTEND_VECTOR_CLONES
+#endif
+
+// Interleaved 3-float features to one plane per component.
+ATTEND_VECTOR_CLONES void SplitPlanes(const float* __restrict feature, size_t count,
+                                      float* __restrict p0, float* __restrict p1,
+                                      float* __restrict p2) {
+  for (size_t i = 0; i < count; ++i) {
+    p0[i] = feature[3 * i];
+    p1[i] = feature[3 * i + 1];
+    p2[i] = feature[3 * i + 2];
+  }
+}
+
+// d[i] = |f(i) - f(i + offset)|^2 for i in [begin, end), f given as three planes.
+ATTEND_VECTOR_CLONES void PlaneDistances(const float* p0, const float* p1, const float* p2,
+                                         size_t begin, size_t end, size_t offset,
+                                         float* __restrict d) {
+  for (size_t i = begin; i < end; ++i) {
+    const float a = p0[i] - p0[i + offset], b = p1[i] - p1[i + offset], c = p2[i] - p2[i + offset];
+    d[i] = a * a + b * b + c * c;
+  }
+}
+
+// d[i] = the hole marker for i in [begin, end) where cell i or i + offset is a hole.
+ATTEND_VECTOR_CLONES void MarkHoles(const uint8_t* hom, size_t begin, size_t end, size_t offset,
+                                    float* __restrict d) {
+  const float hole = std::bit_cast<float>(kHoleBits);
+  for (size_t i = begin; i < end; ++i) d[i] = (hom[i] & hom[i + offset]) != 0 ? d[i] : hole;
+}
+
+// The area-weighted feature sums of `count` vertices to means. Holes (area 0) keep their zero
+// feature: they are multiplied by 1 rather than skipped, so that the loop vectorises.
+ATTEND_VECTOR_CLONES void DivideByArea(const int32_t* __restrict area, int count,
+                                       float* __restrict feature) {
+  for (int id = 0; id < count; ++id) {
+    const float inverse = 1.f / static_cast<float>(area[id] + (area[id] == 0));
+    feature[3 * id] *= inverse;
+    feature[3 * id + 1] *= inverse;
+    feature[3 * id + 2] *= inverse;
+  }
 }
 
 }  // namespace
@@ -87,12 +141,20 @@ const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& po
   for (int row = 0; row < height; ++row) {
     const float* in = features.ptr<float>(row);
     std::copy(in, in + 3 * width, base.feature.begin() + 3 * static_cast<size_t>(row) * width);
-    const uchar* inside = mask.empty() ? nullptr : mask.ptr<uchar>(row);
-    for (int col = 0; col < width; ++col) {
-      const uint8_t hom = inside == nullptr || inside[col] != 0 ? 1 : 0;
-      base.hom[static_cast<size_t>(row) * width + col] = hom;
-      base.area[static_cast<size_t>(row) * width + col] = hom;
-      base.num_regular += hom;
+  }
+  if (mask.empty()) {
+    std::fill(base.hom.begin(), base.hom.end(), 1);
+    std::fill(base.area.begin(), base.area.end(), 1);
+    base.num_regular = static_cast<int>(cells);
+  } else {
+    for (int row = 0; row < height; ++row) {
+      const uchar* inside = mask.ptr<uchar>(row);
+      for (int col = 0; col < width; ++col) {
+        const uint8_t hom = inside[col] != 0 ? 1 : 0;
+        base.hom[static_cast<size_t>(row) * width + col] = hom;
+        base.area[static_cast<size_t>(row) * width + col] = hom;
+        base.num_regular += hom;
+      }
     }
   }
 
@@ -122,10 +184,11 @@ void BipBuilder::BuildLevel(int l, float threshold) {
   up.num_virtual = 0;
   up.num_regular = 0;
   const size_t cells = static_cast<size_t>(up.cols) * up.rows;
-  up.hom.assign(cells, 0);
-  up.area.assign(cells, 0);
+  // Regular decimation writes every cell's Hom, area and feature.
+  up.hom.resize(cells);
+  up.area.resize(cells);
   up.parent.assign(cells, -1);
-  up.feature.assign(3 * cells, 0.f);
+  up.feature.resize(3 * cells);
   up.edges.clear();
 
   const float t2 = threshold * threshold;
@@ -154,22 +217,15 @@ void BipBuilder::NeighbourDistances(int l) {
   for (auto& plane : planes_) {
     if (plane.size() < cells) plane.resize(cells);
   }
-  float* p0 = planes_[0].data();
-  float* p1 = planes_[1].data();
-  float* p2 = planes_[2].data();
-  const float* f = cur.feature.data();
-  for (size_t i = 0; i < cells; ++i) {
-    p0[i] = f[3 * i];
-    p1[i] = f[3 * i + 1];
-    p2[i] = f[3 * i + 2];
-  }
-  // d[i] = |f(i) - f(i + offset)|^2 for i in [begin, end).
+  const float* p0 = planes_[0].data();
+  const float* p1 = planes_[1].data();
+  const float* p2 = planes_[2].data();
+  SplitPlanes(cur.feature.data(), cells, planes_[0].data(), planes_[1].data(), planes_[2].data());
+  // With holes, a pair with a hole gets kHoleBits, so that stage 2 need not look at Hom.
+  const bool holes = cur.num_regular < static_cast<int>(cells);
   auto distances = [&](float* d, size_t begin, size_t end, size_t offset) {
-    for (size_t i = begin; i < end; ++i) {
-      const float a = p0[i] - p0[i + offset], b = p1[i] - p1[i + offset],
-                  c = p2[i] - p2[i + offset];
-      d[i] = a * a + b * b + c * c;
-    }
+    PlaneDistances(p0, p1, p2, begin, end, offset, d);
+    if (holes) MarkHoles(cur.hom.data(), begin, end, offset, d);
   };
   float* east = distance_[kEast].data();
   float* south = distance_[kSouth].data();
@@ -196,39 +252,53 @@ void BipBuilder::NeighbourDistances(int l) {
 }
 
 // Stage 1: (i, j, l+1) is a regular vertex iff its four sons are regular and pairwise similar.
-// Its area and (not yet divided) feature sum are accumulated here.
+// Its area and (not yet divided) feature sum are set here. Every cell of l + 1 is written, and
+// every window's sons get their parent or -1 (which they hold already), without a branch:
+// which windows pass is unpredictable in textured areas.
 void BipBuilder::RegularDecimation(int l, float t2) {
-  BipLevel& cur = levels_[l];
+  const BipLevel& cur = levels_[l];
   BipLevel& up = levels_[l + 1];
   const float* east = distance_[kEast].data();
   const float* south = distance_[kSouth].data();
   const float* south_east = distance_[kSouthEast].data();
   const float* south_west = distance_[kSouthWest].data();
+  // Plain pointers and a local count: the Hom bytes written below may alias anything, which
+  // would make the compiler reload every vector's data and the count after each window.
+  const float* son_feature = cur.feature.data();
+  const int32_t* son_area = cur.area.data();
+  int32_t* son_parent = levels_[l].parent.data();
+  uint8_t* hom = up.hom.data();
+  int32_t* area = up.area.data();
+  float* feature = up.feature.data();
+  const int cols = cur.cols;
+  int regulars = 0;
   for (int row = 0; row < up.rows; ++row) {
     for (int col = 0; col < up.cols; ++col) {
-      const int a = 2 * row * cur.cols + 2 * col;
-      const int b = a + 1, c = a + cur.cols, d = c + 1;
-      if ((cur.hom[a] & cur.hom[b] & cur.hom[c] & cur.hom[d]) == 0) continue;
-      // The six pairs of the 2x2 window.
-      if (!(east[a] < t2 && east[c] < t2 && south[a] < t2 && south[b] < t2 && south_east[a] < t2 &&
-            south_west[b] < t2)) {
-        continue;
-      }
+      const int a = 2 * row * cols + 2 * col;
+      const int b = a + 1, c = a + cols, d = c + 1;
+      // The six pairs of the 2x2 window are similar; this fails when a son is a hole, as its
+      // distances are the hole marker.
+      const bool regular = (east[a] < t2) & (east[c] < t2) & (south[a] < t2) & (south[b] < t2) &
+                           (south_east[a] < t2) & (south_west[b] < t2);
       const int id = row * up.cols + col;
-      up.hom[id] = 1;
-      ++up.num_regular;
-      float* sum = &up.feature[3 * static_cast<size_t>(id)];
+      float sum[3] = {0.f, 0.f, 0.f};
+      int sum_area = 0;
       for (int son : {a, b, c, d}) {
-        cur.parent[son] = id;
-        const float weight = static_cast<float>(cur.area[son]);
-        const float* f = cur.Feature(son);
+        son_parent[son] = regular ? id : -1;
+        const float weight = static_cast<float>(son_area[son]);
+        const float* f = son_feature + 3 * static_cast<size_t>(son);
         sum[0] += weight * f[0];
         sum[1] += weight * f[1];
         sum[2] += weight * f[2];
-        up.area[id] += cur.area[son];
+        sum_area += son_area[son];
       }
+      hom[id] = regular;
+      regulars += regular;
+      area[id] = regular ? sum_area : 0;
+      for (int k = 0; k < 3; ++k) feature[3 * static_cast<size_t>(id) + k] = regular ? sum[k] : 0.f;
     }
   }
+  up.num_regular = regulars;
 }
 
 void BipBuilder::BuildAdjacency(int l) {
@@ -295,12 +365,12 @@ void BipBuilder::RegularOrphans(int l, float t2) {
   const int cols = cur.cols;
   const int grid[8] = {-cols - 1, -cols, -cols + 1, -1, 1, cols - 1, cols, cols + 1};
   // The most similar neighbour among those of one kind, from its key.
+  // Both are chosen rather than branched on: whether there is one is unpredictable.
   auto best_of = [&](int id, uint64_t key) {
+    const bool found = key < kNoNeighbour;
     Best best;
-    if (key != kNoNeighbour) {
-      best.id = id + grid[key & 7];
-      best.distance2 = std::bit_cast<float>(static_cast<uint32_t>(key >> 3));
-    }
+    best.id = found ? id + grid[key & 7] : -1;
+    best.distance2 = found ? std::bit_cast<float>(static_cast<uint32_t>(key >> 3)) : kFar;
     return best;
   };
   row_orphans_.resize(cols);
@@ -331,9 +401,9 @@ void BipBuilder::RegularOrphans(int l, float t2) {
         d2[7] = south_east[id];
         uint64_t parented_key = kNoNeighbour, orphan_key = kNoNeighbour;
         for (int k = 0; k < 8; ++k) {
-          const int n = id + grid[k];
-          const uint64_t key = cur.hom[n] != 0 ? NeighbourKey(d2[k], k) : kNoNeighbour;
-          const bool has_parent = cur.parent[n] >= 0;
+          // A hole's distance is kHoleBits: its key is no neighbour.
+          const uint64_t key = NeighbourKey(d2[k], k);
+          const bool has_parent = cur.parent[id + grid[k]] >= 0;
           parented_key = std::min(parented_key, has_parent ? key : kNoNeighbour);
           orphan_key = std::min(orphan_key, has_parent ? kNoNeighbour : key);
         }
@@ -413,14 +483,7 @@ void BipBuilder::UpdateParents(int l) {
     sum[2] += weight * son[2];
     up.area[p] += cur.area[id];
   }
-  for (int id = 0; id < up.num_ids(); ++id) {
-    if (up.area[id] == 0) continue;
-    const float inverse = 1.f / static_cast<float>(up.area[id]);
-    float* mean = &up.feature[3 * static_cast<size_t>(id)];
-    mean[0] *= inverse;
-    mean[1] *= inverse;
-    mean[2] *= inverse;
-  }
+  DivideByArea(up.area.data(), up.num_ids(), up.feature.data());
 }
 
 // Variant only: two regular vertices of l + 1 whose reduction windows touch although their
@@ -510,19 +573,27 @@ void BipBuilder::IntraLevelEdges(int l) {
   if (options_.link_across_kinds) DistantRegularEdges(l);
   if (up.num_virtual == 0) return;
   // The sons of each virtual parent, grouped (counting sort by parent). Only stages 2 and 3
-  // give a vertex a virtual parent, so the linked sons are all there is to look at.
+  // give a vertex a virtual parent, so the linked sons are all there is to look at; those with
+  // a virtual parent are gathered first, without a branch (the kind of parent is
+  // unpredictable).
   const int first_virtual = up.num_cells();
   const int parents = up.num_ids();
-  son_offsets_.assign(up.num_virtual + 1, 0);
+  virtual_sons_.resize(linked_.size());
+  int num_sons = 0;
   for (int id : linked_) {
-    if (cur.parent[id] >= first_virtual) ++son_offsets_[cur.parent[id] - first_virtual + 1];
+    virtual_sons_[num_sons] = id;
+    num_sons += cur.parent[id] >= first_virtual;
+  }
+  son_offsets_.assign(up.num_virtual + 1, 0);
+  for (int k = 0; k < num_sons; ++k) {
+    ++son_offsets_[cur.parent[virtual_sons_[k]] - first_virtual + 1];
   }
   for (int v = 0; v < up.num_virtual; ++v) son_offsets_[v + 1] += son_offsets_[v];
-  sons_.resize(son_offsets_[up.num_virtual]);
+  sons_.resize(num_sons);
   stamp_.assign(son_offsets_.begin(), son_offsets_.end() - 1);  // fill cursor
-  for (int id : linked_) {
-    const int p = cur.parent[id];
-    if (p >= first_virtual) sons_[stamp_[p - first_virtual]++] = id;
+  for (int k = 0; k < num_sons; ++k) {
+    const int id = virtual_sons_[k];
+    sons_[stamp_[cur.parent[id] - first_virtual]++] = id;
   }
   // stamp_[q + 1] == p once p has seen parent q; slot 0 stands for "no parent" (q = -1).
   stamp_.assign(parents + 1, -1);

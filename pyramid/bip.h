@@ -157,6 +157,7 @@ class BipBuilder {
   // The sons of each virtual vertex of the level being built (CSR), and a stamp per vertex.
   std::vector<int32_t> son_offsets_;
   std::vector<int32_t> sons_;
+  std::vector<int32_t> virtual_sons_;  // ungrouped
   std::vector<int32_t> stamp_;
   // Row and column of each cell of the level being built (variant edges).
   std::vector<int32_t> cell_row_;
