@@ -40,6 +40,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/bench_options.h"
 #include "stereo/disparity.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
@@ -70,12 +71,7 @@ constexpr int kSynthMaxDisparity = 32;
 constexpr int kLargeFrame = 40;
 constexpr int kLargeMaxDisparity = 64;
 
-struct Options {
-  std::string data_dir = ATTEND_SOURCE_ROOT "/../shared/data";
-  std::string home = ATTEND_SOURCE_ROOT;
-  int repeat = 7;
-  std::string markdown_path;
-};
+using Options = attend::bench::BenchOptions;
 
 struct Pair {
   std::string name;
@@ -88,55 +84,6 @@ struct Pair {
 
 // numDisparities for OpenCV: the same range rounded up to a multiple of 16, as OpenCV needs.
 int OpenCvDisparities(int max_disparity) { return (max_disparity + 15) / 16 * 16; }
-
-void PrintUsage(std::ostream& out) {
-  out << "usage: disparity_bench [--data DIR] [--home DIR] [--repeat N] [--markdown FILE]\n"
-         "  --data DIR       reference data folder holding middlebury/ (default: the shared\n"
-         "                   data next to the source tree, " ATTEND_SOURCE_ROOT
-         "/../shared/data);\n"
-         "                   pairs that are missing are skipped with a message\n"
-         "  --home DIR       attend source tree, for sequences/*.yaml (default " ATTEND_SOURCE_ROOT
-         ")\n"
-         "  --repeat N       timed rounds after one warm-up round (default 7)\n"
-         "  --markdown FILE  also write the report to FILE\n";
-}
-
-// Returns false on a bad command line (after printing why).
-bool ParseArguments(int argc, char** argv, Options* options, bool* help) {
-  *help = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      *help = true;
-      return true;
-    }
-    if (arg != "--data" && arg != "--home" && arg != "--repeat" && arg != "--markdown") {
-      std::cerr << "disparity_bench: unknown argument '" << arg << "'\n";
-      return false;
-    }
-    if (i + 1 >= argc) {
-      std::cerr << "disparity_bench: " << arg << " needs a value\n";
-      return false;
-    }
-    const std::string value = argv[++i];
-    if (arg == "--data") {
-      options->data_dir = value;
-    } else if (arg == "--home") {
-      options->home = value;
-    } else if (arg == "--markdown") {
-      options->markdown_path = value;
-    } else {
-      char* end = nullptr;
-      const long repeat = std::strtol(value.c_str(), &end, 10);
-      if (end == value.c_str() || *end != '\0' || repeat < 1 || repeat > 10000) {
-        std::cerr << "disparity_bench: --repeat must be an integer in [1, 10000]\n";
-        return false;
-      }
-      options->repeat = static_cast<int>(repeat);
-    }
-  }
-  return true;
-}
 
 // Adds a Middlebury pair when its three files are readable; says why it is skipped otherwise.
 void AddMiddlebury(const fs::path& root, const std::string& name, const std::string& left_file,
@@ -678,15 +625,14 @@ void WriteReport(const Options& options, const std::vector<PairResult>& results,
 
 int main(int argc, char** argv) {
   Options options;
-  bool help = false;
-  if (!ParseArguments(argc, argv, &options, &help)) {
-    PrintUsage(std::cerr);
-    return 2;
-  }
-  if (help) {
-    PrintUsage(std::cout);
-    return 0;
-  }
+  options.data_dir = ATTEND_SOURCE_ROOT "/../shared/data";
+  options.home = ATTEND_SOURCE_ROOT;
+  options.repeat = 7;
+  const int status = attend::bench::ParseBenchOptions(
+      "disparity_bench", "disparity against StereoBM and StereoSGBM (docs/DISPARITY.md)",
+      "reference data folder holding middlebury/; pairs that are missing are skipped", argc, argv,
+      &options);
+  if (status >= 0) return status;
   cv::setNumThreads(1);
 
   cv::Size large_size;

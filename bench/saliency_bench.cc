@@ -1,7 +1,8 @@
 // Benchmark: the pre-attentive stage (colour conversions, BIP segmentation, the four built-in
-// feature plugins with their defaults and the saliency sum) against OpenCV's static saliency detectors
-// (opencv_contrib saliency: spectral residual, Hou and Zhang 2007; fine-grained, Montabone and
-// Soto 2010), on the same frames of a synthetic scene, in the same run, on one thread.
+// feature plugins with their defaults and the saliency sum) against OpenCV's static saliency
+// detectors (opencv_contrib saliency: spectral residual, Hou and Zhang 2007; fine-grained,
+// Montabone and Soto 2010), on the same frames of a synthetic scene, in the same run, on one
+// thread.
 //
 //   saliency_bench [--scene FILE] [--frames N] [--home DIR] [--markdown FILE]
 //
@@ -12,6 +13,7 @@
 // objects. Each method's map is min-max normalised per frame before the AUC; the AUC does not
 // depend on it.
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -73,39 +75,28 @@ double Median(std::vector<double> values) {
 }
 
 struct Method {
+  explicit Method(std::string method_name) : name(std::move(method_name)) {}
   std::string name;
   std::vector<double> ms;
   std::vector<double> auc;
 };
 
-bool Parse(int argc, char** argv, Options* options) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (i + 1 >= argc) return false;
-    const std::string value = argv[++i];
-    if (arg == "--scene") {
-      options->scene = value;
-    } else if (arg == "--frames") {
-      options->frames = std::stoi(value);
-    } else if (arg == "--home") {
-      options->home = value;
-    } else if (arg == "--markdown") {
-      options->markdown = value;
-    } else {
-      return false;
-    }
-  }
-  return options->frames > 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   Options options;
-  if (!Parse(argc, argv, &options)) {
-    std::cerr << "usage: saliency_bench [--scene FILE] [--frames N] [--home DIR] "
-                 "[--markdown FILE]\n";
-    return 2;
+  CLI::App app{"the pre-attentive stage against OpenCV's static saliency (docs/PERFORMANCE.md)",
+               "saliency_bench"};
+  app.add_option("--scene", options.scene, "scene file (default: sequences/lab.yaml of --home)");
+  app.add_option("--frames", options.frames, "frames to render and time")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_option("--home", options.home, "attend source tree")->capture_default_str();
+  app.add_option("--markdown", options.markdown, "also write the report to FILE");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
   }
   if (options.scene.empty()) options.scene = options.home + "/sequences/lab.yaml";
   cv::setNumThreads(1);
@@ -132,7 +123,7 @@ int main(int argc, char** argv) {
   Method ours_segment{"  of which conversions + BIP segmentation"};
   std::vector<Method> per_feature;
   for (const auto& result : features.results())
-    per_feature.push_back({"  of which " + result.name});
+    per_feature.emplace_back("  of which " + result.name);
   Method ours_sum{"  of which normalisation and sum"};
   Method spectral{"OpenCV StaticSaliencySpectralResidual"};
   Method fine_grained{"OpenCV StaticSaliencyFineGrained"};

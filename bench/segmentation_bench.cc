@@ -33,6 +33,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/bench_options.h"
 #include "colour/colour.h"
 #include "pyramid/metrics.h"
 #include "pyramid/segmentation.h"
@@ -47,11 +48,7 @@ constexpr float kFelzenszwalbK[] = {25.f, 50.f, 100.f, 300.f, 500.f, 1000.f};
 constexpr double kFelzenszwalbSigma = 0.5;
 constexpr int kFelzenszwalbMinSize = 20;
 
-struct Options {
-  std::string data_dir;
-  int repeat = 15;
-  std::string markdown_path;
-};
+using Options = attend::bench::BenchOptions;
 
 struct SourceImage {
   std::string name;
@@ -90,49 +87,6 @@ struct Result {
   int connected = 0;                    // 8-connected regions
   attend::SegmentationQuality quality;  // over the 8-connected regions
 };
-
-void PrintUsage(std::ostream& out) {
-  out << "usage: segmentation_bench [--data DIR] [--repeat N] [--markdown FILE]\n"
-         "  --data DIR       reference data folder (middlebury/, otb/); without it, or when\n"
-         "                   its images are missing, only the synthetic images are used\n"
-         "  --repeat N       timed repetitions per method, after one warm-up (default 15)\n"
-         "  --markdown FILE  also write the report to FILE\n";
-}
-
-// Returns false on a bad command line (after printing why).
-bool ParseArguments(int argc, char** argv, Options* options, bool* help) {
-  *help = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      *help = true;
-      return true;
-    }
-    if (arg != "--data" && arg != "--repeat" && arg != "--markdown") {
-      std::cerr << "segmentation_bench: unknown argument '" << arg << "'\n";
-      return false;
-    }
-    if (i + 1 >= argc) {
-      std::cerr << "segmentation_bench: " << arg << " needs a value\n";
-      return false;
-    }
-    const std::string value = argv[++i];
-    if (arg == "--data") {
-      options->data_dir = value;
-    } else if (arg == "--markdown") {
-      options->markdown_path = value;
-    } else {
-      char* end = nullptr;
-      const long repeat = std::strtol(value.c_str(), &end, 10);
-      if (end == value.c_str() || *end != '\0' || repeat < 1 || repeat > 100000) {
-        std::cerr << "segmentation_bench: --repeat must be an integer in [1, 100000]\n";
-        return false;
-      }
-      options->repeat = static_cast<int>(repeat);
-    }
-  }
-  return true;
-}
 
 // Four rectangles of distinct colours tiling the image: four regions by construction.
 cv::Mat MakeRectangles() {
@@ -619,15 +573,15 @@ void WriteReport(const Options& options, const std::vector<SourceImage>& images,
 
 int main(int argc, char** argv) {
   Options options;
-  bool help = false;
-  if (!ParseArguments(argc, argv, &options, &help)) {
-    PrintUsage(std::cerr);
-    return 2;
-  }
-  if (help) {
-    PrintUsage(std::cout);
-    return 0;
-  }
+  options.data_dir = "";
+  options.home = "";
+  options.repeat = 15;
+  const int status = attend::bench::ParseBenchOptions(
+      "segmentation_bench",
+      "BIP segmentation against Felzenszwalb graph segmentation (docs/PERFORMANCE.md)",
+      "reference data folder (middlebury/, otb/); without it, only the synthetic images", argc,
+      argv, &options);
+  if (status >= 0) return status;
   cv::setNumThreads(1);
 
   const std::vector<SourceImage> images = LoadImages(options.data_dir);

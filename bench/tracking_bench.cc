@@ -48,6 +48,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/bench_options.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 #include "tracker/evaluation.h"
@@ -77,63 +78,7 @@ constexpr int kHueBins = 16;
 constexpr int kMinSaturation = 30;
 constexpr int kMinValue = 10;
 
-struct Options {
-  std::string data_dir = ATTEND_SOURCE_ROOT "/../shared/data";
-  std::string home = ATTEND_SOURCE_ROOT;
-  int repeat = 3;
-  std::string markdown_path;
-  std::string command_line;
-};
-
-void PrintUsage(std::ostream& out) {
-  out << "usage: tracking_bench [--data DIR] [--home DIR] [--repeat N] [--markdown FILE]\n"
-         "  --data DIR       reference data folder holding otb/ (default: the shared data next\n"
-         "                   to the source tree, " ATTEND_SOURCE_ROOT
-         "/../shared/data);\n"
-         "                   sequences that are missing are skipped with a message\n"
-         "  --home DIR       attend source tree, for sequences/*.yaml (default " ATTEND_SOURCE_ROOT
-         ")\n"
-         "  --repeat N       times every sequence is tracked; ms/frame is the median (default 3)\n"
-         "  --markdown FILE  also write the report to FILE\n";
-}
-
-bool ParseArguments(int argc, char** argv, Options* options, bool* help) {
-  *help = false;
-  options->command_line = "tracking_bench";
-  for (int i = 1; i < argc; ++i) options->command_line += std::string(" ") + argv[i];
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      *help = true;
-      return true;
-    }
-    if (arg != "--data" && arg != "--home" && arg != "--repeat" && arg != "--markdown") {
-      std::cerr << "tracking_bench: unknown argument '" << arg << "'\n";
-      return false;
-    }
-    if (i + 1 >= argc) {
-      std::cerr << "tracking_bench: " << arg << " needs a value\n";
-      return false;
-    }
-    const std::string value = argv[++i];
-    if (arg == "--data") {
-      options->data_dir = value;
-    } else if (arg == "--home") {
-      options->home = value;
-    } else if (arg == "--markdown") {
-      options->markdown_path = value;
-    } else {
-      char* end = nullptr;
-      const long repeat = std::strtol(value.c_str(), &end, 10);
-      if (end == value.c_str() || *end != '\0' || repeat < 1 || repeat > 1000) {
-        std::cerr << "tracking_bench: --repeat must be an integer in [1, 1000]\n";
-        return false;
-      }
-      options->repeat = static_cast<int>(repeat);
-    }
-  }
-  return true;
-}
+using Options = attend::bench::BenchOptions;
 
 // ---------------------------------------------------------------------------------------------
 // Sequences
@@ -784,15 +729,14 @@ void WriteReport(const Options& options, const std::vector<TaskResult>& results,
 
 int main(int argc, char** argv) {
   Options options;
-  bool help = false;
-  if (!ParseArguments(argc, argv, &options, &help)) {
-    PrintUsage(std::cerr);
-    return 2;
-  }
-  if (help) {
-    PrintUsage(std::cout);
-    return 0;
-  }
+  options.data_dir = ATTEND_SOURCE_ROOT "/../shared/data";
+  options.home = ATTEND_SOURCE_ROOT;
+  options.repeat = 3;
+  const int status = attend::bench::ParseBenchOptions(
+      "tracking_bench", "the BIP tracker against CSRT, KCF and CamShift (docs/TRACKING.md)",
+      "reference data folder holding otb/; sequences that are missing are skipped", argc, argv,
+      &options);
+  if (status >= 0) return status;
   cv::setNumThreads(1);
 
   std::vector<std::unique_ptr<Frames>> frames;
