@@ -210,8 +210,12 @@ TEST(Attention, AShortOcclusionKeepsTheIdentityAndIsNotReselected) {
     ASSERT_FALSE(frame.targets.empty()) << "frame " << f;
     EXPECT_EQ(frame.targets[0].id, 1) << "frame " << f;
     EXPECT_TRUE(frame.new_ids.empty()) << "frame " << f;
-    if (hidden) EXPECT_EQ(frame.targets[0].state, "occluded") << "frame " << f;
-    if (f >= 10) EXPECT_EQ(frame.targets[0].state, "tracked") << "frame " << f;
+    if (hidden) {
+      EXPECT_EQ(frame.targets[0].state, "occluded") << "frame " << f;
+    }
+    if (f >= 10) {
+      EXPECT_EQ(frame.targets[0].state, "tracked") << "frame " << f;
+    }
   }
 }
 
