@@ -19,5 +19,7 @@ void AddEvalTrackingCommand(CLI::App& app, const std::string& command_line,
                             CommandAction* action);
 void AddEvalCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 void AddSkinTrainCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
+void AddCompareCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
+void AddReportCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 
 }  // namespace attend

@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
   attend::AddEvalTrackingCommand(app, command_line, &action);
   attend::AddEvalCommand(app, command_line, &action);
   attend::AddSkinTrainCommand(app, command_line, &action);
+  attend::AddCompareCommand(app, command_line, &action);
+  attend::AddReportCommand(app, command_line, &action);
 
   try {
     app.parse(argc, argv);
