@@ -40,7 +40,7 @@
 #include <thread>
 #include <vector>
 
-#include "bench/bench_options.h"
+#include "bench/bench_common.h"
 #include "stereo/disparity.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
@@ -72,6 +72,9 @@ constexpr int kLargeFrame = 40;
 constexpr int kLargeMaxDisparity = 64;
 
 using Options = attend::bench::BenchOptions;
+using attend::bench::CpuModel;
+using attend::bench::Fixed;
+using attend::bench::UtcNow;
 
 struct Pair {
   std::string name;
@@ -409,37 +412,10 @@ PairResult RunPair(const Pair& pair, int repeat) {
   return result;
 }
 
-std::string Fixed(double value, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
-  return buffer;
-}
-
 std::string Percent(double share) { return Fixed(100.0 * share, 2); }
 
 std::string Ratio(double numerator, double denominator) {
   return denominator > 0.0 ? Fixed(numerator / denominator, 2) : "n/a";
-}
-
-std::string CpuModel() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line)) {
-    if (line.rfind("model name", 0) == 0) {
-      const size_t colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(colon + 2);
-    }
-  }
-  return "unknown";
-}
-
-std::string UtcNow() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char buffer[32];
-  std::strftime(buffer, sizeof(buffer), "%Y-%m-%d %H:%M UTC", &utc);
-  return buffer;
 }
 
 const Row* FindRow(const PairResult& result, const std::string& method) {

@@ -33,7 +33,7 @@
 #include <thread>
 #include <vector>
 
-#include "bench/bench_options.h"
+#include "bench/bench_common.h"
 #include "colour/colour.h"
 #include "pyramid/metrics.h"
 #include "pyramid/segmentation.h"
@@ -49,6 +49,9 @@ constexpr double kFelzenszwalbSigma = 0.5;
 constexpr int kFelzenszwalbMinSize = 20;
 
 using Options = attend::bench::BenchOptions;
+using attend::bench::CpuModel;
+using attend::bench::Fixed;
+using attend::bench::UtcNow;
 
 struct SourceImage {
   std::string name;
@@ -374,39 +377,12 @@ std::string Significant(double value, int digits) {
   return buffer;
 }
 
-std::string Fixed(double value, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
-  return buffer;
-}
-
 std::string Parameters(const Result& r) {
   if (r.method == Method::kFelzenszwalb) {
     return "sigma " + Fixed(kFelzenszwalbSigma, 1) + ", k " + Fixed(r.parameter, 0) +
            ", min_size " + std::to_string(kFelzenszwalbMinSize);
   }
   return "t_max " + Fixed(r.parameter, 0) + ", min area " + std::to_string(r.min_region_area);
-}
-
-std::string CpuModel() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line)) {
-    if (line.rfind("model name", 0) == 0) {
-      const size_t colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(colon + 2);
-    }
-  }
-  return "unknown";
-}
-
-std::string UtcNow() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char buffer[32];
-  std::strftime(buffer, sizeof(buffer), "%Y-%m-%d %H:%M UTC", &utc);
-  return buffer;
 }
 
 struct Stats {

@@ -48,7 +48,7 @@
 #include <thread>
 #include <vector>
 
-#include "bench/bench_options.h"
+#include "bench/bench_common.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 #include "tracker/evaluation.h"
@@ -79,6 +79,9 @@ constexpr int kMinSaturation = 30;
 constexpr int kMinValue = 10;
 
 using Options = attend::bench::BenchOptions;
+using attend::bench::CpuModel;
+using attend::bench::Fixed;
+using attend::bench::UtcNow;
 
 // ---------------------------------------------------------------------------------------------
 // Sequences
@@ -550,35 +553,8 @@ CostResult RunCost(const std::string& path, int repeat) {
 // ---------------------------------------------------------------------------------------------
 // Report
 
-std::string Fixed(double value, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
-  return buffer;
-}
-
 std::string Ratio(double numerator, double denominator) {
   return denominator > 0.0 ? Fixed(numerator / denominator, 1) + "x" : "n/a";
-}
-
-std::string CpuModel() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line)) {
-    if (line.rfind("model name", 0) == 0) {
-      const size_t colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(colon + 2);
-    }
-  }
-  return "unknown";
-}
-
-std::string UtcNow() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char buffer[32];
-  std::strftime(buffer, sizeof(buffer), "%Y-%m-%d %H:%M UTC", &utc);
-  return buffer;
 }
 
 // Means over the tasks of a group (all tasks when `group` is empty).

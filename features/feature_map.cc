@@ -9,18 +9,30 @@ namespace fs = std::filesystem;
 
 namespace attend {
 
+std::string FeatureSetup::FindPath(const std::string& path) const {
+  if (path.empty()) return "";
+  const fs::path given(path);
+  if (fs::exists(given)) return path;
+  if (!given.is_absolute() && !home.empty() && fs::exists(fs::path(home) / given)) {
+    return (fs::path(home) / given).string();
+  }
+  return "";
+}
+
+std::string FeatureSetup::PlacesSearched() const {
+  return home.empty() ? "the current folder" : "the current folder and in " + home;
+}
+
 std::string FeatureSetup::ResolvePath(const ParamBlock& params, const std::string& key,
                                       const std::string& path) const {
   if (path.empty()) params.Fail(key, "must not be empty");
-  const fs::path given(path);
-  if (given.is_absolute()) {
-    if (!fs::exists(given)) params.Fail(key, "no such file: " + path);
-    return path;
+  const std::string found = FindPath(path);
+  if (found.empty()) {
+    params.Fail(key,
+                "no such file: " + path +
+                    (fs::path(path).is_absolute() ? "" : " (looked in " + PlacesSearched() + ")"));
   }
-  if (fs::exists(given)) return path;
-  if (!home.empty() && fs::exists(fs::path(home) / given)) return (fs::path(home) / given).string();
-  params.Fail(key, "no such file: " + path + " (looked in the current folder" +
-                       (home.empty() ? std::string() : " and in " + home) + ")");
+  return found;
 }
 
 void FeatureRegistry::Add(const std::string& name, const std::string& summary,

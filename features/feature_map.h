@@ -39,10 +39,14 @@ struct FeatureSetup {
   // parameters are looked up in the current folder first, then here.
   std::string home;
 
-  // `path` as given if absolute or present below the current folder, else below `home`. A path
-  // found in neither place: ConfigError at `params.Where(key)` naming both places tried.
+  // `path` as given if absolute or present below the current folder, else below `home`; ""
+  // when it is in neither place (or empty).
+  std::string FindPath(const std::string& path) const;
+  // FindPath(), or a ConfigError at `params.Where(key)` naming the places tried.
   std::string ResolvePath(const ParamBlock& params, const std::string& key,
                           const std::string& path) const;
+  // "the current folder and in HOME", for messages about a path FindPath() did not find.
+  std::string PlacesSearched() const;
 };
 
 // Reads the plugin's parameters from `params` (throwing ConfigError on bad values) and returns
@@ -56,7 +60,7 @@ class FeatureRegistry {
     std::string name;
     std::string summary;  // one line, for `attend features` style listings and messages
     FeatureFactory factory;
-    std::string origin;   // "built-in" or the shared library that registered it
+    std::string origin;  // "built-in" or the shared library that registered it
   };
 
   // Adds a plugin. A name already taken: ConfigError naming both origins.

@@ -30,15 +30,11 @@ FeatureSet::FeatureSet(const std::vector<FeatureSpec>& specs, const FeatureRegis
 
 FeatureSet::~FeatureSet() = default;
 
-void FeatureSet::Compute(const FrameContext& context, bool concurrent) {
-  const int count = static_cast<int>(members_.size());
+void RunTasks(int count, bool concurrent, const std::function<void(int)>& task) {
   std::vector<std::exception_ptr> errors(count);
-  auto compute = [&](int i) {
+  auto run = [&](int i) {
     try {
-      const Stopwatch stopwatch;
-      members_[i].feature->Compute(context, &results_[i].map);
-      results_[i].milliseconds = stopwatch.ElapsedMs();
-      CheckFeatureOutput(members_[i].entry, results_[i].map, context.size());
+      task(i);
     } catch (...) {
       errors[i] = std::current_exception();
     }
@@ -47,15 +43,24 @@ void FeatureSet::Compute(const FrameContext& context, bool concurrent) {
     cv::parallel_for_(
         cv::Range(0, count),
         [&](const cv::Range& range) {
-          for (int i = range.start; i < range.end; ++i) compute(i);
+          for (int i = range.start; i < range.end; ++i) run(i);
         },
         count);
   } else {
-    for (int i = 0; i < count; ++i) compute(i);
+    for (int i = 0; i < count; ++i) run(i);
   }
   for (const std::exception_ptr& error : errors) {
     if (error) std::rethrow_exception(error);
   }
+}
+
+void FeatureSet::Compute(const FrameContext& context, bool concurrent) {
+  RunTasks(static_cast<int>(members_.size()), concurrent, [&](int i) {
+    const Stopwatch stopwatch;
+    members_[i].feature->Compute(context, &results_[i].map);
+    results_[i].milliseconds = stopwatch.ElapsedMs();
+    CheckFeatureOutput(members_[i].entry, results_[i].map, context.size());
+  });
 }
 
 }  // namespace attend

@@ -3,6 +3,7 @@
 // do not depend on the number of threads.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,6 +20,11 @@ struct FeatureResult {
   cv::Mat map;                // CV_32FC1, the frame's size
   double milliseconds = 0.0;  // computing this map (including shared work it triggered first)
 };
+
+// Runs task(0) .. task(count - 1), on OpenCV's thread pool when `concurrent`, else in order on
+// this thread. An exception of a task is kept, and after all tasks have run the first one in
+// index order is rethrown, so the error reported does not depend on scheduling.
+void RunTasks(int count, bool concurrent, const std::function<void(int)>& task);
 
 class FeatureSet {
  public:

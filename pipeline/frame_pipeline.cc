@@ -1,9 +1,5 @@
 #include "pipeline/frame_pipeline.h"
 
-#include <exception>
-#include <filesystem>
-#include <opencv2/core/utility.hpp>
-
 #include "features/builtin.h"
 #include "features/plugin_loader.h"
 #include "features/skin_model.h"
@@ -23,15 +19,15 @@ FeatureRegistry LoadFeatureRegistry(const std::vector<std::string>& plugins) {
 
 namespace {
 
-// The skin model of the attention stage: a path as given if it exists, else below `home`.
-SkinModel LoadAttentionSkinModel(const std::string& path, const std::string& home) {
-  std::string resolved = path;
-  if (!std::filesystem::path(path).is_absolute() && !std::filesystem::exists(path) &&
-      !home.empty() && std::filesystem::exists(std::filesystem::path(home) / path)) {
-    resolved = (std::filesystem::path(home) / path).string();
+// The skin model of the attention stage, found as the skin feature finds its model.
+SkinModel LoadAttentionSkinModel(const std::string& path, const FeatureSetup& setup) {
+  const std::string found = setup.FindPath(path);
+  if (found.empty()) {
+    throw ConfigError("select.skin_model: no such file: " + path + " (looked in " +
+                      setup.PlacesSearched() + ")");
   }
   try {
-    return LoadSkinModel(resolved);
+    return LoadSkinModel(found);
   } catch (const ConfigError& e) {
     throw ConfigError(std::string("select.skin_model: ") + e.what());
   }
@@ -44,8 +40,7 @@ FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry
     : options_(options),
       context_(options.segmentation),
       features_(options.features, registry, setup),
-      attention_(options.attention,
-                 LoadAttentionSkinModel(options.attention.skin_model, setup.home)) {
+      attention_(options.attention, LoadAttentionSkinModel(options.attention.skin_model, setup)) {
   normalised_.resize(features_.results().size());
   for (const FeatureResult& result : features_.results()) weights_.push_back(result.weight);
 }
@@ -66,26 +61,13 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
     stage.Restart();
     features_.Compute(context_, false);
   } else {
-    std::exception_ptr errors[2];
-    cv::parallel_for_(
-        cv::Range(0, 2),
-        [&](const cv::Range& range) {
-          for (int task = range.start; task < range.end; ++task) {
-            try {
-              if (task == 0) {
-                attention_.Track(frame.left, context_.Tsl());
-              } else {
-                features_.Compute(context_, true);
-              }
-            } catch (...) {
-              errors[task] = std::current_exception();
-            }
-          }
-        },
-        2);
-    for (const std::exception_ptr& error : errors) {
-      if (error) std::rethrow_exception(error);
-    }
+    RunTasks(2, true, [&](int task) {
+      if (task == 0) {
+        attention_.Track(frame.left, context_.Tsl());
+      } else {
+        features_.Compute(context_, true);
+      }
+    });
   }
   record->timings.Add("features", stage.ElapsedMs());
   for (const FeatureResult& result : features_.results()) {

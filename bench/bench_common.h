@@ -1,8 +1,12 @@
-// The command line shared by the benchmarks (parsed with CLI11):
+// What the benchmarks share: their command line (parsed with CLI11),
 //   NAME [--data DIR] [--home DIR] [--repeat N] [--markdown FILE]
+// and the helpers of their markdown reports.
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
 #include <string>
 
 namespace attend::bench {
@@ -36,6 +40,36 @@ inline int ParseBenchOptions(const std::string& name, const std::string& descrip
     return app.exit(e) == 0 ? 0 : 2;
   }
   return -1;
+}
+
+// `value` with `digits` decimals.
+inline std::string Fixed(double value, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
+  return buffer;
+}
+
+// The processor's model name from /proc/cpuinfo, or "unknown".
+inline std::string CpuModel() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const size_t colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(colon + 2);
+    }
+  }
+  return "unknown";
+}
+
+// "YYYY-mm-dd HH:MM UTC", now.
+inline std::string UtcNow() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char buffer[32];
+  std::strftime(buffer, sizeof(buffer), "%Y-%m-%d %H:%M UTC", &utc);
+  return buffer;
 }
 
 }  // namespace attend::bench
