@@ -110,6 +110,82 @@ void BuildHierarchy(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity s
   hierarchy->LabelRegions();
 }
 
+// MissedInRow() is compiled twice, for AVX2 and for the baseline x86-64 (SSE2), and the
+// processor picks one at run time: the same operations in the same order (no FMA), so the same
+// results on every machine. As in colour/colour.cc.
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ATTEND_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define ATTEND_VECTOR_CLONES
+#endif
+
+// The summed weight of the `n` template cells (planar colour t0..t2, weight w) that do not match
+// the ROI cells r0..r2 under them: a cell matches when its squared colour distance is below t2
+// (eq. 4.6). ROI cells that are not regular vertices hold NaN and match nothing.
+ATTEND_VECTOR_CLONES int64_t MissedInRow(const float* t0, const float* t1, const float* t2,
+                                         const int32_t* w, const float* r0, const float* r1,
+                                         const float* r2, int n, float limit) {
+  int32_t missed = 0;
+  for (int i = 0; i < n; ++i) {
+    const float a = t0[i] - r0[i], b = t1[i] - r1[i], c = t2[i] - r2[i];
+    const float d = a * a + b * b + c * c;
+    missed += d < limit ? 0 : w[i];
+  }
+  return missed;
+}
+
+// Template weights in the search are fixed point, 1 = kWeightOne, so that sums are exact and
+// do not depend on their order.
+constexpr double kWeightOne = 65536.0;
+
+// One level's search data, reused from call to call: the template over its occupied cells and
+// the ROI's cells, both as planes of colour components.
+struct LevelSearch {
+  cv::Rect occupied;  // absolute cells of the template's vertices (weight > 0)
+  std::vector<float> colour[3];
+  std::vector<int32_t> weight;
+  int64_t total = 0;
+  std::vector<float> roi[3];  // the ROI cells, row by row; NaN where no regular vertex
+  std::vector<std::pair<int, cv::Point>> displacements;
+
+  void Load(const TemplateLevel& t, const BipLevel& level, const cv::Rect& roi_cells, int ox,
+            int oy) {
+    occupied = cv::Rect();
+    for (int y = t.cells.y; y < t.cells.y + t.cells.height; ++y) {
+      for (int x = t.cells.x; x < t.cells.x + t.cells.width; ++x) {
+        if (t.weight[t.Index(x, y)] > 0.f) occupied |= cv::Rect(x, y, 1, 1);
+      }
+    }
+    total = 0;
+    if (occupied.empty()) return;
+    const size_t cells = static_cast<size_t>(occupied.area());
+    for (auto& plane : colour) plane.assign(cells, 0.f);
+    weight.assign(cells, 0);
+    for (int y = occupied.y; y < occupied.y + occupied.height; ++y) {
+      for (int x = occupied.x; x < occupied.x + occupied.width; ++x) {
+        const size_t i = t.Index(x, y);
+        if (t.weight[i] <= 0.f) continue;
+        const size_t j = static_cast<size_t>(y - occupied.y) * occupied.width + (x - occupied.x);
+        for (int c = 0; c < 3; ++c) colour[c][j] = t.colour[3 * i + c];
+        weight[j] = static_cast<int32_t>(std::lround(t.weight[i] * kWeightOne));
+        total += weight[j];
+      }
+    }
+    const float none = std::numeric_limits<float>::quiet_NaN();
+    for (auto& plane : roi) plane.resize(static_cast<size_t>(roi_cells.area()));
+    size_t j = 0;
+    for (int y = roi_cells.y; y < roi_cells.y + roi_cells.height; ++y) {
+      const int row = (y - oy) * level.cols - ox;
+      for (int x = roi_cells.x; x < roi_cells.x + roi_cells.width; ++x, ++j) {
+        const int cell = row + x;
+        const bool regular = level.hom[cell] != 0;
+        const float* f = level.Feature(cell);
+        for (int c = 0; c < 3; ++c) roi[c][j] = regular ? f[c] : none;
+      }
+    }
+  }
+};
+
 }  // namespace
 
 int TrackerOptions::EpsilonPixels(int width) const {
@@ -163,6 +239,7 @@ struct MultiTracker::Impl {
   Hierarchy hierarchies[2];  // colour and skin
   Segmenter segmenter;       // chooses a target's regions in a box (thesis 4.2.1)
   cv::Mat union_mask;
+  LevelSearch search_;
 
   explicit Impl(const TrackerOptions& o) : options(o) {}
 
@@ -264,44 +341,27 @@ struct MultiTracker::Impl {
     double overlap = 0.0;
   };
 
-  // Top-down localisation (4.2.3) of a target in its ROI; fills `matched_regions`.
-  Match Localise(const Target& target, const Hierarchy& h, std::vector<uint8_t>* in_target) const {
-    Match best_match;
+  // Top-down localisation (4.2.3) of a target in its ROI; marks the matched ROI vertices'
+  // regions in `in_target` (the first stage of 4.2.4).
+  Match Localise(const Target& target, const Hierarchy& h, std::vector<uint8_t>* in_target) {
     const float t2 = options.t_colour * options.t_colour;
     for (int l = std::min(WorkingLevel(target), h.bip->num_levels() - 1); l >= 0; --l) {
       const TemplateLevel& t = target.levels[l];
-      if (t.Empty()) continue;
       const BipLevel& level = h.bip->level(l);
-      // The template's vertices, as crop cells at zero displacement, and their total weight.
-      struct Vertex {
-        int cell;   // crop cell index at zero displacement
-        int index;  // in the template level
-        float weight;
-      };
-      std::vector<Vertex> vertices;
-      cv::Rect occupied;
-      double total = 0.0;
-      const int ox = h.origin.x >> l, oy = h.origin.y >> l;
-      for (int y = t.cells.y; y < t.cells.y + t.cells.height; ++y) {
-        for (int x = t.cells.x; x < t.cells.x + t.cells.width; ++x) {
-          const size_t i = t.Index(x, y);
-          if (t.weight[i] <= 0.f) continue;
-          vertices.push_back({(y - oy) * level.cols + (x - ox), static_cast<int>(i), t.weight[i]});
-          total += t.weight[i];
-          occupied |= cv::Rect(x, y, 1, 1);
-        }
-      }
-      if (total <= 0.0) continue;
-      // Displacements that keep the occupied cells inside the ROI (whose cells all lie in the
-      // crop), nearest to the previous motion first, so that among equal overlaps the nearest
-      // wins by coming first.
       const cv::Rect roi = CellsInside(target.roi, l);
+      const int ox = h.origin.x >> l, oy = h.origin.y >> l;
+      search_.Load(t, level, roi, ox, oy);
+      if (search_.total <= 0) continue;
+      const cv::Rect& occupied = search_.occupied;
+      // Displacements that keep the occupied cells inside the ROI, nearest to the previous
+      // motion first, so that among equal overlaps the nearest wins by coming first.
       const int dx0 = roi.x - occupied.x, dx1 = roi.x + roi.width - (occupied.x + occupied.width);
       const int dy0 = roi.y - occupied.y, dy1 = roi.y + roi.height - (occupied.y + occupied.height);
       const cv::Point prior(
           static_cast<int>(std::lround(target.motion.x / static_cast<double>(1 << l))),
           static_cast<int>(std::lround(target.motion.y / static_cast<double>(1 << l))));
-      std::vector<std::pair<int, cv::Point>> displacements;
+      std::vector<std::pair<int, cv::Point>>& displacements = search_.displacements;
+      displacements.clear();
       for (int dy = dy0; dy <= dy1; ++dy) {
         for (int dx = dx0; dx <= dx1; ++dx) {
           const int ex = dx - prior.x, ey = dy - prior.y;
@@ -310,55 +370,52 @@ struct MultiTracker::Impl {
       }
       std::stable_sort(displacements.begin(), displacements.end(),
                        [](const auto& a, const auto& b) { return a.first < b.first; });
-      // Every displacement is scored, but one stops counting as soon as the weight it has
-      // missed shows that it cannot beat the best so far: the result is the exhaustive one.
-      double best_weight = -1.0;
+      // The smallest weight sum that is accepted (overlap > min_overlap).
+      const int64_t total = search_.total;
+      int64_t accepted = static_cast<int64_t>(std::floor(options.min_overlap * total));
+      while (static_cast<double>(accepted) / total > options.min_overlap) --accepted;
+      while (static_cast<double>(accepted) / total <= options.min_overlap) ++accepted;
+      // Every displacement is scored, row by row of the template; one stops being scored as
+      // soon as the weight it has missed shows that it can neither be accepted nor beat the
+      // best so far. The accepted result is that of the exhaustive search, ties included.
+      int64_t best = accepted - 1;
       cv::Point best_d;
+      bool found = false;
+      const int width = occupied.width;
       for (const auto& [distance, d] : displacements) {
-        const int offset = d.y * level.cols + d.x;
-        double missed = 0.0;
-        bool pruned = false;
-        for (const Vertex& v : vertices) {
-          const int cell = v.cell + offset;
-          const bool match =
-              level.hom[cell] && SquaredDistance(&t.colour[3 * static_cast<size_t>(v.index)],
-                                                 level.Feature(cell)) < t2;
-          if (!match) {
-            missed += v.weight;
-            if (total - missed <= best_weight) {
-              pruned = true;
-              break;
-            }
-          }
+        const int column = occupied.x + d.x - roi.x;
+        int64_t score = total;
+        for (int row = 0; row < occupied.height && score > best; ++row) {
+          const size_t from = static_cast<size_t>(occupied.y + row + d.y - roi.y) * roi.width + column;
+          const size_t own = static_cast<size_t>(row) * width;
+          score -= MissedInRow(&search_.colour[0][own], &search_.colour[1][own],
+                               &search_.colour[2][own], &search_.weight[own],
+                               &search_.roi[0][from], &search_.roi[1][from],
+                               &search_.roi[2][from], width, t2);
         }
-        if (!pruned && total - missed > best_weight) {
-          best_weight = total - missed;
+        if (score > best) {
+          best = score;
           best_d = d;
+          found = true;
         }
       }
-      const double best = best_weight / total;
-      if (best > best_match.overlap) {
-        best_match.overlap = best;
-        best_match.level = l;
-      }
-      if (best > options.min_overlap) {
-        best_match = {true, l, best_d, best};
-        // The matched ROI vertices' regions are the target (first stage of 4.2.4).
-        const int offset = best_d.y * level.cols + best_d.x;
-        for (const Vertex& v : vertices) {
-          const int cell = v.cell + offset;
-          if (!level.hom[cell]) continue;
-          if (SquaredDistance(&t.colour[3 * static_cast<size_t>(v.index)], level.Feature(cell)) <
-              t2) {
-            const int r = h.region[l][cell];
-            if (r >= 0) (*in_target)[r] = 1;
+      if (!found) continue;
+      // The matched ROI vertices' regions are the target (first stage of 4.2.4).
+      for (int y = occupied.y; y < occupied.y + occupied.height; ++y) {
+        for (int x = occupied.x; x < occupied.x + occupied.width; ++x) {
+          const size_t i = t.Index(x, y);
+          if (t.weight[i] <= 0.f) continue;
+          const int cell = h.Cell(l, x + best_d.x, y + best_d.y);
+          if (!level.hom[cell] || SquaredDistance(&t.colour[3 * i], level.Feature(cell)) >= t2) {
+            continue;
           }
+          const int r = h.region[l][cell];
+          if (r >= 0) (*in_target)[r] = 1;
         }
-        return best_match;
       }
+      return {true, l, best_d, static_cast<double>(best) / total};
     }
-    best_match.found = false;
-    return best_match;
+    return {};
   }
 
   // Second stage of 4.2.4: the regions of neighbours (regular and virtual) of the target's

@@ -55,7 +55,7 @@ struct TrackResult {
   cv::Point2f centroid;    // of the target's pixels; the last known one when not found
   int area = 0;            // target pixels this frame (0 when not found)
   int level = -1;          // pyramid level where the template matched; -1 when not found
-  double overlap = 0.0;    // the accepted (or best) weighted overlap, 0..1
+  double overlap = 0.0;    // the accepted weighted overlap, 0..1; 0 when not found
   cv::Rect roi;            // the region of interest searched this frame
 };
 
