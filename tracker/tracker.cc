@@ -90,10 +90,10 @@ struct Hierarchy {
   }
 };
 
-// Builds `hierarchy` over the pixels of `mask` (frame size) with the similarity's features.
+// Builds `hierarchy` over the pixels of `mask` (frame size), which all lie in `bounds`, with the
+// similarity's features.
 void BuildHierarchy(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity similarity,
-                    const cv::Mat& mask, float t_max, Hierarchy* hierarchy) {
-  cv::Rect bounds = cv::boundingRect(mask);
+                    const cv::Mat& mask, cv::Rect bounds, float t_max, Hierarchy* hierarchy) {
   // Align the origin so that cells keep their absolute positions from frame to frame.
   const int x0 = bounds.x / kAlignment * kAlignment, y0 = bounds.y / kAlignment * kAlignment;
   bounds = cv::Rect(x0, y0, bounds.x + bounds.width - x0, bounds.y + bounds.height - y0);
@@ -119,19 +119,29 @@ void BuildHierarchy(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity s
 #define ATTEND_VECTOR_CLONES
 #endif
 
-// The summed weight of the `n` template cells (planar colour t0..t2, weight w) that do not match
-// the ROI cells r0..r2 under them: a cell matches when its squared colour distance is below t2
-// (eq. 4.6). ROI cells that are not regular vertices hold NaN and match nothing.
-ATTEND_VECTOR_CLONES int64_t MissedInRow(const float* t0, const float* t1, const float* t2,
-                                         const int32_t* w, const float* r0, const float* r1,
-                                         const float* r2, int n, float limit) {
-  int32_t missed = 0;
-  for (int i = 0; i < n; ++i) {
-    const float a = t0[i] - r0[i], b = t1[i] - r1[i], c = t2[i] - r2[i];
-    const float d = a * a + b * b + c * c;
-    missed += d < limit ? 0 : w[i];
+// The weighted overlap of a template (planar colour t0..t2 and weight w, `width` x `height`
+// cells) placed on ROI cells (planar r0..r2, rows `stride` apart, NaN where no regular vertex):
+// `total` minus the weight of the template cells whose squared colour distance to the cell under
+// them is not below `limit` (eq. 4.6). Rows are scored in order and scoring stops as soon as
+// the result is <= `bar`; the result is then some value <= `bar`.
+ATTEND_VECTOR_CLONES int64_t PlacedOverlap(const float* t0, const float* t1, const float* t2,
+                                           const int32_t* w, int width, int height,
+                                           const float* r0, const float* r1, const float* r2,
+                                           size_t stride, float limit, int64_t total,
+                                           int64_t bar) {
+  int64_t score = total;
+  for (int row = 0; row < height && score > bar; ++row) {
+    int32_t missed = 0;
+    for (int i = 0; i < width; ++i) {
+      const float a = t0[i] - r0[i], b = t1[i] - r1[i], c = t2[i] - r2[i];
+      const float d = a * a + b * b + c * c;
+      missed += d < limit ? 0 : w[i];
+    }
+    score -= missed;
+    t0 += width, t1 += width, t2 += width, w += width;
+    r0 += stride, r1 += stride, r2 += stride;
   }
-  return missed;
+  return score;
 }
 
 // Template weights in the search are fixed point, 1 = kWeightOne, so that sums are exact and
@@ -383,16 +393,12 @@ struct MultiTracker::Impl {
       bool found = false;
       const int width = occupied.width;
       for (const auto& [distance, d] : displacements) {
-        const int column = occupied.x + d.x - roi.x;
-        int64_t score = total;
-        for (int row = 0; row < occupied.height && score > best; ++row) {
-          const size_t from = static_cast<size_t>(occupied.y + row + d.y - roi.y) * roi.width + column;
-          const size_t own = static_cast<size_t>(row) * width;
-          score -= MissedInRow(&search_.colour[0][own], &search_.colour[1][own],
-                               &search_.colour[2][own], &search_.weight[own],
-                               &search_.roi[0][from], &search_.roi[1][from],
-                               &search_.roi[2][from], width, t2);
-        }
+        const size_t from =
+            static_cast<size_t>(occupied.y + d.y - roi.y) * roi.width + (occupied.x + d.x - roi.x);
+        const int64_t score = PlacedOverlap(
+            search_.colour[0].data(), search_.colour[1].data(), search_.colour[2].data(),
+            search_.weight.data(), width, occupied.height, &search_.roi[0][from],
+            &search_.roi[1][from], &search_.roi[2][from], roi.width, t2, total, best);
         if (score > best) {
           best = score;
           best_d = d;
@@ -473,6 +479,7 @@ struct MultiTracker::Impl {
       union_mask.create(frame.size(), CV_8UC1);
       union_mask.setTo(0);
       bool any = false;
+      cv::Rect bounds;
       for (Target& target : targets) {
         if (target.similarity != similarity) continue;
         target.roi =
@@ -481,6 +488,7 @@ struct MultiTracker::Impl {
             image;
         if (target.roi.empty()) continue;
         union_mask(target.roi).setTo(255);
+        bounds = any ? bounds | target.roi : target.roi;
         any = true;
       }
       if (!any) continue;
@@ -489,7 +497,7 @@ struct MultiTracker::Impl {
             << "skin targets need the frame's binary skin map";
       }
       Hierarchy& h = hierarchies[similarity == TrackSimilarity::kSkin ? 1 : 0];
-      BuildHierarchy(frame, skin, similarity, union_mask, options.t_oversegment, &h);
+      BuildHierarchy(frame, skin, similarity, union_mask, bounds, options.t_oversegment, &h);
 
       for (Target& target : targets) {
         if (target.similarity != similarity) continue;
@@ -505,11 +513,13 @@ struct MultiTracker::Impl {
           const cv::Point shift(match.displacement.x << match.level,
                                 match.displacement.y << match.level);
           target.levels = MakeTemplate(h, in_target, target.roi, &target.levels, shift);
-          const cv::Moments moments = cv::moments(target.mask, true);
+          // The target's pixels all lie in its ROI.
+          const cv::Mat inside = target.mask(target.roi);
+          const cv::Moments moments = cv::moments(inside, true);
           if (moments.m00 > 0) {
-            target.box = cv::boundingRect(target.mask);
-            target.centroid = {static_cast<float>(moments.m10 / moments.m00),
-                               static_cast<float>(moments.m01 / moments.m00)};
+            target.box = cv::boundingRect(inside) + target.roi.tl();
+            target.centroid = {static_cast<float>(target.roi.x + moments.m10 / moments.m00),
+                               static_cast<float>(target.roi.y + moments.m01 / moments.m00)};
           }
           target.motion = shift;
           target.border = options.EpsilonPixels(frame.cols);
@@ -543,7 +553,8 @@ struct MultiTracker::Impl {
             const cv::Mat& target_mask, const cv::Mat& build_mask) {
     if (cv::countNonZero(target_mask) == 0) return -1;
     Hierarchy& h = hierarchies[similarity == TrackSimilarity::kSkin ? 1 : 0];
-    BuildHierarchy(frame, skin, similarity, build_mask, options.t_oversegment, &h);
+    BuildHierarchy(frame, skin, similarity, build_mask, cv::boundingRect(build_mask),
+                   options.t_oversegment, &h);
     // The target's regions: those with most of their pixels in `target_mask`.
     std::vector<int> inside(h.regions, 0), all(h.regions, 0);
     const BipLevel& base = h.bip->level(0);
