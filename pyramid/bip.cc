@@ -119,7 +119,7 @@ BipBuilder::BipBuilder(BipOptions options) : options_(options) {
 }
 
 const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& policy,
-                             const cv::Mat& mask) {
+                             const cv::Mat& mask, int schedule_side) {
   ATTEND_CHECK(features.type() == CV_32FC3 && !features.empty())
       << "BIP features must be a non-empty CV_32FC3 image";
   ATTEND_CHECK(mask.empty() || (mask.type() == CV_8UC1 && mask.size() == features.size()))
@@ -161,7 +161,8 @@ const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& po
   bip_.levels_ = &levels_;
   bip_.width_ = width;
   bip_.height_ = height;
-  bip_.top_regular_level_ = static_cast<int>(std::floor(std::log2(std::min(width, height))));
+  const int side = schedule_side > 0 ? schedule_side : std::min(width, height);
+  bip_.top_regular_level_ = static_cast<int>(std::floor(std::log2(side)));
   bip_.thresholds_.clear();
   bip_.num_levels_ = 1;
   for (int l = 0; l + 1 < options_.max_levels; ++l) {

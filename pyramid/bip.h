@@ -121,9 +121,12 @@ class BipBuilder {
 
   // Builds the pyramid over `features` (CV_32FC3, level-0 vectors as made by the policy's
   // Features()). With a non-empty `mask` (CV_8UC1, same size) only pixels where it is
-  // non-zero take part. The result refers to this builder's buffers.
+  // non-zero take part. The threshold schedule's top regular level is that of an image whose
+  // smaller side is `schedule_side` (> 0), or the features' (0): a pyramid built over a part of
+  // a larger masked image then links with that image's thresholds. The result refers to this
+  // builder's buffers.
   const Bip& Build(const cv::Mat& features, const SimilarityPolicy& policy,
-                   const cv::Mat& mask = cv::Mat());
+                   const cv::Mat& mask = cv::Mat(), int schedule_side = 0);
 
   const Bip& bip() const { return bip_; }
   const BipOptions& options() const { return options_; }

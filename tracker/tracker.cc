@@ -90,22 +90,31 @@ struct Hierarchy {
   }
 };
 
-// Builds `hierarchy` over the pixels of `mask` (frame size), which all lie in `bounds`, with the
-// similarity's features.
-void BuildHierarchy(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity similarity,
-                    const cv::Mat& mask, cv::Rect bounds, float t_max, Hierarchy* hierarchy) {
-  // Align the origin so that cells keep their absolute positions from frame to frame.
+// `bounds` grown to the top left to the nearest multiple of kAlignment, so that cells keep their
+// absolute positions from frame to frame.
+cv::Rect Aligned(const cv::Rect& bounds) {
   const int x0 = bounds.x / kAlignment * kAlignment, y0 = bounds.y / kAlignment * kAlignment;
-  bounds = cv::Rect(x0, y0, bounds.x + bounds.width - x0, bounds.y + bounds.height - y0);
+  return {x0, y0, bounds.x + bounds.width - x0, bounds.y + bounds.height - y0};
+}
+
+// Builds `hierarchy` over the pixels of `mask` (frame size) in `bounds` (aligned), with the
+// similarity's features and the threshold schedule of an image whose smaller side is
+// `schedule_side` (0: the crop's).
+void BuildHierarchy(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity similarity,
+                    const cv::Mat& mask, cv::Rect bounds, int schedule_side, float t_max,
+                    Hierarchy* hierarchy) {
+  bounds = Aligned(bounds);
   hierarchy->origin = bounds.tl();
   hierarchy->size = bounds.size();
   cv::Mat features;
   if (similarity == TrackSimilarity::kSkin) {
     ClassSimilarity::Features(skin(bounds), &features);
-    hierarchy->bip = &hierarchy->builder.Build(features, ClassSimilarity(), mask(bounds));
+    hierarchy->bip =
+        &hierarchy->builder.Build(features, ClassSimilarity(), mask(bounds), schedule_side);
   } else {
     HsvSimilarity::Features(frame(bounds), &features);
-    hierarchy->bip = &hierarchy->builder.Build(features, HsvSimilarity(t_max), mask(bounds));
+    hierarchy->bip =
+        &hierarchy->builder.Build(features, HsvSimilarity(t_max), mask(bounds), schedule_side);
   }
   hierarchy->LabelRegions();
 }
@@ -246,12 +255,21 @@ struct MultiTracker::Impl {
   TrackerOptions options;
   std::vector<Target> targets;
   int next_id = 1;
-  Hierarchy hierarchies[2];  // colour and skin
+  // Pyramids of the current frame, colour and skin: one per group of ROIs (see Track()).
+  std::vector<std::unique_ptr<Hierarchy>> hierarchies[2];
+  std::vector<int> group_of;  // per target: its group's pyramid, -1 for an empty ROI
   Segmenter segmenter;       // chooses a target's regions in a box (thesis 4.2.1)
   cv::Mat union_mask;
   LevelSearch search_;
 
   explicit Impl(const TrackerOptions& o) : options(o) {}
+
+  // The `index`-th pyramid of a similarity, made on first use; each keeps its buffers.
+  Hierarchy& Pyramid(TrackSimilarity similarity, size_t index) {
+    auto& pool = hierarchies[similarity == TrackSimilarity::kSkin ? 1 : 0];
+    while (pool.size() <= index) pool.push_back(std::make_unique<Hierarchy>());
+    return *pool[index];
+  }
 
   // The template of a target from the regular cells of `hierarchy` in the target's regions.
   // `in_target` says whether a region is the target's; `keep` limits it to a box (absolute
@@ -496,16 +514,53 @@ struct MultiTracker::Impl {
         ATTEND_CHECK(skin.type() == CV_8UC1 && skin.size() == frame.size())
             << "skin targets need the frame's binary skin map";
       }
-      Hierarchy& h = hierarchies[similarity == TrackSimilarity::kSkin ? 1 : 0];
-      BuildHierarchy(frame, skin, similarity, union_mask, bounds, options.t_oversegment, &h);
+      // The pyramid over the union of the ROIs is built in parts: ROIs whose aligned crops
+      // overlap or touch share a part, and parts are apart by at least a pixel outside every
+      // ROI. No vertex of one part is linked to, or adjacent to, a vertex of another, at any
+      // level, so each part is exactly the union pyramid's restriction to it; every part links
+      // with the thresholds of the whole union's crop. The parts cost what their crops cost,
+      // not what the bounding box of all the ROIs would.
+      std::vector<cv::Rect> groups;
+      group_of.assign(targets.size(), -1);
+      for (size_t i = 0; i < targets.size(); ++i) {
+        if (targets[i].similarity != similarity || targets[i].roi.empty()) continue;
+        group_of[i] = static_cast<int>(groups.size());
+        groups.push_back(Aligned(targets[i].roi));
+      }
+      for (bool merged = true; merged;) {
+        merged = false;
+        for (size_t a = 0; a < groups.size() && !merged; ++a) {
+          for (size_t b = a + 1; b < groups.size() && !merged; ++b) {
+            const cv::Rect grown(groups[a].x - 1, groups[a].y - 1, groups[a].width + 2,
+                                 groups[a].height + 2);
+            if ((grown & groups[b]).empty()) continue;
+            groups[a] = Aligned(groups[a] | groups[b]);
+            groups.erase(groups.begin() + static_cast<std::ptrdiff_t>(b));
+            for (int& g : group_of) {
+              if (g == static_cast<int>(b)) g = static_cast<int>(a);
+              else if (g > static_cast<int>(b)) --g;
+            }
+            merged = true;
+          }
+        }
+      }
+      const cv::Rect whole = Aligned(bounds);
+      const int schedule_side = std::min(whole.width, whole.height);
+      for (size_t g = 0; g < groups.size(); ++g) {
+        BuildHierarchy(frame, skin, similarity, union_mask, groups[g], schedule_side,
+                       options.t_oversegment, &Pyramid(similarity, g));
+      }
 
-      for (Target& target : targets) {
+      for (size_t i = 0; i < targets.size(); ++i) {
+        Target& target = targets[i];
         if (target.similarity != similarity) continue;
+        // A target with an empty ROI (outside the image) is searched in no pyramid.
+        const Hierarchy& h = Pyramid(similarity, std::max(group_of[i], 0));
         TrackResult result;
         result.id = target.id;
         result.roi = target.roi;
         std::vector<uint8_t> in_target(h.regions, 0);
-        const Match match = target.roi.empty() ? Match() : Localise(target, h, &in_target);
+        const Match match = group_of[i] < 0 ? Match() : Localise(target, h, &in_target);
         result.overlap = match.overlap;
         if (match.found) {
           Refine(h, target.roi, &in_target);
@@ -552,8 +607,8 @@ struct MultiTracker::Impl {
   int Start(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity similarity,
             const cv::Mat& target_mask, const cv::Mat& build_mask) {
     if (cv::countNonZero(target_mask) == 0) return -1;
-    Hierarchy& h = hierarchies[similarity == TrackSimilarity::kSkin ? 1 : 0];
-    BuildHierarchy(frame, skin, similarity, build_mask, cv::boundingRect(build_mask),
+    Hierarchy& h = Pyramid(similarity, 0);
+    BuildHierarchy(frame, skin, similarity, build_mask, cv::boundingRect(build_mask), 0,
                    options.t_oversegment, &h);
     // The target's regions: those with most of their pixels in `target_mask`.
     std::vector<int> inside(h.regions, 0), all(h.regions, 0);
