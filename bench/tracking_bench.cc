@@ -421,8 +421,10 @@ struct Configuration {
   std::vector<int> objects;
   std::unique_ptr<attend::MultiTracker> tracker;
   int started = 0;
-  std::vector<double> ms;     // per frame 1, 2, ...
-  std::vector<int> searched;  // targets searched, per frame 1, 2, ...
+  std::vector<double> ms;          // MultiTracker::Track, per frame 1, 2, ...
+  std::vector<double> segment_ms;  // its over-segmentation part
+  std::vector<double> capture_ms;  // decoding the frame's PNG before it
+  std::vector<int> searched;       // targets searched, per frame 1, 2, ...
   int found_last = 0;         // targets found in the last frame
 };
 
@@ -434,6 +436,10 @@ struct CostRow {
   double found_last = 0.0;  // mean targets found in the last frame
   double ms = 0.0;          // mean over configurations of the median ms/frame, every frame
   double window_ms = 0.0;   // the same over frames 1..window
+  // Over frames 1..window, as thesis table 4.3 splits a frame: capture, over-segmentation,
+  // matching (Track minus over-segmentation).
+  double capture_ms = 0.0;
+  double segment_ms = 0.0;
 };
 
 struct CostResult {
@@ -466,10 +472,13 @@ CostResult RunCost(const std::string& path, int repeat) {
   const attend::SceneRenderer renderer(scene);
   result.source = "sequences/" + fs::path(path).filename().string();
   std::vector<cv::Mat> images;
+  std::vector<std::vector<uchar>> encoded;  // each frame as a PNG file holds it
   std::map<int, cv::Rect> start;
   for (int f = 0; f < scene.frames; ++f) {
     attend::RenderedFrame rendered = renderer.Render(f);
     images.push_back(rendered.left);
+    encoded.emplace_back();
+    cv::imencode(".png", rendered.left, encoded.back());
     if (f != 0) continue;
     for (const attend::GtObject& object : rendered.objects) start[object.id] = Rounded(object.box);
   }
@@ -503,9 +512,14 @@ CostResult RunCost(const std::string& path, int repeat) {
         Configuration& c = configurations[(f + k) % configurations.size()];
         c.searched.push_back(static_cast<int>(c.tracker->ids().size()));
         results.clear();
+        // Capture: the frame decoded from its PNG, as `attend track` reads a sequence.
+        const attend::Stopwatch capture;
+        const cv::Mat frame = cv::imdecode(encoded[f], cv::IMREAD_COLOR);
+        c.capture_ms.push_back(capture.ElapsedMs());
         const attend::Stopwatch watch;
-        c.tracker->Track(images[f], &results);
+        c.tracker->Track(frame, &results);
         c.ms.push_back(watch.ElapsedMs());
+        c.segment_ms.push_back(c.tracker->segmentation_milliseconds());
         if (f == result.frames - 1) {
           c.found_last = static_cast<int>(std::count_if(
               results.begin(), results.end(),
@@ -525,13 +539,17 @@ CostResult RunCost(const std::string& path, int repeat) {
     for (size_t c = 0; c < sets.size(); ++c) {
       if (static_cast<int>(sets[c].size()) != size) continue;
       ++row.configurations;
-      std::vector<double> all, window;
+      std::vector<double> all, window, capture, segment;
       for (const std::vector<Configuration>& round : rounds) {
         all.push_back(MeanOfFirst(round[c].ms, updates));
         window.push_back(MeanOfFirst(round[c].ms, result.window));
+        capture.push_back(MeanOfFirst(round[c].capture_ms, result.window));
+        segment.push_back(MeanOfFirst(round[c].segment_ms, result.window));
       }
       row.ms += Median(all);
       row.window_ms += Median(window);
+      row.capture_ms += Median(capture);
+      row.segment_ms += Median(segment);
       const Configuration& first = rounds[0][c];
       row.started += first.started;
       double searched = 0.0;
@@ -542,6 +560,8 @@ CostResult RunCost(const std::string& path, int repeat) {
     if (row.configurations == 0) continue;
     row.ms /= row.configurations;
     row.window_ms /= row.configurations;
+    row.capture_ms /= row.configurations;
+    row.segment_ms /= row.configurations;
     row.started /= row.configurations;
     row.searched /= row.configurations;
     row.found_last /= row.configurations;
@@ -693,11 +713,33 @@ void WriteReport(const Options& options, const std::vector<TaskResult>& results,
         << Fixed(row.window_ms, 2) << " | " << Ratio(row.window_ms, one_window) << " | "
         << Fixed(row.ms, 2) << " | " << Ratio(row.ms, one) << " |\n";
   }
+  out << "\nThe same frames 1.." << cost.window
+      << " split as thesis table 4.3 splits a frame: capture (here: decoding the frame's PNG, "
+         "as `attend track` reads a sequence; the thesis grabbed camera frames), "
+         "over-segmentation (colour conversion and pyramids, "
+         "MultiTracker::segmentation_milliseconds), matching (the rest of Track: localisation, "
+         "refinement, template and ROI update). The thesis's initialization column (structures "
+         "set up every frame) has no counterpart: the tracker keeps its buffers.\n\n";
+  out << "| targets | capture | over-segmentation | matching | Track | ratio to 1 target | "
+         "total | ratio to 1 target |\n";
+  out << "|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  const double one_total = cost.rows.empty() ? 0.0 : cost.rows[0].capture_ms + one_window;
+  for (const CostRow& row : cost.rows) {
+    const double total = row.capture_ms + row.window_ms;
+    out << "| " << row.targets << " | " << Fixed(row.capture_ms, 2) << " | "
+        << Fixed(row.segment_ms, 2) << " | " << Fixed(row.window_ms - row.segment_ms, 2) << " | "
+        << Fixed(row.window_ms, 2) << " | " << Ratio(row.window_ms, one_window) << " | "
+        << Fixed(total, 2) << " | " << Ratio(total, one_total) << " |\n";
+  }
   for (const CostRow& row : cost.rows) {
     if (row.targets != 3 || one_window <= 0.0) continue;
+    const double total = row.capture_ms + row.window_ms;
     out << "\nSPEC 5, three targets under 1.6x one (frames 1.." << cost.window
-        << "): " << Fixed(row.window_ms / one_window, 2) << "x, target "
-        << (row.window_ms / one_window < 1.6 ? "met" : "not met") << ".\n";
+        << "): MultiTracker::Track alone " << Fixed(row.window_ms / one_window, 2) << "x, "
+        << (row.window_ms / one_window < 1.6 ? "met" : "not met")
+        << "; the whole frame with its capture, as thesis table 4.3 counts it, "
+        << Fixed(total / one_total, 2) << "x, " << (total / one_total < 1.6 ? "met" : "not met")
+        << ".\n";
   }
 }
 

@@ -258,6 +258,7 @@ struct MultiTracker::Impl {
   // Pyramids of the current frame, colour and skin: one per group of ROIs (see Track()).
   std::vector<std::unique_ptr<Hierarchy>> hierarchies[2];
   std::vector<int> group_of;  // per target: its group's pyramid, -1 for an empty ROI
+  double segmentation_ms = 0.0;  // of the last Track()
   Segmenter segmenter;       // chooses a target's regions in a box (thesis 4.2.1)
   cv::Mat union_mask;
   LevelSearch search_;
@@ -490,6 +491,7 @@ struct MultiTracker::Impl {
   }
 
   void Track(const cv::Mat& frame, const cv::Mat& skin, std::vector<TrackResult>* results) {
+    segmentation_ms = 0.0;
     const cv::Rect image(0, 0, frame.cols, frame.rows);
     const int epsilon_max = options.EpsilonMaxPixels(frame.cols);
     for (const TrackSimilarity similarity : {TrackSimilarity::kColour, TrackSimilarity::kSkin}) {
@@ -546,10 +548,12 @@ struct MultiTracker::Impl {
       }
       const cv::Rect whole = Aligned(bounds);
       const int schedule_side = std::min(whole.width, whole.height);
+      const Stopwatch segmentation;
       for (size_t g = 0; g < groups.size(); ++g) {
         BuildHierarchy(frame, skin, similarity, union_mask, groups[g], schedule_side,
                        options.t_oversegment, &Pyramid(similarity, g));
       }
+      segmentation_ms += segmentation.ElapsedMs();
 
       for (size_t i = 0; i < targets.size(); ++i) {
         Target& target = targets[i];
@@ -724,6 +728,7 @@ void MultiTracker::Track(const cv::Mat& frame, std::vector<TrackResult>* results
   impl_->Track(frame, skin, &found);
   results->insert(results->end(), found.begin(), found.end());
   milliseconds_ = stopwatch.ElapsedMs();
+  segmentation_milliseconds_ = impl_->segmentation_ms;
 }
 
 cv::Mat MultiTracker::Mask(int id) const {
