@@ -425,7 +425,7 @@ struct Configuration {
   std::vector<double> segment_ms;  // its over-segmentation part
   std::vector<double> capture_ms;  // decoding the frame's PNG before it
   std::vector<int> searched;       // targets searched, per frame 1, 2, ...
-  int found_last = 0;         // targets found in the last frame
+  int found_last = 0;              // targets found in the last frame
 };
 
 struct CostRow {

@@ -134,10 +134,9 @@ void BuildHierarchy(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity s
 // them is not below `limit` (eq. 4.6). Rows are scored in order and scoring stops as soon as
 // the result is <= `bar`; the result is then some value <= `bar`.
 ATTEND_VECTOR_CLONES int64_t PlacedOverlap(const float* t0, const float* t1, const float* t2,
-                                           const int32_t* w, int width, int height,
-                                           const float* r0, const float* r1, const float* r2,
-                                           size_t stride, float limit, int64_t total,
-                                           int64_t bar) {
+                                           const int32_t* w, int width, int height, const float* r0,
+                                           const float* r1, const float* r2, size_t stride,
+                                           float limit, int64_t total, int64_t bar) {
   int64_t score = total;
   for (int row = 0; row < height && score > bar; ++row) {
     int32_t missed = 0;
@@ -257,9 +256,9 @@ struct MultiTracker::Impl {
   int next_id = 1;
   // Pyramids of the current frame, colour and skin: one per group of ROIs (see Track()).
   std::vector<std::unique_ptr<Hierarchy>> hierarchies[2];
-  std::vector<int> group_of;  // per target: its group's pyramid, -1 for an empty ROI
+  std::vector<int> group_of;     // per target: its group's pyramid, -1 for an empty ROI
   double segmentation_ms = 0.0;  // of the last Track()
-  Segmenter segmenter;       // chooses a target's regions in a box (thesis 4.2.1)
+  Segmenter segmenter;           // chooses a target's regions in a box (thesis 4.2.1)
   cv::Mat union_mask;
   LevelSearch search_;
 
@@ -539,8 +538,10 @@ struct MultiTracker::Impl {
             groups[a] = Aligned(groups[a] | groups[b]);
             groups.erase(groups.begin() + static_cast<std::ptrdiff_t>(b));
             for (int& g : group_of) {
-              if (g == static_cast<int>(b)) g = static_cast<int>(a);
-              else if (g > static_cast<int>(b)) --g;
+              if (g == static_cast<int>(b))
+                g = static_cast<int>(a);
+              else if (g > static_cast<int>(b))
+                --g;
             }
             merged = true;
           }

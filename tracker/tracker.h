@@ -51,12 +51,12 @@ enum class TrackSimilarity { kColour, kSkin };
 struct TrackResult {
   int id = 0;
   TrackState state = TrackState::kFound;
-  cv::Rect box;            // the target's bounding box; the last known one when not found
-  cv::Point2f centroid;    // of the target's pixels; the last known one when not found
-  int area = 0;            // target pixels this frame (0 when not found)
-  int level = -1;          // pyramid level where the template matched; -1 when not found
-  double overlap = 0.0;    // the accepted weighted overlap, 0..1; 0 when not found
-  cv::Rect roi;            // the region of interest searched this frame
+  cv::Rect box;          // the target's bounding box; the last known one when not found
+  cv::Point2f centroid;  // of the target's pixels; the last known one when not found
+  int area = 0;          // target pixels this frame (0 when not found)
+  int level = -1;        // pyramid level where the template matched; -1 when not found
+  double overlap = 0.0;  // the accepted weighted overlap, 0..1; 0 when not found
+  cv::Rect roi;          // the region of interest searched this frame
 };
 
 // Tracks any number of targets in one shared pyramid (4.3). Keeps its buffers between frames.
@@ -70,9 +70,9 @@ class MultiTracker {
   // Starts a target in `frame` (8-bit BGR) from a mask of its pixels (CV_8UC1, frame size,
   // non-zero = target) or from a box: the box and its surroundings are segmented with the BIP
   // (default options, thesis 4.2.1) and the regions lying mostly inside the box are the target;
-  // a skin target from a box is the skin pixels in it. For skin targets `skin` is the frame's binary skin map (CV_8UC1).
-  // Returns the new target's id (1, 2, ... in order of starting), or -1 when the mask or box
-  // holds no usable target (empty, or too thin for a template).
+  // a skin target from a box is the skin pixels in it. For skin targets `skin` is the frame's
+  // binary skin map (CV_8UC1). Returns the new target's id (1, 2, ... in order of starting), or -1
+  // when the mask or box holds no usable target (empty, or too thin for a template).
   int StartFromMask(const cv::Mat& frame, const cv::Mat& mask,
                     TrackSimilarity similarity = TrackSimilarity::kColour,
                     const cv::Mat& skin = cv::Mat());

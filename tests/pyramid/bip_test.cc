@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <opencv2/imgproc.hpp>
+#include <set>
 
 #include "colour/colour.h"
 
@@ -165,6 +167,66 @@ TEST(Bip, BuilderReuseGivesTheSameResultAsAFreshBuilder) {
   BipBuilder fresh;
   fresh.Build(Features(a), policy).LabelRoots(&labels_fresh);
   EXPECT_EQ(cv::countNonZero(labels_reused != labels_fresh), 0);
+}
+
+// The tracker builds the pyramid over a union of masked windows in parts (tracker/tracker.cc):
+// each part a crop with its origin on a multiple of 64, apart from the others by pixels outside
+// the mask, with the whole image's threshold schedule. Each part must segment its pixels exactly
+// as the pyramid over the whole masked image does.
+TEST(Bip, SeparatedMaskedPartsSegmentAsInTheWholeImageWithItsSchedule) {
+  cv::Mat image(200, 300, CV_8UC3);
+  cv::randu(image, 0, 256);
+  cv::GaussianBlur(image, image, cv::Size(9, 9), 3.0);
+  cv::Mat mask = cv::Mat::zeros(image.size(), CV_8UC1);
+  const cv::Rect windows[] = {{10, 20, 70, 50}, {150, 90, 90, 80}};
+  for (const cv::Rect& window : windows) mask(window).setTo(255);
+  const HsvSimilarity policy(10.f);
+  BipBuilder whole_builder;
+  cv::Mat whole;
+  whole_builder.Build(Features(image), policy, mask).LabelRoots(&whole);
+  // The parts: [0, 80) x [0, 70) and [128, 240) x [64, 170), both origins multiples of 64.
+  const cv::Rect parts[] = {{0, 0, 80, 70}, {128, 64, 112, 106}};
+  const int schedule_side = std::min(image.cols, image.rows);
+  for (const cv::Rect& part : parts) {
+    BipBuilder part_builder;
+    cv::Mat labels;
+    part_builder.Build(Features(image(part)), policy, mask(part), schedule_side)
+        .LabelRoots(&labels);
+    // Same partition of the part's pixels: label pairs map one to one.
+    std::map<int, int> forward, backward;
+    int regions = 0;
+    for (int row = 0; row < part.height; ++row) {
+      for (int col = 0; col < part.width; ++col) {
+        const int a = labels.at<int>(row, col), b = whole.at<int>(row + part.y, col + part.x);
+        ASSERT_EQ(a < 0, b < 0) << row << "," << col;
+        if (a < 0) continue;
+        const auto [f, fresh] = forward.emplace(a, b);
+        const auto [g, unused] = backward.emplace(b, a);
+        ASSERT_EQ(f->second, b) << "part " << part << " pixel " << row << "," << col;
+        ASSERT_EQ(g->second, a) << "part " << part << " pixel " << row << "," << col;
+        regions += fresh;
+      }
+    }
+    EXPECT_GT(regions, 5);  // the blurred noise is over-segmented, so the check has teeth
+  }
+  // Without the whole image's schedule a part links with other thresholds and, on this image,
+  // segments differently: the schedule is what makes the parts agree.
+  BipBuilder own;
+  cv::Mat own_labels, whole_part;
+  own.Build(Features(image(parts[1])), policy, mask(parts[1])).LabelRoots(&own_labels);
+  int own_regions = 0, whole_regions = 0;
+  double minimum, maximum;
+  cv::minMaxLoc(own_labels, &minimum, &maximum);
+  own_regions = static_cast<int>(maximum) + 1;
+  std::set<int> seen;
+  for (int row = 0; row < parts[1].height; ++row) {
+    for (int col = 0; col < parts[1].width; ++col) {
+      const int b = whole.at<int>(row + parts[1].y, col + parts[1].x);
+      if (b >= 0) seen.insert(b);
+    }
+  }
+  whole_regions = static_cast<int>(seen.size());
+  EXPECT_NE(own_regions, whole_regions);
 }
 
 // Whether two vertices of `level` are neighbours in the pyramid: array neighbours for two

@@ -44,6 +44,11 @@ TEST(Tracker, TranslatingHomogeneousObjectIsFoundEveryFrame) {
     ASSERT_EQ(results.size(), 1u);
     EXPECT_EQ(results[0].state, TrackState::kFound) << "frame " << frame;
     EXPECT_GT(Iou(results[0].box, box), 0.8) << "frame " << frame << " " << results[0].box;
+    // A flat object on a flat background matches wholly; the time splits into parts.
+    EXPECT_GT(results[0].overlap, tracker.options().min_overlap) << "frame " << frame;
+    EXPECT_LE(results[0].overlap, 1.0) << "frame " << frame;
+    EXPECT_GE(tracker.segmentation_milliseconds(), 0.0);
+    EXPECT_LE(tracker.segmentation_milliseconds(), tracker.milliseconds());
   }
 }
 
@@ -77,6 +82,8 @@ TEST(Tracker, ShortFullOcclusionIsReportedAndRecovered) {
   ASSERT_EQ(results.size(), 16u);
   for (int frame = 6; frame <= 10; ++frame) {
     EXPECT_EQ(results[frame - 1].state, TrackState::kOccluded) << "frame " << frame;
+    EXPECT_EQ(results[frame - 1].overlap, 0.0) << "frame " << frame;  // none accepted
+    EXPECT_EQ(results[frame - 1].level, -1) << "frame " << frame;
   }
   // Recovered within 3 frames of reappearing (frame 11), and kept.
   int recovered = 0;
@@ -198,6 +205,32 @@ TEST(Tracker, ThreeTargetsKeepTheirIdentitiesWhenPassingClose) {
       EXPECT_EQ(results[i].id, i + 1);
       EXPECT_EQ(results[i].state, TrackState::kFound) << "frame " << frame << " target " << i + 1;
       EXPECT_GT(Iou(results[i].box, boxes(frame)[i].first), 0.7)
+          << "frame " << frame << " target " << i + 1 << " " << results[i].box;
+    }
+  }
+}
+
+// Targets far apart are over-segmented in separate parts of the union pyramid (one per group
+// of nearby ROIs), targets close together in a shared part; both are followed.
+TEST(Tracker, TargetsFarApartAndCloseTogetherAreFollowed) {
+  const cv::Size size(320, 240);
+  auto boxes = [](int frame) {
+    return std::vector<std::pair<cv::Rect, cv::Scalar>>{
+        {cv::Rect(10 + 2 * frame, 10, 24, 20), kRed},     // top left
+        {cv::Rect(280 - 2 * frame, 200, 24, 20), kBlue},  // bottom right
+        {cv::Rect(150, 100 + frame, 20, 16), kGreen},     // centre, near the next one
+        {cv::Rect(176, 100 + frame, 20, 16), cv::Scalar(0, 200, 220)}};  // yellow
+  };
+  MultiTracker tracker;
+  const cv::Mat first = Frame(size, boxes(0));
+  for (const auto& [box, colour] : boxes(0)) ASSERT_GT(tracker.StartFromBox(first, box), 0);
+  for (int frame = 1; frame <= 15; ++frame) {
+    std::vector<TrackResult> results;
+    tracker.Track(Frame(size, boxes(frame), frame), &results);
+    ASSERT_EQ(results.size(), 4u) << "frame " << frame;
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_EQ(results[i].state, TrackState::kFound) << "frame " << frame << " target " << i + 1;
+      EXPECT_GT(Iou(results[i].box, boxes(frame)[i].first), 0.8)
           << "frame " << frame << " target " << i + 1 << " " << results[i].box;
     }
   }
