@@ -210,6 +210,33 @@ TEST(Tracker, ThreeTargetsKeepTheirIdentitiesWhenPassingClose) {
   }
 }
 
+// Two displacements with the same, full overlap: the one nearest the previous motion wins
+// (SPEC 2.5), whichever side of the scan it lies on.
+TEST(Tracker, AmongEqualOverlapsTheDisplacementNearestThePreviousMotionWins) {
+  // A bar moves 8 px a frame (its cells stay aligned with the pyramid's); in the last frame
+  // a copy of it also appears 8 px behind where it was, 8 px of background between the two.
+  const cv::Size size(320, 120);
+  auto bar = [](int x) { return std::make_pair(cv::Rect(x, 48, 8, 24), kRed); };
+  for (const int step : {8, -8}) {
+    MultiTracker tracker;
+    int x = step > 0 ? 40 : 240;
+    ASSERT_EQ(tracker.StartFromBox(Frame(size, {bar(x)}), bar(x).first), 1);
+    for (int frame = 1; frame <= 5; ++frame) {
+      x += step;
+      std::vector<TrackResult> results;
+      tracker.Track(Frame(size, {bar(x)}, frame), &results);
+      ASSERT_EQ(results[0].state, TrackState::kFound) << "frame " << frame;
+      ASSERT_EQ(results[0].box, bar(x).first) << "frame " << frame;
+    }
+    std::vector<TrackResult> results;
+    tracker.Track(Frame(size, {bar(x - 8), bar(x + 8)}, 6), &results);
+    ASSERT_EQ(results.size(), 1u);
+    EXPECT_EQ(results[0].state, TrackState::kFound) << "step " << step;
+    EXPECT_DOUBLE_EQ(results[0].overlap, 1.0) << "step " << step;  // both copies match wholly
+    EXPECT_EQ(results[0].box, bar(x + step).first) << "step " << step;
+  }
+}
+
 // Targets far apart are over-segmented in separate parts of the union pyramid (one per group
 // of nearby ROIs), targets close together in a shared part; both are followed.
 TEST(Tracker, TargetsFarApartAndCloseTogetherAreFollowed) {
