@@ -200,8 +200,8 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         const double skin_share =
             static_cast<double>(cv::countNonZero(skin_ & mask)) / segmentation.regions[best].area;
         const bool skin = skin_share >= options_.skin_fraction;
-        const int id = tracker_.StartFromMask(
-            bgr, mask, skin ? TrackSimilarity::kSkin : TrackSimilarity::kColour, skin_);
+        const int id = tracker_.StartFromRegion(
+            bgr, colour, best, skin ? TrackSimilarity::kSkin : TrackSimilarity::kColour, skin_);
         if (id < 0) continue;
         active_.push_back({id, skin, 0});
         ++attended_;

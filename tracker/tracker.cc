@@ -721,6 +721,15 @@ int MultiTracker::StartFromBox(const cv::Mat& frame, const cv::Rect& box,
   return StartFromMask(frame, mask, similarity, skin);
 }
 
+int MultiTracker::StartFromRegion(const cv::Mat& frame, const cv::Mat& labels, int region,
+                                  TrackSimilarity similarity, const cv::Mat& skin) {
+  CheckFrame(frame, similarity, skin);
+  ATTEND_CHECK(labels.type() == CV_32SC1 && labels.size() == frame.size())
+      << "segmentation labels must be CV_32SC1 of the frame's size";
+  if (region < 0) return -1;
+  return StartFromMask(frame, labels == region, similarity, skin);
+}
+
 void MultiTracker::Track(const cv::Mat& frame, std::vector<TrackResult>* results,
                          const cv::Mat& skin) {
   const Stopwatch stopwatch;

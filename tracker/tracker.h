@@ -79,6 +79,13 @@ class MultiTracker {
   int StartFromBox(const cv::Mat& frame, const cv::Rect& box,
                    TrackSimilarity similarity = TrackSimilarity::kColour,
                    const cv::Mat& skin = cv::Mat());
+  // Starts a target from region `region` of a segmentation of `frame`: `labels` is its label
+  // image (CV_32SC1, frame size, as `Segmentation::labels`), and the target is started from the
+  // mask of that region's pixels. Returns -1 as StartFromMask does, and for a region without
+  // pixels.
+  int StartFromRegion(const cv::Mat& frame, const cv::Mat& labels, int region,
+                      TrackSimilarity similarity = TrackSimilarity::kColour,
+                      const cv::Mat& skin = cv::Mat());
 
   // Searches every active target in `frame` and appends one result per target, in id order.
   // A target reported lost is removed afterwards. `skin` is needed when a skin target exists.

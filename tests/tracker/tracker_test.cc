@@ -4,6 +4,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "pyramid/segmentation.h"
 #include "util/error.h"
 
 namespace attend {
@@ -284,6 +285,33 @@ TEST(Tracker, SkinTargetsMatchBySkinClass) {
     EXPECT_EQ(results[0].state, TrackState::kFound) << "frame " << frame;
     EXPECT_GT(Iou(results[0].box, start + cv::Point(2 * frame, frame)), 0.9);
   }
+}
+
+TEST(Tracker, StartsFromARegionOfASegmentation) {
+  cv::Rect box(30, 40, 30, 24);
+  const cv::Mat first = Frame(kSize, {{box, kRed}, {cv::Rect(100, 30, 20, 20), kBlue}});
+  Segmentation segmentation;
+  Segmenter().Segment(first, &segmentation);
+  const int region = segmentation.labels.at<int>(box.y + box.height / 2, box.x + box.width / 2);
+  ASSERT_GE(region, 0);
+  MultiTracker tracker;
+  const int id = tracker.StartFromRegion(first, segmentation.labels, region);
+  ASSERT_EQ(id, 1);
+  EXPECT_EQ(cv::boundingRect(tracker.Mask(id)), box);  // the red region, not the blue box
+  for (int frame = 1; frame <= 10; ++frame) {
+    box.x += 2;
+    std::vector<TrackResult> results;
+    tracker.Track(Frame(kSize, {{box, kRed}, {cv::Rect(100, 30, 20, 20), kBlue}}, frame), &results);
+    ASSERT_EQ(results.size(), 1u);
+    EXPECT_EQ(results[0].state, TrackState::kFound) << "frame " << frame;
+    EXPECT_GT(Iou(results[0].box, box), 0.8) << "frame " << frame;
+  }
+  // No region: -1, nothing started.
+  EXPECT_EQ(tracker.StartFromRegion(first, segmentation.labels, -1), -1);
+  EXPECT_EQ(tracker.StartFromRegion(first, segmentation.labels,
+                                    static_cast<int>(segmentation.regions.size())),
+            -1);
+  EXPECT_EQ(tracker.ids(), std::vector<int>{1});
 }
 
 TEST(Tracker, MaskFollowsTheTargetAndBadStartsAreRefused) {
