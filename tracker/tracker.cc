@@ -119,7 +119,7 @@ void BuildHierarchy(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity s
   hierarchy->LabelRegions();
 }
 
-// MissedInRow() is compiled twice, for AVX2 and for the baseline x86-64 (SSE2), and the
+// PlacedOverlap() is compiled twice, for AVX2 and for the baseline x86-64 (SSE2), and the
 // processor picks one at run time: the same operations in the same order (no FMA), so the same
 // results on every machine. As in colour/colour.cc.
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -185,7 +185,7 @@ struct LevelSearch {
         if (t.weight[i] <= 0.f) continue;
         const size_t j = static_cast<size_t>(y - occupied.y) * occupied.width + (x - occupied.x);
         for (int c = 0; c < 3; ++c) colour[c][j] = t.colour[3 * i + c];
-        weight[j] = static_cast<int32_t>(std::lround(t.weight[i] * kWeightOne));
+        weight[j] = std::max<int32_t>(1, static_cast<int32_t>(std::lround(t.weight[i] * kWeightOne)));
         total += weight[j];
       }
     }
@@ -264,6 +264,21 @@ struct MultiTracker::Impl {
 
   explicit Impl(const TrackerOptions& o) : options(o) {}
 
+  // Joins group b into group a (a < b): their crops and spans, and the targets' group numbers.
+  void Merge(size_t a, size_t b, std::vector<cv::Rect>* groups, std::vector<cv::Rect>* spans) {
+    (*groups)[a] = Aligned((*groups)[a] | (*groups)[b]);
+    (*spans)[a] |= (*spans)[b];
+    groups->erase(groups->begin() + static_cast<std::ptrdiff_t>(b));
+    spans->erase(spans->begin() + static_cast<std::ptrdiff_t>(b));
+    for (int& g : group_of) {
+      if (g == static_cast<int>(b)) {
+        g = static_cast<int>(a);
+      } else if (g > static_cast<int>(b)) {
+        --g;
+      }
+    }
+  }
+
   // The `index`-th pyramid of a similarity, made on first use; each keeps its buffers.
   Hierarchy& Pyramid(TrackSimilarity similarity, size_t index) {
     auto& pool = hierarchies[similarity == TrackSimilarity::kSkin ? 1 : 0];
@@ -275,16 +290,22 @@ struct MultiTracker::Impl {
   // `in_target` says whether a region is the target's; `keep` limits it to a box (absolute
   // pixels). Cells of the old template that the new target does not cover stay with their
   // weight reduced by alpha, shifted by `shift` pixels.
+  // `pyramid_levels` is the height of the whole pyramid over the union of the ROIs, of which
+  // `h` may be a lower part: above the part's own levels, old cells only move and decay.
   std::vector<TemplateLevel> MakeTemplate(const Hierarchy& h, const std::vector<uint8_t>& in_target,
                                           const cv::Rect& keep,
                                           const std::vector<TemplateLevel>* old,
-                                          cv::Point shift) const {
-    const int levels = std::min(h.bip->num_levels(), kMaxTemplateLevel + 1);
+                                          cv::Point shift, int pyramid_levels) const {
+    const int levels = std::min(pyramid_levels, kMaxTemplateLevel + 1);
     std::vector<TemplateLevel> result(levels);
     for (int l = 0; l < levels; ++l) {
-      const BipLevel& level = h.bip->level(l);
-      // Window: the crop's cells, joined with the shifted old window.
-      cv::Rect window((h.origin.x >> l), (h.origin.y >> l), level.cols, level.rows);
+      const bool built = l < h.bip->num_levels();
+      // Window: the crop's cells, joined with the shifted old window. Above the part's levels
+      // the whole pyramid's cells of the level hold every cell inside `keep` (which lies in
+      // the crop), and so does the window.
+      cv::Rect window = built ? cv::Rect((h.origin.x >> l), (h.origin.y >> l),
+                                         h.bip->level(l).cols, h.bip->level(l).rows)
+                              : CellsInside(keep, l);
       if (old != nullptr && l < static_cast<int>(old->size()) && !(*old)[l].cells.empty()) {
         cv::Rect moved = (*old)[l].cells;
         moved.x += static_cast<int>(std::lround(shift.x / static_cast<double>(1 << l)));
@@ -315,6 +336,8 @@ struct MultiTracker::Impl {
           }
         }
       }
+      if (!built) continue;
+      const BipLevel& level = h.bip->level(l);
       for (int y = kept.y; y < kept.y + kept.height; ++y) {
         for (int x = kept.x; x < kept.x + kept.width; ++x) {
           const int cell = h.Cell(l, x, y);
@@ -400,7 +423,8 @@ struct MultiTracker::Impl {
                        [](const auto& a, const auto& b) { return a.first < b.first; });
       // The smallest weight sum that is accepted (overlap > min_overlap).
       const int64_t total = search_.total;
-      int64_t accepted = static_cast<int64_t>(std::floor(options.min_overlap * total));
+      int64_t accepted =
+          static_cast<int64_t>(std::floor(static_cast<double>(options.min_overlap) * total));
       while (static_cast<double>(accepted) / total > options.min_overlap) --accepted;
       while (static_cast<double>(accepted) / total <= options.min_overlap) ++accepted;
       // Every displacement is scored, row by row of the template; one stops being scored as
@@ -518,15 +542,22 @@ struct MultiTracker::Impl {
       // The pyramid over the union of the ROIs is built in parts: ROIs whose aligned crops
       // overlap or touch share a part, and parts are apart by at least a pixel outside every
       // ROI. No vertex of one part is linked to, or adjacent to, a vertex of another, at any
-      // level, so each part is exactly the union pyramid's restriction to it; every part links
-      // with the thresholds of the whole union's crop. The parts cost what their crops cost,
-      // not what the bounding box of all the ROIs would.
-      std::vector<cv::Rect> groups;
+      // level, and every part links with the thresholds of the whole union's crop. A part's
+      // crop starts on a multiple of kAlignment, as the union's does, so their cells agree up
+      // to level kMaxTemplateLevel; above it they may not, and a regular cell there needs
+      // 2^(kMaxTemplateLevel + 1) pixels square inside the ROIs: when a part's ROIs could hold
+      // one, the pyramid is built whole. Each part is then exactly the union pyramid's
+      // restriction to it (the template follows the whole pyramid's height, see MakeTemplate),
+      // and the parts cost what their crops cost, not what the bounding box of every ROI
+      // would.
+      std::vector<cv::Rect> groups;  // aligned crops
+      std::vector<cv::Rect> spans;   // the bounding box of each group's ROIs
       group_of.assign(targets.size(), -1);
       for (size_t i = 0; i < targets.size(); ++i) {
         if (targets[i].similarity != similarity || targets[i].roi.empty()) continue;
         group_of[i] = static_cast<int>(groups.size());
         groups.push_back(Aligned(targets[i].roi));
+        spans.push_back(targets[i].roi);
       }
       for (bool merged = true; merged;) {
         merged = false;
@@ -535,24 +566,27 @@ struct MultiTracker::Impl {
             const cv::Rect grown(groups[a].x - 1, groups[a].y - 1, groups[a].width + 2,
                                  groups[a].height + 2);
             if ((grown & groups[b]).empty()) continue;
-            groups[a] = Aligned(groups[a] | groups[b]);
-            groups.erase(groups.begin() + static_cast<std::ptrdiff_t>(b));
-            for (int& g : group_of) {
-              if (g == static_cast<int>(b))
-                g = static_cast<int>(a);
-              else if (g > static_cast<int>(b))
-                --g;
-            }
+            Merge(a, b, &groups, &spans);
             merged = true;
           }
         }
       }
+      constexpr int kUnaligned = 2 * kAlignment;
+      const bool whole_pyramid =
+          !options.pyramid_parts ||
+          std::any_of(spans.begin(), spans.end(), [](const cv::Rect& span) {
+            return span.width >= kUnaligned && span.height >= kUnaligned;
+          });
+      while (whole_pyramid && groups.size() > 1) Merge(0, 1, &groups, &spans);
       const cv::Rect whole = Aligned(bounds);
       const int schedule_side = std::min(whole.width, whole.height);
       const Stopwatch segmentation;
+      int pyramid_levels = 0;
       for (size_t g = 0; g < groups.size(); ++g) {
+        Hierarchy& part = Pyramid(similarity, g);
         BuildHierarchy(frame, skin, similarity, union_mask, groups[g], schedule_side,
-                       options.t_oversegment, &Pyramid(similarity, g));
+                       options.t_oversegment, &part);
+        pyramid_levels = std::max(pyramid_levels, part.bip->num_levels());
       }
       segmentation_ms += segmentation.ElapsedMs();
 
@@ -572,7 +606,8 @@ struct MultiTracker::Impl {
           PaintTarget(h, in_target, target.roi, frame.size(), &target.mask);
           const cv::Point shift(match.displacement.x << match.level,
                                 match.displacement.y << match.level);
-          target.levels = MakeTemplate(h, in_target, target.roi, &target.levels, shift);
+          target.levels =
+              MakeTemplate(h, in_target, target.roi, &target.levels, shift, pyramid_levels);
           // The target's pixels all lie in its ROI.
           const cv::Mat inside = target.mask(target.roi);
           const cv::Moments moments = cv::moments(inside, true);
@@ -589,8 +624,10 @@ struct MultiTracker::Impl {
         } else {
           // Not found (4.2.7): every weight decays, the ROI border grows.
           target.mask.release();
+          // A weight left at a rounding error of 0 (1 - k alpha in float) is 0, as in
+          // MakeTemplate: the target is lost after 1 / alpha frames, not one more.
           for (TemplateLevel& level : target.levels) {
-            for (float& w : level.weight) w = std::max(0.f, w - options.alpha);
+            for (float& w : level.weight) w = w - options.alpha > 1e-6f ? w - options.alpha : 0.f;
           }
           while (!target.levels.empty() && target.levels.back().Empty()) target.levels.pop_back();
           target.border = std::min(target.border + 1, epsilon_max);
@@ -634,7 +671,7 @@ struct MultiTracker::Impl {
     const cv::Rect everything(0, 0, frame.cols, frame.rows);
     PaintTarget(h, in_target, everything, frame.size(), &target.mask);
     if (cv::countNonZero(target.mask) == 0) return -1;
-    target.levels = MakeTemplate(h, in_target, everything, nullptr, {});
+    target.levels = MakeTemplate(h, in_target, everything, nullptr, {}, h.bip->num_levels());
     if (target.levels.empty()) return -1;
     const cv::Moments moments = cv::moments(target.mask, true);
     target.box = cv::boundingRect(target.mask);

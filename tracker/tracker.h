@@ -31,6 +31,11 @@ struct TrackerOptions {
   float epsilon_max = 12.f;
   float working_area = 0.8f;  // T_A: share of the template's area at the working level (4.4)
   float min_overlap = 0.7f;   // weighted overlap that accepts a displacement (4.2.3)
+  // How the pyramid over the union of the ROIs is built: in independent parts, one per group of
+  // nearby ROIs (true), or as one pyramid over the bounding box of every ROI (false). The
+  // results are the same; the parts cost what the ROIs cost. Not a thesis parameter: false is
+  // there to check the parts against.
+  bool pyramid_parts = true;
 
   // The borders in pixels for images `width` wide (at least 1).
   int EpsilonPixels(int width) const;

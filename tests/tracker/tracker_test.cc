@@ -135,6 +135,27 @@ TEST(Tracker, LongOcclusionLosesTheTargetAndWeightsDecayByAlpha) {
   }
 }
 
+// Lost after exactly 1 / alpha unmatched frames, also when 1 - k alpha is not exactly 0 in
+// float (alpha 0.2, 0.3: the decayed weight would otherwise be left at a rounding error).
+TEST(Tracker, LostAfterOneOverAlphaFramesWhateverTheRounding) {
+  const cv::Rect box(60, 50, 28, 22);
+  for (const float alpha : {0.2f, 0.25f, 1.f / 3.f, 0.1f}) {
+    TrackerOptions options;
+    options.alpha = alpha;
+    MultiTracker tracker(options);
+    ASSERT_EQ(tracker.StartFromBox(Frame(kSize, {{box, kRed}}), box), 1);
+    const int frames = static_cast<int>(std::lround(1.0 / alpha));
+    for (int k = 1; k <= frames; ++k) {
+      std::vector<TrackResult> results;
+      tracker.Track(Frame(kSize, {}, k), &results);
+      ASSERT_EQ(results.size(), 1u) << "alpha " << alpha << " k " << k;
+      EXPECT_EQ(results[0].state, k < frames ? TrackState::kOccluded : TrackState::kLost)
+          << "alpha " << alpha << " k " << k;
+    }
+    EXPECT_TRUE(tracker.ids().empty()) << "alpha " << alpha;
+  }
+}
+
 TEST(Tracker, FollowsADeformingBlobAndAnApproachingObject) {
   // An ellipse whose axes oscillate by 2 px and which doubles in size over 30 frames (a blob
   // that shrinks by a third of its area within two frames is not found in them: the template
@@ -262,6 +283,97 @@ TEST(Tracker, TargetsFarApartAndCloseTogetherAreFollowed) {
           << "frame " << frame << " target " << i + 1 << " " << results[i].box;
     }
   }
+}
+
+// Tracks the same frames with the pyramid built in parts and whole; every result, mask and
+// template level must agree.
+template <typename Draw>
+void ExpectPartsAgreeWithTheWholePyramid(const std::vector<cv::Rect>& starts, int frames,
+                                         Draw draw) {
+  TrackerOptions whole_options;
+  whole_options.pyramid_parts = false;
+  MultiTracker parts, whole(whole_options);
+  const cv::Mat first = draw(0);
+  for (const cv::Rect& start : starts) {
+    ASSERT_EQ(parts.StartFromBox(first, start), whole.StartFromBox(first, start));
+  }
+  int compared = 0;
+  for (int frame = 1; frame <= frames; ++frame) {
+    const cv::Mat image = draw(frame);
+    std::vector<TrackResult> a, b;
+    parts.Track(image, &a);
+    whole.Track(image, &b);
+    ASSERT_EQ(a.size(), b.size()) << "frame " << frame;
+    for (size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a[i].state, b[i].state) << "frame " << frame << " target " << a[i].id;
+      EXPECT_EQ(a[i].box, b[i].box) << "frame " << frame << " target " << a[i].id;
+      EXPECT_EQ(a[i].level, b[i].level) << "frame " << frame << " target " << a[i].id;
+      EXPECT_EQ(a[i].overlap, b[i].overlap) << "frame " << frame << " target " << a[i].id;
+      const cv::Mat mask_a = parts.Mask(a[i].id), mask_b = whole.Mask(b[i].id);
+      ASSERT_EQ(mask_a.empty(), mask_b.empty()) << "frame " << frame;
+      if (!mask_a.empty()) {
+        EXPECT_EQ(cv::countNonZero(mask_a != mask_b), 0) << "frame " << frame;
+      }
+      for (int level = 0; level <= 7; ++level) {
+        const cv::Mat wa = parts.TemplateWeights(a[i].id, level);
+        const cv::Mat wb = whole.TemplateWeights(b[i].id, level);
+        ASSERT_EQ(wa.size(), wb.size()) << "frame " << frame << " level " << level;
+        if (!wa.empty()) {
+          EXPECT_EQ(cv::countNonZero(wa != wb), 0) << "frame " << frame << " level " << level;
+        }
+        compared += !wa.empty();
+      }
+    }
+  }
+  EXPECT_GT(compared, 0);
+}
+
+// The pyramid over the union of the ROIs is built in independent parts (one per group of
+// nearby ROIs) unless a group's ROIs could hold a regular cell above level 6; either way the
+// results are those of one pyramid over all the ROIs.
+TEST(Tracker, PyramidPartsGiveTheResultsOfTheWholePyramid) {
+  // Small, medium and textured targets far apart, two of them close together.
+  const cv::Size size(320, 240);
+  auto scene = [&](int frame) {
+    cv::Mat image = Frame(size,
+                          {{cv::Rect(8 + frame, 6, 14, 12), kRed},
+                           {cv::Rect(200 - 2 * frame, 130, 90, 80), kBlue},
+                           {cv::Rect(60, 150 + frame, 24, 20), kGreen},
+                           {cv::Rect(88, 150 + frame, 24, 20), cv::Scalar(0, 200, 220)}},
+                          frame);
+    cv::Mat texture(80, 90, CV_8UC3);
+    cv::RNG(7).fill(texture, cv::RNG::UNIFORM, 0, 40);
+    cv::Mat blue = image(cv::Rect(200 - 2 * frame, 130, 90, 80));
+    blue += texture;
+    return image;
+  };
+  ExpectPartsAgreeWithTheWholePyramid({cv::Rect(8, 6, 14, 12), cv::Rect(200, 130, 90, 80),
+                                       cv::Rect(60, 150, 24, 20), cv::Rect(88, 150, 24, 20)},
+                                      12, scene);
+  // A flat target that turns noisy: its part of the pyramid gets lower than the whole's, and
+  // its old template levels above the part's height decay as they do in the whole pyramid.
+  auto noisy = [&](int frame) {
+    cv::Mat image = Frame(
+        size, {{cv::Rect(16, 16, 48, 48), kRed}, {cv::Rect(180, 120, 100, 90), kBlue}}, frame);
+    if (frame >= 2) {
+      cv::Mat noise(48, 48, CV_8UC3);
+      cv::RNG(frame).fill(noise, cv::RNG::UNIFORM, 0, 20);
+      cv::Mat red = image(cv::Rect(16, 16, 48, 48));
+      red += noise;
+    }
+    return image;
+  };
+  ExpectPartsAgreeWithTheWholePyramid({cv::Rect(16, 16, 48, 48), cv::Rect(180, 120, 100, 90)}, 6,
+                                      noisy);
+  // A flat target larger than 128 px square, whose crop starts 64 px after the union's: the
+  // pyramid is built whole.
+  auto large = [&](int frame) {
+    return Frame(size,
+                 {{cv::Rect(10, 8, 12, 12), kRed}, {cv::Rect(70 + frame, 70, 200, 150), kBlue}},
+                 frame);
+  };
+  ExpectPartsAgreeWithTheWholePyramid({cv::Rect(10, 8, 12, 12), cv::Rect(70, 70, 200, 150)}, 6,
+                                      large);
 }
 
 TEST(Tracker, SkinTargetsMatchBySkinClass) {
