@@ -164,18 +164,49 @@ struct LevelSearch {
   std::vector<int32_t> weight;
   int64_t total = 0;
   std::vector<float> roi[3];  // the ROI cells, row by row; NaN where no regular vertex
-  std::vector<std::pair<int, cv::Point>> displacements;
+  std::vector<cv::Point> displacements;
+  std::vector<int> distance;  // per displacement of the range, in scan order
+  std::vector<int> bucket;    // counting sort by distance
+
+  // The displacements of [dx0, dx1] x [dy0, dy1] ordered by squared distance to `prior`, those
+  // at equal distance in scan order (rows, then columns): a stable counting sort.
+  const std::vector<cv::Point>& Order(int dx0, int dx1, int dy0, int dy1, cv::Point prior) {
+    distance.clear();
+    int largest = 0;
+    for (int dy = dy0; dy <= dy1; ++dy) {
+      for (int dx = dx0; dx <= dx1; ++dx) {
+        const int ex = dx - prior.x, ey = dy - prior.y;
+        distance.push_back(ex * ex + ey * ey);
+        largest = std::max(largest, distance.back());
+      }
+    }
+    bucket.assign(static_cast<size_t>(largest) + 2, 0);
+    for (const int d : distance) ++bucket[static_cast<size_t>(d) + 1];
+    for (size_t i = 1; i < bucket.size(); ++i) bucket[i] += bucket[i - 1];
+    displacements.resize(distance.size());
+    size_t i = 0;
+    for (int dy = dy0; dy <= dy1; ++dy) {
+      for (int dx = dx0; dx <= dx1; ++dx, ++i) {
+        displacements[static_cast<size_t>(bucket[static_cast<size_t>(distance[i])]++)] = {dx, dy};
+      }
+    }
+    return displacements;
+  }
 
   void Load(const TemplateLevel& t, const BipLevel& level, const cv::Rect& roi_cells, int ox,
             int oy) {
-    occupied = cv::Rect();
-    for (int y = t.cells.y; y < t.cells.y + t.cells.height; ++y) {
-      for (int x = t.cells.x; x < t.cells.x + t.cells.width; ++x) {
-        if (t.weight[t.Index(x, y)] > 0.f) occupied |= cv::Rect(x, y, 1, 1);
+    int x0 = std::numeric_limits<int>::max(), y0 = x0, x1 = -1, y1 = -1;
+    for (int y = 0; y < t.cells.height; ++y) {
+      const float* w = &t.weight[static_cast<size_t>(y) * t.cells.width];
+      for (int x = 0; x < t.cells.width; ++x) {
+        if (!(w[x] > 0.f)) continue;
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = y;
       }
     }
     total = 0;
-    if (occupied.empty()) return;
+    occupied = cv::Rect();
+    if (x1 < 0) return;
+    occupied = cv::Rect(t.cells.x + x0, t.cells.y + y0, x1 - x0 + 1, y1 - y0 + 1);
     const size_t cells = static_cast<size_t>(occupied.area());
     for (auto& plane : colour) plane.assign(cells, 0.f);
     weight.assign(cells, 0);
@@ -185,7 +216,8 @@ struct LevelSearch {
         if (t.weight[i] <= 0.f) continue;
         const size_t j = static_cast<size_t>(y - occupied.y) * occupied.width + (x - occupied.x);
         for (int c = 0; c < 3; ++c) colour[c][j] = t.colour[3 * i + c];
-        weight[j] = std::max<int32_t>(1, static_cast<int32_t>(std::lround(t.weight[i] * kWeightOne)));
+        weight[j] =
+            std::max<int32_t>(1, static_cast<int32_t>(std::lround(t.weight[i] * kWeightOne)));
         total += weight[j];
       }
     }
@@ -294,8 +326,8 @@ struct MultiTracker::Impl {
   // `h` may be a lower part: above the part's own levels, old cells only move and decay.
   std::vector<TemplateLevel> MakeTemplate(const Hierarchy& h, const std::vector<uint8_t>& in_target,
                                           const cv::Rect& keep,
-                                          const std::vector<TemplateLevel>* old,
-                                          cv::Point shift, int pyramid_levels) const {
+                                          const std::vector<TemplateLevel>* old, cv::Point shift,
+                                          int pyramid_levels) const {
     const int levels = std::min(pyramid_levels, kMaxTemplateLevel + 1);
     std::vector<TemplateLevel> result(levels);
     for (int l = 0; l < levels; ++l) {
@@ -303,8 +335,8 @@ struct MultiTracker::Impl {
       // Window: the crop's cells, joined with the shifted old window. Above the part's levels
       // the whole pyramid's cells of the level hold every cell inside `keep` (which lies in
       // the crop), and so does the window.
-      cv::Rect window = built ? cv::Rect((h.origin.x >> l), (h.origin.y >> l),
-                                         h.bip->level(l).cols, h.bip->level(l).rows)
+      cv::Rect window = built ? cv::Rect((h.origin.x >> l), (h.origin.y >> l), h.bip->level(l).cols,
+                                         h.bip->level(l).rows)
                               : CellsInside(keep, l);
       if (old != nullptr && l < static_cast<int>(old->size()) && !(*old)[l].cells.empty()) {
         cv::Rect moved = (*old)[l].cells;
@@ -411,16 +443,7 @@ struct MultiTracker::Impl {
       const cv::Point prior(
           static_cast<int>(std::lround(target.motion.x / static_cast<double>(1 << l))),
           static_cast<int>(std::lround(target.motion.y / static_cast<double>(1 << l))));
-      std::vector<std::pair<int, cv::Point>>& displacements = search_.displacements;
-      displacements.clear();
-      for (int dy = dy0; dy <= dy1; ++dy) {
-        for (int dx = dx0; dx <= dx1; ++dx) {
-          const int ex = dx - prior.x, ey = dy - prior.y;
-          displacements.push_back({ex * ex + ey * ey, {dx, dy}});
-        }
-      }
-      std::stable_sort(displacements.begin(), displacements.end(),
-                       [](const auto& a, const auto& b) { return a.first < b.first; });
+      const std::vector<cv::Point>& displacements = search_.Order(dx0, dx1, dy0, dy1, prior);
       // The smallest weight sum that is accepted (overlap > min_overlap).
       const int64_t total = search_.total;
       int64_t accepted =
@@ -434,7 +457,7 @@ struct MultiTracker::Impl {
       cv::Point best_d;
       bool found = false;
       const int width = occupied.width;
-      for (const auto& [distance, d] : displacements) {
+      for (const cv::Point& d : displacements) {
         const size_t from =
             static_cast<size_t>(occupied.y + d.y - roi.y) * roi.width + (occupied.x + d.x - roi.x);
         const int64_t score = PlacedOverlap(
@@ -572,11 +595,10 @@ struct MultiTracker::Impl {
         }
       }
       constexpr int kUnaligned = 2 * kAlignment;
-      const bool whole_pyramid =
-          !options.pyramid_parts ||
-          std::any_of(spans.begin(), spans.end(), [](const cv::Rect& span) {
-            return span.width >= kUnaligned && span.height >= kUnaligned;
-          });
+      const bool whole_pyramid = !options.pyramid_parts ||
+                                 std::any_of(spans.begin(), spans.end(), [](const cv::Rect& span) {
+                                   return span.width >= kUnaligned && span.height >= kUnaligned;
+                                 });
       while (whole_pyramid && groups.size() > 1) Merge(0, 1, &groups, &spans);
       const cv::Rect whole = Aligned(bounds);
       const int schedule_side = std::min(whole.width, whole.height);
