@@ -4,6 +4,7 @@
 #include <opencv2/core/hal/hal.hpp>
 
 #include "util/error.h"
+#include "util/vector_clones.h"
 
 namespace attend {
 
@@ -11,14 +12,7 @@ namespace {
 
 constexpr float kSqrt3 = 1.7320508075688772f;
 
-// CylinderRow() is compiled twice, for AVX2 and for the baseline x86-64 (SSE2), and the
-// processor picks one at run time: the same operations in the same order (no FMA), so the same
-// results on every machine. As in stereo/disparity.cc.
-#if defined(__x86_64__) && defined(__GNUC__)
-#define ATTEND_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define ATTEND_VECTOR_CLONES
-#endif
+// CylinderRow() is compiled for AVX2 and for SSE2, with the same results (util/vector_clones.h).
 
 // With x = (R-G)+(R-B) and y = sqrt(3)(G-B), H = atan2(y, x), so cos H = x/r and
 // sin H = y/r with r = |(x, y)|: no trigonometry is needed.

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "util/error.h"
+#include "util/vector_clones.h"
 
 namespace attend {
 
@@ -55,14 +56,8 @@ inline uint64_t NeighbourKey(float d2, int position) {
   return (uint64_t{std::bit_cast<uint32_t>(d2)} << 3) | static_cast<uint64_t>(position);
 }
 
-// The loops over whole planes below are compiled twice, for AVX2 and for the baseline x86-64
-// (SSE2), and the processor picks one at run time: the same operations in the same order (no
-// FMA), so the same results on every machine. As in stereo/disparity.cc.
-#if defined(__x86_64__) && defined(__GNUC__)
-#define ATTEND_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define ATTEND_VECTOR_CLONES
-#endif
+// The loops over whole planes below are compiled for AVX2 and for SSE2, with the same results
+// (util/vector_clones.h).
 
 // Interleaved 3-float features to one plane per component.
 ATTEND_VECTOR_CLONES void SplitPlanes(const float* __restrict feature, size_t count,

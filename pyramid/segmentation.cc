@@ -7,6 +7,7 @@
 
 #include "util/error.h"
 #include "util/timer.h"
+#include "util/vector_clones.h"
 
 namespace attend {
 
@@ -24,12 +25,6 @@ struct RegionEdge {
   int b = 0;
   int length = 0;
 };
-
-#if defined(__x86_64__) && defined(__GNUC__)
-#define ATTEND_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define ATTEND_VECTOR_CLONES
-#endif
 
 // The saturation |(sx, sy)| of each pixel of a row of cylinder colours, for the whole row at
 // once so that it vectorises: the squares in a loop compiled for AVX2 and for the baseline

@@ -9,6 +9,7 @@
 
 #include "util/error.h"
 #include "util/timer.h"
+#include "util/vector_clones.h"
 
 namespace attend {
 
@@ -45,14 +46,8 @@ void ReversedRow(const float* row, int width, int depth, float* out) {
   for (int m = 0; m < width + depth; ++m) out[m] = row[std::max(0, width - 1 - m)];
 }
 
-// The loops over d below are compiled twice, for AVX2 and for the baseline x86-64 (SSE2), and
-// the processor picks one at run time: the same operations in the same order, so the same
-// results, on every machine.
-#if defined(__x86_64__) && defined(__GNUC__)
-#define ATTEND_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define ATTEND_VECTOR_CLONES
-#endif
+// The loops over d below are compiled for AVX2 and for SSE2, with the same results
+// (util/vector_clones.h).
 
 // column_sums[x][d] += L_in(x) R_in(x - d) - L_out(x) R_out(x - d): the window slides down by
 // one row. `reversed_*` are right rows laid out by ReversedRow(). Without a leaving row (the

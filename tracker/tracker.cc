@@ -12,6 +12,7 @@
 #include "pyramid/similarity.h"
 #include "util/error.h"
 #include "util/timer.h"
+#include "util/vector_clones.h"
 
 namespace attend {
 
@@ -119,14 +120,8 @@ void BuildHierarchy(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity s
   hierarchy->LabelRegions();
 }
 
-// PlacedOverlap() is compiled twice, for AVX2 and for the baseline x86-64 (SSE2), and the
-// processor picks one at run time: the same operations in the same order (no FMA), so the same
-// results on every machine. As in colour/colour.cc.
-#if defined(__x86_64__) && defined(__GNUC__)
-#define ATTEND_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define ATTEND_VECTOR_CLONES
-#endif
+// PlacedOverlap() is compiled for AVX2 and for SSE2, with the same results
+// (util/vector_clones.h).
 
 // The weighted overlap of a template (planar colour t0..t2 and weight w, `width` x `height`
 // cells) placed on ROI cells (planar r0..r2, rows `stride` apart, NaN where no regular vertex):
