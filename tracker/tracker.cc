@@ -253,6 +253,10 @@ std::string TrackerOptions::Check() const {
   return "";
 }
 
+const char* TrackerModeName(TrackerMode mode) {
+  return mode == TrackerMode::kBounded ? "bounded" : "thesis";
+}
+
 const char* TrackStateName(TrackState state) {
   switch (state) {
     case TrackState::kFound:

@@ -20,7 +20,14 @@
 
 namespace attend {
 
+// Which tracker: the thesis's as written (chapter 4), or the variant for real footage whose
+// refinement and box are bounded (docs/TRACKING.md, "Modes").
+enum class TrackerMode { kThesis, kBounded };
+// "thesis", "bounded" (the tracker.mode key).
+const char* TrackerModeName(TrackerMode mode);
+
 struct TrackerOptions {
+  TrackerMode mode = TrackerMode::kThesis;
   float t_colour = 30.f;       // T_c: a template vertex matches a ROI vertex below it (eq. 4.6)
   float t_oversegment = 10.f;  // T_co: T_max of the ROI's over-segmentation
   float t_refine = 20.f;       // T_cr: colour threshold of the target refinement (4.2.4)
