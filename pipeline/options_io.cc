@@ -75,6 +75,14 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.EndSection([o] { return o->attention.Check(); });
 
   v.BeginSection("tracker");
+  {
+    // The mode is an enum in TrackerOptions; the visitors see its name.
+    std::string mode = TrackerModeName(o->attention.tracker.mode);
+    v.Choice("mode", &mode, {TrackerModeName(TrackerMode::kThesis),
+                             TrackerModeName(TrackerMode::kBounded)});
+    o->attention.tracker.mode =
+        mode == TrackerModeName(TrackerMode::kBounded) ? TrackerMode::kBounded : TrackerMode::kThesis;
+  }
   v.Field("t_colour", &o->attention.tracker.t_colour, Range::Closed(0.001, 1000));
   v.Field("t_oversegment", &o->attention.tracker.t_oversegment, Range::Closed(0.001, 1000));
   v.Field("t_refine", &o->attention.tracker.t_refine, Range::Closed(0, 1000));
