@@ -91,6 +91,8 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("epsilon_max", &o->attention.tracker.epsilon_max, Range::Closed(0, 1000));
   v.Field("working_area", &o->attention.tracker.working_area, Range::Closed(0.01, 1));
   v.Field("min_overlap", &o->attention.tracker.min_overlap, Range::Closed(0.01, 1));
+  v.Field("bound_growth", &o->attention.tracker.bound_growth, Range::Closed(0, 1));
+  v.Field("size_rate", &o->attention.tracker.size_rate, Range::Closed(0, 1));
   v.EndSection([o] { return o->attention.Check(); });
 
   v.Field("threads", &o->threads, Range::Closed(0, 256));

@@ -250,6 +250,8 @@ std::string TrackerOptions::Check() const {
   if (!(epsilon_max >= epsilon)) return "epsilon_max must be >= epsilon";
   if (!(working_area > 0.f && working_area <= 1.f)) return "working_area must be in (0, 1]";
   if (!(min_overlap > 0.f && min_overlap <= 1.f)) return "min_overlap must be in (0, 1]";
+  if (!(bound_growth >= 0.f && bound_growth <= 1.f)) return "bound_growth must be in [0, 1]";
+  if (!(size_rate >= 0.f && size_rate <= 1.f)) return "size_rate must be in [0, 1]";
   return "";
 }
 
@@ -292,6 +294,7 @@ struct MultiTracker::Impl {
   Segmenter segmenter;           // chooses a target's regions in a box (thesis 4.2.1)
   cv::Mat union_mask;
   LevelSearch search_;
+  mutable std::vector<int> region_inside_, region_all_;  // BoundTarget's counts
 
   explicit Impl(const TrackerOptions& o) : options(o) {}
 
@@ -424,68 +427,102 @@ struct MultiTracker::Impl {
   };
 
   // Top-down localisation (4.2.3) of a target in its ROI; marks the matched ROI vertices'
-  // regions in `in_target` (the first stage of 4.2.4).
+  // regions in `in_target` (the first stage of 4.2.4). In the bounded mode a match at a coarse
+  // level is followed by a search at level 0 within one coarse cell of it, so that the motion
+  // and the matched vertices are those of level 0 (a coarse cell of 2^l pixels otherwise
+  // rounds the motion by up to 2^l pixels).
   Match Localise(const Target& target, const Hierarchy& h, std::vector<uint8_t>* in_target) {
-    const float t2 = options.t_colour * options.t_colour;
     for (int l = std::min(WorkingLevel(target), h.bip->num_levels() - 1); l >= 0; --l) {
-      const TemplateLevel& t = target.levels[l];
-      const BipLevel& level = h.bip->level(l);
-      const cv::Rect roi = CellsInside(target.roi, l);
-      const int ox = h.origin.x >> l, oy = h.origin.y >> l;
-      search_.Load(t, level, roi, ox, oy);
-      if (search_.total <= 0) continue;
-      const cv::Rect& occupied = search_.occupied;
-      // Displacements that keep the occupied cells inside the ROI, nearest to the previous
-      // motion first, so that among equal overlaps the nearest wins by coming first.
-      const int dx0 = roi.x - occupied.x, dx1 = roi.x + roi.width - (occupied.x + occupied.width);
-      const int dy0 = roi.y - occupied.y, dy1 = roi.y + roi.height - (occupied.y + occupied.height);
-      const cv::Point prior(
-          static_cast<int>(std::lround(target.motion.x / static_cast<double>(1 << l))),
-          static_cast<int>(std::lround(target.motion.y / static_cast<double>(1 << l))));
-      const std::vector<cv::Point>& displacements = search_.Order(dx0, dx1, dy0, dy1, prior);
-      // The smallest weight sum that is accepted (overlap > min_overlap).
-      const int64_t total = search_.total;
-      int64_t accepted =
-          static_cast<int64_t>(std::floor(static_cast<double>(options.min_overlap) * total));
-      while (static_cast<double>(accepted) / total > options.min_overlap) --accepted;
-      while (static_cast<double>(accepted) / total <= options.min_overlap) ++accepted;
-      // Every displacement is scored, row by row of the template; one stops being scored as
-      // soon as the weight it has missed shows that it can neither be accepted nor beat the
-      // best so far. The accepted result is that of the exhaustive search, ties included.
-      int64_t best = accepted - 1;
-      cv::Point best_d;
-      bool found = false;
-      const int width = occupied.width;
-      for (const cv::Point& d : displacements) {
-        const size_t from =
-            static_cast<size_t>(occupied.y + d.y - roi.y) * roi.width + (occupied.x + d.x - roi.x);
-        const int64_t score = PlacedOverlap(
-            search_.colour[0].data(), search_.colour[1].data(), search_.colour[2].data(),
-            search_.weight.data(), width, occupied.height, &search_.roi[0][from],
-            &search_.roi[1][from], &search_.roi[2][from], roi.width, t2, total, best);
-        if (score > best) {
-          best = score;
-          best_d = d;
-          found = true;
-        }
+      Match match;
+      if (!SearchLevel(target, h, l, nullptr, options.min_overlap, &match)) continue;
+      if (options.mode == TrackerMode::kBounded && l > 0) {
+        const int cell = 1 << l;
+        const cv::Rect window(match.displacement.x * cell - cell, match.displacement.y * cell - cell,
+                              2 * cell + 1, 2 * cell + 1);
+        Match fine;
+        if (SearchLevel(target, h, 0, &window, 0.0, &fine)) match = fine;
       }
-      if (!found) continue;
-      // The matched ROI vertices' regions are the target (first stage of 4.2.4).
-      for (int y = occupied.y; y < occupied.y + occupied.height; ++y) {
-        for (int x = occupied.x; x < occupied.x + occupied.width; ++x) {
-          const size_t i = t.Index(x, y);
-          if (t.weight[i] <= 0.f) continue;
-          const int cell = h.Cell(l, x + best_d.x, y + best_d.y);
-          if (!level.hom[cell] || SquaredDistance(&t.colour[3 * i], level.Feature(cell)) >= t2) {
-            continue;
-          }
-          const int r = h.region[l][cell];
-          if (r >= 0) (*in_target)[r] = 1;
-        }
-      }
-      return {true, l, best_d, static_cast<double>(best) / total};
+      MarkMatched(target, h, match, in_target);
+      return match;
     }
     return {};
+  }
+
+  // Searches level l of the ROI for the template's best displacement (within `window`, in
+  // cells of l, when given) whose weighted overlap exceeds `min_overlap`; false when none does.
+  bool SearchLevel(const Target& target, const Hierarchy& h, int l, const cv::Rect* window,
+                   double min_overlap, Match* match) {
+    const float t2 = options.t_colour * options.t_colour;
+    const TemplateLevel& t = target.levels[l];
+    const BipLevel& level = h.bip->level(l);
+    const cv::Rect roi = CellsInside(target.roi, l);
+    const int ox = h.origin.x >> l, oy = h.origin.y >> l;
+    search_.Load(t, level, roi, ox, oy);
+    if (search_.total <= 0) return false;
+    const cv::Rect& occupied = search_.occupied;
+    // Displacements that keep the occupied cells inside the ROI, nearest to the previous
+    // motion first, so that among equal overlaps the nearest wins by coming first.
+    int dx0 = roi.x - occupied.x, dx1 = roi.x + roi.width - (occupied.x + occupied.width);
+    int dy0 = roi.y - occupied.y, dy1 = roi.y + roi.height - (occupied.y + occupied.height);
+    if (window != nullptr) {
+      dx0 = std::max(dx0, window->x), dx1 = std::min(dx1, window->x + window->width - 1);
+      dy0 = std::max(dy0, window->y), dy1 = std::min(dy1, window->y + window->height - 1);
+    }
+    if (dx1 < dx0 || dy1 < dy0) return false;
+    const cv::Point prior(
+        static_cast<int>(std::lround(target.motion.x / static_cast<double>(1 << l))),
+        static_cast<int>(std::lround(target.motion.y / static_cast<double>(1 << l))));
+    const std::vector<cv::Point>& displacements = search_.Order(dx0, dx1, dy0, dy1, prior);
+    // The smallest weight sum that is accepted (overlap > min_overlap).
+    const int64_t total = search_.total;
+    int64_t accepted = static_cast<int64_t>(std::floor(min_overlap * total));
+    while (accepted > 0 && static_cast<double>(accepted) / total > min_overlap) --accepted;
+    while (static_cast<double>(accepted) / total <= min_overlap) ++accepted;
+    // Every displacement is scored, row by row of the template; one stops being scored as
+    // soon as the weight it has missed shows that it can neither be accepted nor beat the
+    // best so far. The accepted result is that of the exhaustive search, ties included.
+    int64_t best = accepted - 1;
+    cv::Point best_d;
+    bool found = false;
+    const int width = occupied.width;
+    for (const cv::Point& d : displacements) {
+      const size_t from =
+          static_cast<size_t>(occupied.y + d.y - roi.y) * roi.width + (occupied.x + d.x - roi.x);
+      const int64_t score = PlacedOverlap(
+          search_.colour[0].data(), search_.colour[1].data(), search_.colour[2].data(),
+          search_.weight.data(), width, occupied.height, &search_.roi[0][from],
+          &search_.roi[1][from], &search_.roi[2][from], roi.width, t2, total, best);
+      if (score > best) {
+        best = score;
+        best_d = d;
+        found = true;
+      }
+    }
+    if (!found) return false;
+    *match = {true, l, best_d, static_cast<double>(best) / total};
+    return true;
+  }
+
+  // The matched ROI vertices' regions are the target (first stage of 4.2.4).
+  void MarkMatched(const Target& target, const Hierarchy& h, const Match& match,
+                   std::vector<uint8_t>* in_target) const {
+    const float t2 = options.t_colour * options.t_colour;
+    const int l = match.level;
+    const TemplateLevel& t = target.levels[l];
+    const BipLevel& level = h.bip->level(l);
+    for (int y = t.cells.y; y < t.cells.y + t.cells.height; ++y) {
+      for (int x = t.cells.x; x < t.cells.x + t.cells.width; ++x) {
+        const size_t i = t.Index(x, y);
+        if (t.weight[i] <= 0.f) continue;
+        const int cell = h.Cell(l, x + match.displacement.x, y + match.displacement.y);
+        if (cell < 0 || !level.hom[cell] ||
+            SquaredDistance(&t.colour[3 * i], level.Feature(cell)) >= t2) {
+          continue;
+        }
+        const int r = h.region[l][cell];
+        if (r >= 0) (*in_target)[r] = 1;
+      }
+    }
   }
 
   // Second stage of 4.2.4: the regions of neighbours (regular and virtual) of the target's
@@ -533,6 +570,80 @@ struct MultiTracker::Impl {
         }
       }
     }
+  }
+
+  // Bounded refinement (TrackerMode::kBounded). The target may only be where the last box,
+  // moved by the match, plausibly is now: that box grown by `bound_growth` of its size on each
+  // side. Refinement looks only there, and a region (first stage or refinement) belongs to the
+  // target only when most of its pixels in the ROI lie in that box: a region that reaches far
+  // outside it is background that the over-segmentation joined to the target. Returns the box.
+  cv::Rect BoundTarget(const Hierarchy& h, const Target& target, cv::Point shift,
+                       const cv::Rect& image, std::vector<uint8_t>* in_target) const {
+    const cv::Rect moved = target.box + shift;
+    const int gx = std::max(2, static_cast<int>(std::lround(options.bound_growth * moved.width)));
+    const int gy = std::max(2, static_cast<int>(std::lround(options.bound_growth * moved.height)));
+    const cv::Rect plausible =
+        cv::Rect(moved.x - gx, moved.y - gy, moved.width + 2 * gx, moved.height + 2 * gy) &
+        target.roi & image;
+    const std::vector<uint8_t> matched = *in_target;
+    Refine(h, plausible, in_target);
+    region_inside_.assign(h.regions, 0);
+    region_all_.assign(h.regions, 0);
+    const BipLevel& base = h.bip->level(0);
+    const cv::Rect roi = target.roi & cv::Rect(h.origin, h.size);
+    for (int y = roi.y; y < roi.y + roi.height; ++y) {
+      const int row = (y - h.origin.y) * base.cols - h.origin.x;
+      const bool y_in = y >= moved.y && y < moved.y + moved.height;
+      for (int x = roi.x; x < roi.x + roi.width; ++x) {
+        const int cell = row + x;
+        if (!base.hom[cell]) continue;
+        const int r = h.region[0][cell];
+        if (r < 0 || !(*in_target)[r]) continue;
+        ++region_all_[r];
+        if (y_in && x >= moved.x && x < moved.x + moved.width) ++region_inside_[r];
+      }
+    }
+    bool any = false;
+    for (int r = 0; r < h.regions; ++r) {
+      if (!(*in_target)[r]) continue;
+      (*in_target)[r] = 2 * region_inside_[r] >= region_all_[r];
+      any = any || (*in_target)[r];
+    }
+    // When every region reaches out, the matched regions are kept, cut to the box.
+    if (!any) *in_target = matched;
+    return plausible;
+  }
+
+  // The bounded mode's box. The mask's box says where the target is, but a side of it that
+  // reaches the plausible box's edge is no evidence of growth (the regions may go on beyond
+  // it): that side stays where the moved box has it. The box's size and centre then follow
+  // that evidence by a share `size_rate` a frame, so that one frame whose segmentation takes
+  // too little or too much does not make the box jump.
+  cv::Rect SmoothBox(const Target& target, cv::Point shift, cv::Rect mask_box,
+                     const cv::Rect& plausible, const cv::Rect& image) const {
+    const cv::Rect moved = target.box + shift;
+    int x0 = mask_box.x, y0 = mask_box.y;
+    int x1 = mask_box.x + mask_box.width, y1 = mask_box.y + mask_box.height;
+    if (x0 <= plausible.x && plausible.x > 0) x0 = std::max(x0, moved.x);
+    if (y0 <= plausible.y && plausible.y > 0) y0 = std::max(y0, moved.y);
+    if (x1 >= plausible.x + plausible.width && x1 < image.width) {
+      x1 = std::min(x1, moved.x + moved.width);
+    }
+    if (y1 >= plausible.y + plausible.height && y1 < image.height) {
+      y1 = std::min(y1, moved.y + moved.height);
+    }
+    if (x1 <= x0 || y1 <= y0) return moved & image;
+    const double rate = options.size_rate;
+    const double w = (1 - rate) * moved.width + rate * (x1 - x0);
+    const double hgt = (1 - rate) * moved.height + rate * (y1 - y0);
+    const double cx = (1 - rate) * (moved.x + moved.width / 2.0) + rate * (x0 + x1) / 2.0;
+    const double cy = (1 - rate) * (moved.y + moved.height / 2.0) + rate * (y0 + y1) / 2.0;
+    cv::Rect box(static_cast<int>(std::lround(cx - w / 2)),
+                 static_cast<int>(std::lround(cy - hgt / 2)),
+                 std::max(1, static_cast<int>(std::lround(w))),
+                 std::max(1, static_cast<int>(std::lround(hgt))));
+    box &= image;
+    return box.empty() ? (moved & image) : box;
   }
 
   void Track(const cv::Mat& frame, const cv::Mat& skin, std::vector<TrackResult>* results) {
@@ -623,17 +734,30 @@ struct MultiTracker::Impl {
         const Match match = group_of[i] < 0 ? Match() : Localise(target, h, &in_target);
         result.overlap = match.overlap;
         if (match.found) {
-          Refine(h, target.roi, &in_target);
-          PaintTarget(h, in_target, target.roi, frame.size(), &target.mask);
           const cv::Point shift(match.displacement.x << match.level,
                                 match.displacement.y << match.level);
-          target.levels =
-              MakeTemplate(h, in_target, target.roi, &target.levels, shift, pyramid_levels);
+          cv::Rect keep = target.roi;
+          if (options.mode == TrackerMode::kBounded) {
+            // The target's box first, then its pixels and template inside that box only.
+            const cv::Rect plausible = BoundTarget(h, target, shift, image, &in_target);
+            PaintTarget(h, in_target, plausible, frame.size(), &target.mask);
+            const cv::Rect mask_box = cv::boundingRect(target.mask(plausible)) + plausible.tl();
+            if (!mask_box.empty()) {
+              keep = SmoothBox(target, shift, mask_box, plausible, image);
+              target.box = keep;
+            }
+          } else {
+            Refine(h, target.roi, &in_target);
+          }
+          PaintTarget(h, in_target, keep, frame.size(), &target.mask);
+          target.levels = MakeTemplate(h, in_target, keep, &target.levels, shift, pyramid_levels);
           // The target's pixels all lie in its ROI.
           const cv::Mat inside = target.mask(target.roi);
           const cv::Moments moments = cv::moments(inside, true);
           if (moments.m00 > 0) {
-            target.box = cv::boundingRect(inside) + target.roi.tl();
+            if (options.mode == TrackerMode::kThesis) {
+              target.box = cv::boundingRect(inside) + target.roi.tl();
+            }
             target.centroid = {static_cast<float>(target.roi.x + moments.m10 / moments.m00),
                                static_cast<float>(target.roi.y + moments.m01 / moments.m00)};
           }
@@ -749,6 +873,14 @@ int MultiTracker::StartFromBox(const cv::Mat& frame, const cv::Rect& box,
   const cv::Rect inside = box & image;
   if (inside.empty()) return -1;
   cv::Mat mask(frame.size(), CV_8UC1, cv::Scalar(0));
+  if (options_.mode == TrackerMode::kBounded && similarity == TrackSimilarity::kColour) {
+    // The box is the target: a user's box says where the object is, and a multi-coloured
+    // object's parts need not be regions that lie mostly inside it.
+    mask(inside).setTo(255);
+    const int id = StartFromMask(frame, mask, similarity, skin);
+    if (id >= 0) impl_->targets.back().box = inside;
+    return id;
+  }
   if (similarity == TrackSimilarity::kSkin) {
     mask(inside).setTo(255, skin(inside));
     return StartFromMask(frame, mask, similarity, skin);

@@ -43,6 +43,11 @@ struct TrackerOptions {
   // results are the same; the parts cost what the ROIs cost. Not a thesis parameter: false is
   // there to check the parts against.
   bool pyramid_parts = true;
+  // Bounded mode only (TrackerMode::kBounded, docs/TRACKING.md "Modes"): the target may grow
+  // by this share of its box's size on each side a frame; the box's size and centre follow the
+  // mask's box by this share a frame.
+  float bound_growth = 0.05f;
+  float size_rate = 0.1f;
 
   // The borders in pixels for images `width` wide (at least 1).
   int EpsilonPixels(int width) const;
