@@ -93,6 +93,9 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("min_overlap", &o->attention.tracker.min_overlap, Range::Closed(0.01, 1));
   v.Field("bound_growth", &o->attention.tracker.bound_growth, Range::Closed(0, 1));
   v.Field("size_rate", &o->attention.tracker.size_rate, Range::Closed(0, 1));
+  v.Field("distinctive_weights", &o->attention.tracker.distinctive_weights);
+  v.Field("distinct_rate", &o->attention.tracker.distinct_rate, Range::Closed(0, 1));
+  v.Field("motion_sigma", &o->attention.tracker.motion_sigma, Range::Closed(0, 100));
   v.EndSection([o] { return o->attention.Check(); });
 
   v.Field("threads", &o->threads, Range::Closed(0, 256));

@@ -151,6 +151,17 @@ ATTEND_VECTOR_CLONES int64_t PlacedOverlap(const float* t0, const float* t1, con
 // do not depend on their order.
 constexpr double kWeightOne = 65536.0;
 
+// Bins of the HSV cylinder for the bounded mode's colour statistics: 32 units a side on each
+// axis (S cos H and S sin H in [-255, 255], V in [0, 255]).
+constexpr int kChromaBins = 16, kValueBins = 8;
+constexpr int kColourBins = kChromaBins * kChromaBins * kValueBins;
+int ColourBin(const float* f) {
+  const int bx = std::clamp(static_cast<int>((f[0] + 256.f) / 32.f), 0, kChromaBins - 1);
+  const int by = std::clamp(static_cast<int>((f[1] + 256.f) / 32.f), 0, kChromaBins - 1);
+  const int bv = std::clamp(static_cast<int>(f[2] / 32.f), 0, kValueBins - 1);
+  return (bx * kChromaBins + by) * kValueBins + bv;
+}
+
 // One level's search data, reused from call to call: the template over its occupied cells and
 // the ROI's cells, both as planes of colour components.
 struct LevelSearch {
@@ -188,8 +199,10 @@ struct LevelSearch {
     return displacements;
   }
 
+  // `distinct` (bounded mode; may be empty) scales each template weight by how distinctive
+  // its colour is of the target against its surroundings (ColourBin()).
   void Load(const TemplateLevel& t, const BipLevel& level, const cv::Rect& roi_cells, int ox,
-            int oy) {
+            int oy, const std::vector<float>& distinct) {
     int x0 = std::numeric_limits<int>::max(), y0 = x0, x1 = -1, y1 = -1;
     for (int y = 0; y < t.cells.height; ++y) {
       const float* w = &t.weight[static_cast<size_t>(y) * t.cells.width];
@@ -211,8 +224,9 @@ struct LevelSearch {
         if (t.weight[i] <= 0.f) continue;
         const size_t j = static_cast<size_t>(y - occupied.y) * occupied.width + (x - occupied.x);
         for (int c = 0; c < 3; ++c) colour[c][j] = t.colour[3 * i + c];
-        weight[j] =
-            std::max<int32_t>(1, static_cast<int32_t>(std::lround(t.weight[i] * kWeightOne)));
+        const float scale = distinct.empty() ? 1.f : distinct[ColourBin(&t.colour[3 * i])];
+        weight[j] = std::max<int32_t>(
+            1, static_cast<int32_t>(std::lround(t.weight[i] * scale * kWeightOne)));
         total += weight[j];
       }
     }
@@ -252,6 +266,8 @@ std::string TrackerOptions::Check() const {
   if (!(min_overlap > 0.f && min_overlap <= 1.f)) return "min_overlap must be in (0, 1]";
   if (!(bound_growth >= 0.f && bound_growth <= 1.f)) return "bound_growth must be in [0, 1]";
   if (!(size_rate >= 0.f && size_rate <= 1.f)) return "size_rate must be in [0, 1]";
+  if (!(distinct_rate >= 0.f && distinct_rate <= 1.f)) return "distinct_rate must be in [0, 1]";
+  if (!(motion_sigma >= 0.f)) return "motion_sigma must be >= 0";
   return "";
 }
 
@@ -282,6 +298,9 @@ struct MultiTracker::Impl {
     cv::Point motion;  // the last displacement found, pixels (d_f of 4.2.3)
     cv::Rect roi;      // the ROI of the current frame
     cv::Mat mask;      // pixels of the last frame; empty when not found
+    // Bounded mode: per colour bin, the share of the target's pixels among the target's and
+    // its surroundings' (each normalised by its count); empty: every weight counts wholly.
+    std::vector<float> distinct;
   };
 
   TrackerOptions options;
@@ -295,6 +314,7 @@ struct MultiTracker::Impl {
   cv::Mat union_mask;
   LevelSearch search_;
   mutable std::vector<int> region_inside_, region_all_;  // BoundTarget's counts
+  mutable std::vector<float> fg_, bg_;                  // LearnDistinct's histograms
 
   explicit Impl(const TrackerOptions& o) : options(o) {}
 
@@ -457,7 +477,7 @@ struct MultiTracker::Impl {
     const BipLevel& level = h.bip->level(l);
     const cv::Rect roi = CellsInside(target.roi, l);
     const int ox = h.origin.x >> l, oy = h.origin.y >> l;
-    search_.Load(t, level, roi, ox, oy);
+    search_.Load(t, level, roi, ox, oy, target.distinct);
     if (search_.total <= 0) return false;
     const cv::Rect& occupied = search_.occupied;
     // Displacements that keep the occupied cells inside the ROI, nearest to the previous
@@ -485,17 +505,48 @@ struct MultiTracker::Impl {
     cv::Point best_d;
     bool found = false;
     const int width = occupied.width;
-    for (const cv::Point& d : displacements) {
-      const size_t from =
-          static_cast<size_t>(occupied.y + d.y - roi.y) * roi.width + (occupied.x + d.x - roi.x);
-      const int64_t score = PlacedOverlap(
-          search_.colour[0].data(), search_.colour[1].data(), search_.colour[2].data(),
-          search_.weight.data(), width, occupied.height, &search_.roi[0][from],
-          &search_.roi[1][from], &search_.roi[2][from], roi.width, t2, total, best);
-      if (score > best) {
-        best = score;
-        best_d = d;
-        found = true;
+    if (options.mode == TrackerMode::kBounded && options.motion_sigma > 0.f) {
+      // The bounded mode weighs each accepted overlap by a Gaussian of the displacement's
+      // distance to the previous motion, of `motion_sigma` times the box's mean side: among
+      // displacements that match, the target most likely moved little. Displacements come
+      // nearest first, so the weight only falls, and the search stops once even a whole
+      // overlap could no longer win.
+      const double sigma = std::max(1.0, options.motion_sigma *
+                                             std::sqrt(static_cast<double>(target.box.area())) /
+                                             (1 << l));
+      double best_weighted = 0.0;
+      for (const cv::Point& d : displacements) {
+        const double ex = d.x - prior.x, ey = d.y - prior.y;
+        const double k = std::exp(-(ex * ex + ey * ey) / (2 * sigma * sigma));
+        if (found && k * total <= best_weighted) break;
+        const int64_t bar = std::max<int64_t>(
+            accepted - 1, found ? static_cast<int64_t>(std::floor(best_weighted / k)) : 0);
+        const size_t from =
+            static_cast<size_t>(occupied.y + d.y - roi.y) * roi.width + (occupied.x + d.x - roi.x);
+        const int64_t score = PlacedOverlap(
+            search_.colour[0].data(), search_.colour[1].data(), search_.colour[2].data(),
+            search_.weight.data(), width, occupied.height, &search_.roi[0][from],
+            &search_.roi[1][from], &search_.roi[2][from], roi.width, t2, total, bar);
+        if (score > bar && k * score > best_weighted) {
+          best_weighted = k * score;
+          best = score;
+          best_d = d;
+          found = true;
+        }
+      }
+    } else {
+      for (const cv::Point& d : displacements) {
+        const size_t from =
+            static_cast<size_t>(occupied.y + d.y - roi.y) * roi.width + (occupied.x + d.x - roi.x);
+        const int64_t score = PlacedOverlap(
+            search_.colour[0].data(), search_.colour[1].data(), search_.colour[2].data(),
+            search_.weight.data(), width, occupied.height, &search_.roi[0][from],
+            &search_.roi[1][from], &search_.roi[2][from], roi.width, t2, total, best);
+        if (score > best) {
+          best = score;
+          best_d = d;
+          found = true;
+        }
       }
     }
     if (!found) return false;
@@ -569,6 +620,44 @@ struct MultiTracker::Impl {
           if (cells.contains({qx, qy})) consider(q, n);
         }
       }
+    }
+  }
+
+  // Bounded mode: how distinctive each colour is of the target (its mask) against the rest of
+  // its ROI outside its box, a histogram likelihood ratio f / (f + b) of the normalised counts,
+  // blended into the previous table by `distinct_rate`. Colours the surroundings share count
+  // little in the next frame's overlap; colours only the target has count wholly.
+  void LearnDistinct(const Hierarchy& h, Target* target) const {
+    if (!options.distinctive_weights || target->similarity != TrackSimilarity::kColour ||
+        target->mask.empty()) {
+      return;
+    }
+    fg_.assign(kColourBins, 0.f);
+    bg_.assign(kColourBins, 0.f);
+    const BipLevel& base = h.bip->level(0);
+    const cv::Rect roi = target->roi & cv::Rect(h.origin, h.size);
+    float nf = 0.f, nb = 0.f;
+    for (int y = roi.y; y < roi.y + roi.height; ++y) {
+      const uchar* m = target->mask.ptr<uchar>(y);
+      const int row = (y - h.origin.y) * base.cols - h.origin.x;
+      for (int x = roi.x; x < roi.x + roi.width; ++x) {
+        const int cell = row + x;
+        const int bin = ColourBin(base.Feature(cell));
+        if (m[x]) {
+          fg_[bin] += 1.f, nf += 1.f;
+        } else if (!target->box.contains({x, y})) {
+          bg_[bin] += 1.f, nb += 1.f;
+        }
+      }
+    }
+    if (nf <= 0.f) return;
+    const bool first = target->distinct.empty();
+    if (first) target->distinct.assign(kColourBins, 1.f);
+    for (int b = 0; b < kColourBins; ++b) {
+      const float f = fg_[b] / nf, g = nb > 0.f ? bg_[b] / nb : 0.f;
+      const float d = f + g > 0.f ? f / (f + g) : 0.5f;
+      float& w = target->distinct[b];
+      w = first ? d : (1.f - options.distinct_rate) * w + options.distinct_rate * d;
     }
   }
 
@@ -763,6 +852,7 @@ struct MultiTracker::Impl {
           }
           target.motion = shift;
           target.border = options.EpsilonPixels(frame.cols);
+          if (options.mode == TrackerMode::kBounded) LearnDistinct(h, &target);
           result.state = TrackState::kFound;
           result.level = match.level;
           result.area = static_cast<int>(moments.m00);
@@ -813,16 +903,24 @@ struct MultiTracker::Impl {
     for (int r = 0; r < h.regions; ++r) in_target[r] = 2 * inside[r] > all[r];
     Target target;
     target.similarity = similarity;
-    const cv::Rect everything(0, 0, frame.cols, frame.rows);
-    PaintTarget(h, in_target, everything, frame.size(), &target.mask);
+    // The bounded mode keeps the target inside the mask's box: an over-segmentation region
+    // mostly in the mask may still reach far beyond it.
+    const cv::Rect keep = options.mode == TrackerMode::kBounded
+                              ? cv::boundingRect(target_mask)
+                              : cv::Rect(0, 0, frame.cols, frame.rows);
+    PaintTarget(h, in_target, keep, frame.size(), &target.mask);
     if (cv::countNonZero(target.mask) == 0) return -1;
-    target.levels = MakeTemplate(h, in_target, everything, nullptr, {}, h.bip->num_levels());
+    target.levels = MakeTemplate(h, in_target, keep, nullptr, {}, h.bip->num_levels());
     if (target.levels.empty()) return -1;
     const cv::Moments moments = cv::moments(target.mask, true);
     target.box = cv::boundingRect(target.mask);
     target.centroid = {static_cast<float>(moments.m10 / moments.m00),
                        static_cast<float>(moments.m01 / moments.m00)};
     target.border = options.EpsilonPixels(frame.cols);
+    if (options.mode == TrackerMode::kBounded && similarity == TrackSimilarity::kColour) {
+      target.roi = cv::boundingRect(build_mask);
+      LearnDistinct(h, &target);
+    }
     target.id = next_id++;
     targets.push_back(std::move(target));
     return targets.back().id;

@@ -48,6 +48,14 @@ struct TrackerOptions {
   // mask's box by this share a frame.
   float bound_growth = 0.05f;
   float size_rate = 0.1f;
+  // Bounded mode only: template weights are scaled by how distinctive their colour is of the
+  // target against its surroundings, a table learnt at the start and blended in by this share
+  // each frame the target is found; 0 keeps the first frame's table.
+  bool distinctive_weights = true;
+  float distinct_rate = 0.1f;
+  // Bounded mode only: an accepted overlap counts times a Gaussian of its displacement's
+  // distance to the previous motion, sigma = this times the box's mean side; 0: off.
+  float motion_sigma = 0.5f;
 
   // The borders in pixels for images `width` wide (at least 1).
   int EpsilonPixels(int width) const;
