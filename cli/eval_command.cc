@@ -1,6 +1,8 @@
 // attend eval: the attention metrics of a run against ground truth (SPEC 3.2, 4).
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <opencv2/imgproc.hpp>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -23,8 +25,42 @@ struct EvalArguments {
   std::string gt;
 };
 
-// The disparity maps dumped by the run (RUN/features/disparity/*.pfm, in [0, 1]) against
-// gt/disparity/*.pfm: mean bad-pixel rates over the frames that have both.
+// Boxes in frames.jsonl are in input pixels (SPEC 3.3) since summary.json has "pixels". A run
+// written before, at a working size other than the input size, holds working pixels, which
+// would score against input-pixel ground truth as if nothing were attended: refuse it.
+void CheckRecordsInInputPixels(const fs::path& run) {
+  const fs::path path = run / "summary.json";
+  std::ifstream in(path);
+  if (!in) return;  // an interrupted run may lack it; its frames are still input pixels
+  nlohmann::json summary;
+  try {
+    summary = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    throw InputError(path.string() + ": not a run summary (" + e.what() + ")");
+  }
+  if (summary.contains("pixels")) {
+    const std::string records = summary["pixels"].value("records", "");
+    if (records != "input") {
+      throw InputError(path.string() + ": pixels.records is '" + records +
+                       "', but attend eval scores boxes in input pixels");
+    }
+    return;
+  }
+  if (!summary.contains("sequence")) return;
+  const nlohmann::json& sequence = summary["sequence"];
+  if (!sequence.contains("native_size") || !sequence.contains("size")) return;
+  if (sequence["native_size"] != sequence["size"]) {
+    throw InputError(path.string() + ": this run was written before attend recorded boxes in " +
+                     "input pixels; its boxes are in working pixels (" +
+                     sequence["size"].dump() + ", input " + sequence["native_size"].dump() +
+                     "), so it cannot be scored against the ground truth: run it again");
+  }
+}
+
+// The disparity maps dumped by the run (RUN/features/disparity/*.pfm, in [0, 1], at the
+// working size) against gt/disparity/*.pfm (input size and pixels): mean bad-pixel rates over
+// the frames that have both. A map at another size is resized to the ground truth's (nearest
+// neighbour) and its disparities scaled by the width ratio, so scores are in input pixels.
 nlohmann::ordered_json DisparityScores(const std::string& run, const std::string& gt,
                                        const AttendOptions& options) {
   const fs::path maps = fs::path(run) / "features" / "disparity";
@@ -45,9 +81,20 @@ nlohmann::ordered_json DisparityScores(const std::string& run, const std::string
     map *= static_cast<float>(max_disparity - 1);
     const cv::Mat ground_truth = ReadPfm(gt_path.string());
     if (map.size() != ground_truth.size()) {
-      throw InputError(gt_path.string() + ": ground truth of " + std::to_string(ground_truth.cols) +
-                       "x" + std::to_string(ground_truth.rows) + " for a map of " +
-                       std::to_string(map.cols) + "x" + std::to_string(map.rows));
+      // Working and input sizes share the aspect ratio up to rounding (resize fit or native);
+      // a stretched run does not, and its disparity is not comparable pixel for pixel.
+      const double ratio_x = static_cast<double>(ground_truth.cols) / map.cols;
+      const double ratio_y = static_cast<double>(ground_truth.rows) / map.rows;
+      if (std::abs(ratio_x - ratio_y) > 0.02 * ratio_x) {
+        throw InputError(gt_path.string() + ": ground truth of " +
+                         std::to_string(ground_truth.cols) + "x" +
+                         std::to_string(ground_truth.rows) + " for a map of " +
+                         std::to_string(map.cols) + "x" + std::to_string(map.rows) +
+                         " (another aspect ratio)");
+      }
+      cv::Mat resized;
+      cv::resize(map, resized, ground_truth.size(), 0, 0, cv::INTER_NEAREST);
+      map = resized * ratio_x;
     }
     const BadPixelRates rates = EvaluateDisparity(map, ground_truth);
     bad1 += rates.bad1;
@@ -73,6 +120,7 @@ int Eval(const EvalArguments& args) {
   }
   const fs::path objects = fs::path(gt) / "objects.csv";
   if (!fs::exists(objects)) throw InputError(objects.string() + ": no ground-truth objects");
+  CheckRecordsInInputPixels(run);
   const std::vector<FrameRecord> frames = ReadFrameRecords((run / "frames.jsonl").string());
   const AttentionScores scores = EvaluateAttention(frames, ReadObjectsCsv(objects.string()));
 

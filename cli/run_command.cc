@@ -38,6 +38,7 @@ struct RunArguments {
   std::string right;
   std::string side_by_side;
   std::string video;
+  std::string images;
   std::string out;
   bool overwrite = false;
   std::vector<std::string> sets;
@@ -95,20 +96,22 @@ int Run(const RunArguments& args) {
 
   SequenceOptions& sequence = options.sequence;
   const bool source_on_command_line = !args.sequence.empty() || !args.left.empty() ||
-                                      !args.side_by_side.empty() || !args.video.empty();
+                                      !args.side_by_side.empty() || !args.video.empty() ||
+                                      !args.images.empty();
   if (source_on_command_line) {
     sequence.folder = args.sequence;
     sequence.left_video = args.left;
     sequence.right_video = args.right;
     sequence.side_by_side_video = args.side_by_side;
     sequence.video = args.video;
+    sequence.images = args.images;
   }
   if (!args.frames.empty()) ParseFrameRange(args.frames, &sequence);
   if (sequence.SourceCount() == 0) sequence.folder = EnsureBundledSequence(args.quiet);
   // The effective configuration names the source absolutely, so RUN/config.yaml repeats the
   // run from any folder.
   for (std::string* path : {&sequence.folder, &sequence.left_video, &sequence.right_video,
-                            &sequence.side_by_side_video, &sequence.video}) {
+                            &sequence.side_by_side_video, &sequence.video, &sequence.images}) {
     if (!path->empty()) *path = std::filesystem::absolute(*path).lexically_normal().string();
   }
 
@@ -157,11 +160,16 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
   auto* right = run->add_option("--right", args->right, "Right video of a pair");
   auto* sbs = run->add_option("--side-by-side", args->side_by_side, "Side-by-side stereo video");
   auto* video = run->add_option("--video", args->video, "Monocular video");
+  auto* images = run->add_option(
+      "--images", args->images,
+      "Monocular plain folder of frames (.png .jpg .jpeg .ppm .pgm, sorted by name)");
   left->needs(right);
   right->needs(left);
-  seq->excludes(left, right, sbs, video);
-  left->excludes(sbs, video);
-  sbs->excludes(video);
+  seq->excludes(left, right, sbs, video, images);
+  left->excludes(sbs, video, images);
+  right->excludes(images);
+  sbs->excludes(video, images);
+  video->excludes(images);
   run->add_option("--out", args->out,
                   "Run folder (default: runs/<date>-<time>-<config>-<sequence>)");
   run->add_flag("--overwrite", args->overwrite, "Replace a previous run in a non-empty --out");

@@ -67,7 +67,7 @@ std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
     object.box.width = ParseNumber(fields[4], path, line, "w");
     object.box.height = ParseNumber(fields[5], path, line, "h");
     object.visible_fraction = ParseNumber(fields[6], path, line, "visible_fraction");
-    object.disparity = ParseNumber(fields[7], path, line, "disparity");
+    if (!fields[7].empty()) object.disparity = ParseNumber(fields[7], path, line, "disparity");
     object.kind = fields[8];
     if (object.frame < 0 || object.box.width < 0 || object.box.height < 0 ||
         object.visible_fraction < 0 || object.visible_fraction > 1) {
@@ -90,7 +90,9 @@ void WriteObjectsCsv(const std::string& path, const std::vector<GtObject>& objec
   out.precision(17);
   for (const GtObject& o : objects) {
     out << o.frame << "," << o.id << "," << o.box.x << "," << o.box.y << "," << o.box.width << ","
-        << o.box.height << "," << o.visible_fraction << "," << o.disparity << "," << o.kind << "\n";
+        << o.box.height << "," << o.visible_fraction << ",";
+    if (o.disparity.has_value()) out << *o.disparity;
+    out << "," << o.kind << "\n";
   }
   if (!out) throw OutputError(path + ": error while writing the ground-truth file");
 }

@@ -14,17 +14,20 @@ struct GtObject {
   int id = 0;
   cv::Rect2d box;                 // visible part, pixels of the left image; empty when hidden
   double visible_fraction = 0.0;  // visible pixels / pixels of the whole projected object
-  double disparity = 0.0;         // pixels, at the object's depth
+  // Pixels at the object's depth; empty when unknown (an empty field in objects.csv, SPEC 3.1).
+  std::optional<double> disparity;
   std::string kind = "object";    // "object" or "skin"
 };
 
 // The header line of gt/objects.csv.
 inline constexpr const char* kObjectsCsvHeader = "frame,id,x,y,w,h,visible_fraction,disparity,kind";
 
-// Reads gt/objects.csv. Throws InputError naming the file and line of a malformed row.
+// Reads gt/objects.csv. Lines may end in LF or CRLF; an empty disparity field is an unknown
+// disparity. Throws InputError naming the file and line of a malformed row.
 std::vector<GtObject> ReadObjectsCsv(const std::string& path);
 
-// Writes gt/objects.csv with full float precision (round-trips exactly through ReadObjectsCsv).
+// Writes gt/objects.csv with full float precision (round-trips exactly through ReadObjectsCsv);
+// an unknown disparity is written as an empty field.
 void WriteObjectsCsv(const std::string& path, const std::vector<GtObject>& objects);
 
 // "gt/disparity/000042.pfm" below a sequence folder.

@@ -23,9 +23,6 @@ namespace fs = std::filesystem;
 namespace {
 
 
-// Lower case; file extensions are compared case-insensitively.
-std::vector<std::string> ImageExtensions() { return {".png", ".jpg", ".jpeg", ".ppm", ".pgm"}; }
-
 std::string SizeText(cv::Size size) {
   return std::to_string(size.width) + "x" + std::to_string(size.height);
 }
@@ -56,30 +53,6 @@ class NativeReader {
 
 // ---------------------------------------------------------------------------------------------
 // Folders: SEQ/left/*, SEQ/right/*, SEQ/sequence.yaml.
-
-bool IsImageFile(const fs::directory_entry& entry) {
-  if (!entry.is_regular_file()) return false;
-  std::string extension = entry.path().extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  const std::vector<std::string> extensions = ImageExtensions();
-  return std::find(extensions.begin(), extensions.end(), extension) != extensions.end();
-}
-
-// Image files of a folder sorted by file name: the position in this list is the frame index.
-std::vector<std::string> ListImages(const fs::path& folder) {
-  std::vector<fs::path> files;
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-    if (IsImageFile(entry)) files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
-    return a.filename().string() < b.filename().string();
-  });
-  std::vector<std::string> paths;
-  paths.reserve(files.size());
-  for (const fs::path& file : files) paths.push_back(file.string());
-  return paths;
-}
 
 // The last non-empty component of a path ("data/seq/" -> "seq").
 std::string FolderStem(const std::string& folder) {
@@ -129,15 +102,11 @@ class FolderReader final : public NativeReader {
       throw InputError(what + ": no left/ folder (expected " + left.string() + "/000000.png ...)");
     }
     info->stereo = fs::is_directory(right, error);
-    try {
-      left_files_ = ListImages(left);
-      if (info->stereo) right_files_ = ListImages(right);
-    } catch (const fs::filesystem_error& e) {
-      throw InputError(what + ": cannot list the frames: " + e.what());
-    }
+    left_files_ = ListFrameFiles(left.string(), what);
+    if (info->stereo) right_files_ = ListFrameFiles(right.string(), what);
     if (left_files_.empty()) {
       throw InputError(what + ": no frames in " + left.string() + " (expected files ending in " +
-                       Join(ImageExtensions(), ", ") + ")");
+                       Join(FrameFileExtensions(), ", ") + ")");
     }
     if (info->stereo && right_files_.size() != left_files_.size()) {
       throw InputError(what + ": left/ has " + std::to_string(left_files_.size()) +
@@ -154,32 +123,47 @@ class FolderReader final : public NativeReader {
   bool Read(int index, NativeFrame* frame) override {
     if (index < 0 || index >= Count()) return false;
     frame->left_path = left_files_[index];
-    frame->left = Decode(index, frame->left_path);
+    frame->left = ReadFrameFile(index, frame->left_path);
     if (!right_files_.empty()) {
       frame->right_path = right_files_[index];
-      frame->right = Decode(index, frame->right_path);
+      frame->right = ReadFrameFile(index, frame->right_path);
     }
     return true;
   }
 
  private:
-  // IMREAD_COLOR turns grey into three equal channels and 16-bit samples into 8-bit ones (the
-  // high byte), so every later stage sees CV_8UC3.
-  static cv::Mat Decode(int index, const std::string& path) {
-    cv::Mat image;
-    try {
-      image = cv::imread(path, cv::IMREAD_COLOR);
-    } catch (const cv::Exception& e) {
-      throw InputError(FrameWhere(index, path) + ": cannot be decoded: " + e.what());
-    }
-    if (image.empty()) {
-      throw InputError(FrameWhere(index, path) + ": cannot be read or decoded as an image");
-    }
-    return image;
-  }
-
   std::vector<std::string> left_files_;
   std::vector<std::string> right_files_;
+};
+
+// A plain folder of frames, monocular: DIR/* (for example an OTB sequence's img/). There is no
+// sequence.yaml and no gt/ below it.
+class ImageFolderReader final : public NativeReader {
+ public:
+  ImageFolderReader(const SequenceOptions& options, SequenceInfo* info) {
+    const std::string what = options.Describe();
+    files_ = ListFrameFiles(options.images, what);
+    if (files_.empty()) {
+      throw InputError(what + ": no frames (expected files ending in " +
+                       Join(FrameFileExtensions(), ", ") + ")");
+    }
+    info->stereo = false;
+    info->name = FolderStem(options.images);
+  }
+
+  int Count() const override { return static_cast<int>(files_.size()); }
+
+  bool Read(int index, NativeFrame* frame) override {
+    if (index < 0 || index >= Count()) return false;
+    frame->left_path = files_[index];
+    frame->left = ReadFrameFile(index, frame->left_path);
+    frame->right = cv::Mat();
+    frame->right_path.clear();
+    return true;
+  }
+
+ private:
+  std::vector<std::string> files_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -450,6 +434,52 @@ class Sequence final : public FrameSource {
 
 }  // namespace
 
+const std::vector<std::string>& FrameFileExtensions() {
+  static const std::vector<std::string> extensions = {".png", ".jpg", ".jpeg", ".ppm", ".pgm"};
+  return extensions;
+}
+
+std::vector<std::string> ListFrameFiles(const std::string& folder, const std::string& what) {
+  std::error_code error;
+  if (!fs::exists(folder, error)) throw InputError(what + ": no such folder " + folder);
+  if (!fs::is_directory(folder, error)) throw InputError(what + ": " + folder + " is not a folder");
+  const std::vector<std::string>& extensions = FrameFileExtensions();
+  std::vector<std::string> paths;
+  try {
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+      if (!entry.is_regular_file()) continue;
+      std::string extension = entry.path().extension().string();
+      std::transform(extension.begin(), extension.end(), extension.begin(),
+                     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      if (std::find(extensions.begin(), extensions.end(), extension) != extensions.end()) {
+        paths.push_back(entry.path().string());
+      }
+    }
+  } catch (const fs::filesystem_error& e) {
+    throw InputError(what + ": cannot list the frames in " + folder + ": " + e.what());
+  }
+  // By file name, byte by byte: the position in this list is the frame index.
+  std::sort(paths.begin(), paths.end(), [](const std::string& a, const std::string& b) {
+    return fs::path(a).filename().string() < fs::path(b).filename().string();
+  });
+  return paths;
+}
+
+cv::Mat ReadFrameFile(int index, const std::string& path) {
+  // IMREAD_COLOR turns grey into three equal channels and 16-bit samples into 8-bit ones (the
+  // high byte), so every later stage sees CV_8UC3.
+  cv::Mat image;
+  try {
+    image = cv::imread(path, cv::IMREAD_COLOR);
+  } catch (const cv::Exception& e) {
+    throw InputError(FrameWhere(index, path) + ": cannot be decoded: " + e.what());
+  }
+  if (image.empty()) {
+    throw InputError(FrameWhere(index, path) + ": cannot be read or decoded as an image");
+  }
+  return image;
+}
+
 const std::vector<std::string>& SequenceOptions::ResizeModes() {
   static const std::vector<std::string> modes = {"fit", "stretch", "native"};
   return modes;
@@ -458,7 +488,7 @@ const std::vector<std::string>& SequenceOptions::ResizeModes() {
 int SequenceOptions::SourceCount() const {
   const bool has_pair = !left_video.empty() || !right_video.empty();
   return (folder.empty() ? 0 : 1) + (has_pair ? 1 : 0) + (side_by_side_video.empty() ? 0 : 1) +
-         (video.empty() ? 0 : 1);
+         (video.empty() ? 0 : 1) + (images.empty() ? 0 : 1);
 }
 
 std::string SequenceOptions::Check() const {
@@ -467,7 +497,7 @@ std::string SequenceOptions::Check() const {
   // No source is valid here: `attend run` then takes the bundled sequence. Open() needs one.
   if (sources > 1) {
     return "at most one source may be set (folder, left_video + right_video, "
-           "side_by_side_video or video), got " +
+           "side_by_side_video, video or images), got " +
            std::to_string(sources);
   }
   if (has_pair && (left_video.empty() || right_video.empty())) {
@@ -503,6 +533,7 @@ std::string SequenceOptions::Describe() const {
   }
   if (!side_by_side_video.empty()) return "side-by-side video " + side_by_side_video;
   if (!video.empty()) return "video " + video;
+  if (!images.empty()) return "images " + images;
   return "no source";
 }
 
@@ -510,7 +541,7 @@ std::unique_ptr<FrameSource> FrameSource::Open(const SequenceOptions& options) {
   if (options.SourceCount() == 0) {
     throw ConfigError(
         "no sequence source is set (folder, left_video + right_video, "
-        "side_by_side_video or video)");
+        "side_by_side_video, video or images)");
   }
   const std::string problem = options.Check();
   if (!problem.empty()) throw ConfigError("sequence options: " + problem);
@@ -518,6 +549,8 @@ std::unique_ptr<FrameSource> FrameSource::Open(const SequenceOptions& options) {
   std::unique_ptr<NativeReader> reader;
   if (!options.folder.empty()) {
     reader = std::make_unique<FolderReader>(options, &info);
+  } else if (!options.images.empty()) {
+    reader = std::make_unique<ImageFolderReader>(options, &info);
   } else {
     reader = std::make_unique<VideoReader>(options, &info);
   }

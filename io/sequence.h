@@ -1,5 +1,6 @@
 // Reading stereo and monocular sequences (SPEC 3.1): a folder with left/ and right/ (or only
-// left/ for monocular), a pair of videos, one side-by-side video, or a monocular video.
+// left/ for monocular), a pair of videos, one side-by-side video, a monocular video, or a plain
+// folder of images (monocular, for example an OTB sequence's img/).
 // Frames come out at the working size, as 8-bit BGR: grey images get three equal channels and
 // 16-bit images keep their high byte. docs/SEQUENCES.md describes the layouts and rules.
 #pragma once
@@ -19,6 +20,8 @@ struct SequenceOptions {
   std::string right_video;
   std::string side_by_side_video;  // left half | right half; an odd width is bad input
   std::string video;               // a monocular video
+  std::string images;              // DIR: a monocular plain folder of frames, DIR/* matched by
+                                   // sorted file name (ListFrameFiles)
 
   // Frame range in source indices, inclusive; last_frame = -1 means to the end, and a last_frame
   // beyond the end stops at the end. A range that starts beyond the last frame is bad input.
@@ -43,6 +46,20 @@ struct SequenceOptions {
   std::string Describe() const;
 };
 
+// The frame files of a folder, in frame order: regular files ending in .png, .jpg, .jpeg, .ppm
+// or .pgm (any letter case), sorted by file name byte by byte; everything else is ignored.
+// Frame i is the i-th path. `what` starts error messages. InputError when the folder is
+// missing, not a folder or cannot be listed; an empty list is not an error here.
+std::vector<std::string> ListFrameFiles(const std::string& folder, const std::string& what);
+
+// The file extensions ListFrameFiles accepts, lower case with the dot.
+const std::vector<std::string>& FrameFileExtensions();
+
+// Reads frame file `path` as 8-bit BGR (grey gets three equal channels, 16-bit keeps the high
+// byte, JPEG EXIF orientation applied). InputError "frame INDEX (PATH): ..." when it cannot be
+// read or decoded.
+cv::Mat ReadFrameFile(int index, const std::string& path);
+
 // What is known about an opened sequence.
 struct SequenceInfo {
   std::string name;  // sequence.yaml name, or the folder/video stem
@@ -57,7 +74,8 @@ struct SequenceInfo {
   int frame_count = -1;  // frames this source will hand out (range and stride applied);
                          // -1 when a video cannot tell. For videos it comes from the
                          // container's header, which some containers only estimate.
-  std::string folder;    // the sequence folder ("" for videos); gt/ lives below it
+  std::string folder;    // the sequence folder ("" for videos and image folders); gt/ lives
+                         // below it
 };
 
 struct StereoFrame {

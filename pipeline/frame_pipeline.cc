@@ -1,5 +1,6 @@
 #include "pipeline/frame_pipeline.h"
 
+#include "colour/grey.h"
 #include "features/builtin.h"
 #include "features/plugin_loader.h"
 #include "features/skin_model.h"
@@ -79,7 +80,21 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   for (size_t i = 0; i < results.size(); ++i) {
     NormaliseMap(results[i].map, options_.saliency, &normalised_[i]);
   }
-  CombineMaps(normalised_, weights_, context_.size(), &saliency_);
+  // SPEC 2.3 divides by the sum of all weights. A grey frame has no colour, so there colour
+  // features measure nothing rather than "no contrast"; counting their weights would cap the
+  // saliency of grey input at the share of the other features, below select.min_saliency for
+  // a plainly bright object (docs/ATTENTION.md, "Real and grey input"). Colour frames keep the
+  // weights as configured.
+  grey_ = IsGreyImage(frame.left);
+  frame_weights_ = weights_;
+  if (grey_) {
+    for (size_t i = 0; i < results.size(); ++i) {
+      double low = 0.0, high = 0.0;
+      cv::minMaxLoc(results[i].map, &low, &high);
+      if (!(high > low)) frame_weights_[i] = 0.0;
+    }
+  }
+  CombineMaps(normalised_, frame_weights_, context_.size(), &saliency_);
   record->timings.Add("saliency", stage.ElapsedMs());
 
   attention_.Select(frame.left, saliency_, context_.Regions(), &attended_);

@@ -39,6 +39,11 @@ class FramePipeline {
   // Each feature's map normalised to [0, 1], in the order of features().
   const std::vector<cv::Mat>& normalised() const { return normalised_; }
   const cv::Mat& saliency() const { return saliency_; }
+  // Whether the last frame was grey (colour/grey.h), and the weights its saliency used: on a
+  // grey frame a feature whose map is constant (colour contrast and skin, which are 0 there)
+  // gets weight 0, so it does not dilute the features that see something.
+  bool grey() const { return grey_; }
+  const std::vector<double>& frame_weights() const { return frame_weights_; }
   const cv::Mat& inhibition() const { return attention_.inhibition(); }
   const cv::Mat& inhibited() const { return attention_.inhibited(); }
   int targets_attended() const { return attention_.targets_attended(); }
@@ -49,6 +54,8 @@ class FramePipeline {
   FeatureSet features_;
   std::vector<cv::Mat> normalised_;
   std::vector<double> weights_;
+  bool grey_ = false;
+  std::vector<double> frame_weights_;
   cv::Mat saliency_;
   AttentionStage attention_;
   AttentionFrame attended_;

@@ -9,7 +9,8 @@
 
 namespace attend {
 
-// One attended object in one frame.
+// One attended object in one frame. The pipeline fills it in working pixels (the size it
+// computes at); RUN/frames.jsonl holds it in input pixels (SPEC 3.3, InputFromWorking).
 struct TargetRecord {
   int id = 0;
   cv::Rect bbox;
@@ -26,6 +27,18 @@ struct FrameRecord {
   std::vector<int> new_ids;  // targets first attended in this frame
   StageTimes timings;
 };
+
+// A box of the working frame in the pixels of the input frame, `input_size` being the input
+// frame's size and scale_x, scale_y = working / input per axis (SequenceInfo::scale_x): each
+// edge is divided by its scale and rounded to the nearest pixel, then clipped to the input
+// frame. A non-empty box stays at least 1 px wide and high.
+cv::Rect InputFromWorkingBox(const cv::Rect& box_in_working, double scale_x, double scale_y,
+                             cv::Size input_size);
+
+// The record with every box and area in input pixels: boxes by InputFromWorkingBox, areas
+// divided by scale_x * scale_y and rounded (at least 1 for a non-empty mask).
+FrameRecord InputFromWorking(const FrameRecord& record_in_working, double scale_x, double scale_y,
+                             cv::Size input_size);
 
 // One line of frames.jsonl (no trailing newline).
 std::string FrameRecordToJson(const FrameRecord& record);

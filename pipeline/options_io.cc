@@ -24,6 +24,7 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("right_video", &o->sequence.right_video);
   v.Field("side_by_side_video", &o->sequence.side_by_side_video);
   v.Field("video", &o->sequence.video);
+  v.Field("images", &o->sequence.images);
   v.Field("first_frame", &o->sequence.first_frame, Range::Closed(0, 1e9));
   v.Field("last_frame", &o->sequence.last_frame, Range::Closed(-1, 1e9));
   v.Field("stride", &o->sequence.stride, Range::Closed(1, 1e6));

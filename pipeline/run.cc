@@ -50,6 +50,14 @@ nlohmann::ordered_json SummaryJson(const RunSummary& summary, const SequenceInfo
             {"frames_in_range", info.frame_count},
             {"native_size", {info.native_size.width, info.native_size.height}},
             {"size", {info.size.width, info.size.height}}}},
+          // SPEC 3.3: boxes and areas of frames.jsonl are in input pixels; the dumped maps and
+          // the overlays are at the working size. input = working * input_from_working.
+          {"pixels",
+           {{"records", "input"},
+            {"maps", "working"},
+            {"input_size", {info.native_size.width, info.native_size.height}},
+            {"working_size", {info.size.width, info.size.height}},
+            {"input_from_working", {1.0 / info.scale_x, 1.0 / info.scale_y}}}},
           {"config", request.config_path},
           {"command", request.command_line},
           {"started", started},
@@ -164,7 +172,9 @@ RunSummary RunSequence(const RunRequest& request) {
         if (options.output.video) folder.AppendVideoFrame("overlay", overlay, info.fps);
       }
       record.timings.Add("write", stage.ElapsedMs());
-      folder.AppendFrame(record);
+      // The pipeline and the overlay work at the working size; the record is written in the
+      // pixels of the input frames (SPEC 3.3).
+      folder.AppendFrame(InputFromWorking(record, info.scale_x, info.scale_y, info.native_size));
 
       for (const auto& [name, ms] : record.timings.stages()) totals.Add(name, ms);
       ++summary.frames;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,58 @@ TEST(GroundTruth, MalformedRowsAreBadInputNamingFileAndLine) {
   const std::string missing = dir.File("missing.csv");
   const std::string message = InputErrorOf([&] { ReadObjectsCsv(missing); });
   EXPECT_NE(message.find(missing + ": cannot read"), std::string::npos) << message;
+}
+
+TEST(GroundTruth, EmptyDisparityIsUnknown) {
+  testing::TempDir dir;
+  const std::string path = dir.Write(
+      "objects.csv", std::string(kObjectsCsvHeader) + "\n0,1,1,2,3,4,0.5,,object\n0,2,5,6,7,8,1,9.5,skin\n");
+  const std::vector<GtObject> read = ReadObjectsCsv(path);
+  ASSERT_EQ(read.size(), 2u);
+  EXPECT_FALSE(read[0].disparity.has_value());
+  EXPECT_EQ(read[0].box, cv::Rect2d(1, 2, 3, 4));
+  EXPECT_EQ(read[0].kind, "object");
+  ASSERT_TRUE(read[1].disparity.has_value());
+  EXPECT_EQ(*read[1].disparity, 9.5);
+  // A disparity that is there must still be a number.
+  const std::string bad = dir.Write("bad.csv", "0,1,1,2,3,4,0.5,far,object\n");
+  const std::string message = InputErrorOf([&] { ReadObjectsCsv(bad); });
+  EXPECT_NE(message.find(bad + ":1: field 'disparity' is not a number: 'far'"), std::string::npos)
+      << message;
+}
+
+TEST(GroundTruth, UnknownDisparityRoundTripsAsAnEmptyField) {
+  testing::TempDir dir;
+  const std::string path = dir.File("objects.csv");
+  GtObject unknown = Object(3, 2, {5, 6, 7, 8}, 0.5, 0.0, "skin");
+  unknown.disparity.reset();
+  WriteObjectsCsv(path, {Object(3, 1, {1, 2, 3, 4}, 1.0, 2.0, "object"), unknown});
+  const std::vector<GtObject> read = ReadObjectsCsv(path);
+  ASSERT_EQ(read.size(), 2u);
+  EXPECT_EQ(read[0].disparity, std::optional<double>(2.0));
+  EXPECT_FALSE(read[1].disparity.has_value());
+  EXPECT_EQ(read[1].box, cv::Rect2d(5, 6, 7, 8));
+}
+
+TEST(GroundTruth, ReadsCrlfLineEnds) {
+  testing::TempDir dir;
+  const std::string path =
+      dir.Write("objects.csv", std::string(kObjectsCsvHeader) +
+                                   "\r\n0,1,1,2,3,4,0.5,8,object\r\n\r\n1,1,2,3,4,5,1,,skin\r\n");
+  const std::vector<GtObject> read = ReadObjectsCsv(path);
+  ASSERT_EQ(read.size(), 2u);
+  EXPECT_EQ(read[0].frame, 0);
+  EXPECT_EQ(read[0].disparity, std::optional<double>(8.0));
+  EXPECT_EQ(read[0].kind, "object");  // not "object\r"
+  EXPECT_EQ(read[1].frame, 1);
+  EXPECT_EQ(read[1].box, cv::Rect2d(2, 3, 4, 5));
+  EXPECT_FALSE(read[1].disparity.has_value());
+  EXPECT_EQ(read[1].kind, "skin");
+  // Line numbers still count CRLF lines: the fourth line here is malformed.
+  const std::string bad = dir.Write(
+      "bad.csv", std::string(kObjectsCsvHeader) + "\r\n0,1,1,2,3,4,0.5,8,object\r\n\r\n0,1,x,2,3,4,1,,skin\r\n");
+  const std::string message = InputErrorOf([&] { ReadObjectsCsv(bad); });
+  EXPECT_NE(message.find(bad + ":4: field 'x' is not a number"), std::string::npos) << message;
 }
 
 TEST(GroundTruth, FrameStemAndDisparityPath) {

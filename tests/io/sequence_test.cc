@@ -144,6 +144,19 @@ TEST(SequenceOptions, DescribeNamesTheSource) {
   options = {};
   options.video = "m.avi";
   EXPECT_EQ(options.Describe(), "video m.avi");
+  options = {};
+  options.images = "otb/Dog1/img";
+  EXPECT_EQ(options.Describe(), "images otb/Dog1/img");
+}
+
+TEST(SequenceOptions, ImagesIsOneSourceAmongOthers) {
+  SequenceOptions options;
+  options.images = "img";
+  EXPECT_EQ(options.SourceCount(), 1);
+  EXPECT_EQ(options.Check(), "");
+  options.folder = "seq";
+  EXPECT_EQ(options.SourceCount(), 2);
+  EXPECT_NE(options.Check().find("at most one source may be set"), std::string::npos);
 }
 
 TEST(Sequence, InvalidOptionsOrNoSourceAreAConfigurationError) {
@@ -234,6 +247,118 @@ TEST(Sequence, FramesAreMatchedBySortedNameAndOnlyImageExtensionsCount) {
     ExpectColour(frame.left, Colour(i, 0), i >= 3 ? 4.0 : 0.0);
   }
   EXPECT_FALSE(source->Next(&frame));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Plain folders of frames (--images).
+
+SequenceOptions ImagesOptions(const std::string& folder) {
+  SequenceOptions options;
+  options.images = folder;
+  options.resize = "native";
+  return options;
+}
+
+TEST(Sequence, ImageFolderIsMonocularWithFramesInSortedNameOrder) {
+  testing::TempDir dir;
+  const cv::Size size(8, 6);
+  // The folder itself holds the frames, as an OTB img/ does; same rules as left/.
+  const std::vector<std::string> names = {"0003.JPG", "0001.png", "0002.pgm", "0004.jpeg",
+                                          "0010.Ppm"};
+  const std::vector<int> sorted_position = {2, 0, 1, 3, 4};
+  for (size_t i = 0; i < names.size(); ++i) {
+    // Grey values so that the .pgm frame can hold its colour exactly.
+    const int v = 10 * sorted_position[i] + 20;
+    const bool pgm = names[i].size() > 4 && names[i].substr(names[i].size() - 4) == ".pgm";
+    WriteImage((dir.path() / "img" / names[i]).string(),
+               pgm ? cv::Mat(size, CV_8UC1, cv::Scalar(v)) : Uniform(size, cv::Scalar(v, v, v)));
+  }
+  dir.Write("img/groundtruth_rect.txt", "1,2,3,4");
+  dir.Write("img/0000.bmp", "not a frame");
+  fs::create_directories(dir.path() / "img" / "0000.png");  // a folder, not a frame
+  const std::string folder = (dir.path() / "img").string();
+  SequenceOptions options = ImagesOptions(folder);
+  options.first_frame = 1;
+  auto source = FrameSource::Open(options);
+  const SequenceInfo& info = source->info();
+  EXPECT_FALSE(info.stereo);
+  EXPECT_EQ(info.frame_count, 4);
+  EXPECT_EQ(info.name, "img");
+  EXPECT_EQ(info.folder, "");  // no gt/ below a plain folder
+  EXPECT_EQ(info.native_size, size);
+  const std::vector<std::string> expected_files = {"0002.pgm", "0003.JPG", "0004.jpeg",
+                                                   "0010.Ppm"};
+  StereoFrame frame;
+  for (int i = 1; i < 5; ++i) {
+    ASSERT_TRUE(source->Next(&frame));
+    EXPECT_EQ(frame.index, i);
+    EXPECT_EQ(fs::path(frame.left_path).filename(), expected_files[i - 1]);
+    EXPECT_TRUE(frame.right.empty());
+    EXPECT_EQ(frame.right_path, "");
+    const int v = 10 * i + 20;
+    ExpectColour(frame.left, cv::Scalar(v, v, v), 4.0);  // JPEG within a few levels
+  }
+  EXPECT_FALSE(source->Next(&frame));
+
+  // The listing is public, for `attend track` and others.
+  const std::vector<std::string> files = ListFrameFiles(folder, "test");
+  ASSERT_EQ(files.size(), 5u);
+  EXPECT_EQ(fs::path(files[0]).filename(), "0001.png");
+  EXPECT_EQ(fs::path(files[4]).filename(), "0010.Ppm");
+}
+
+TEST(Sequence, ImageFolderIsScaledToTheWorkingSize) {
+  testing::TempDir dir;
+  WriteImage((dir.path() / "a.png").string(), Uniform({640, 480}, Colour(1, 0)));
+  SequenceOptions options = ImagesOptions(dir.path().string());
+  options.resize = "fit";
+  auto source = FrameSource::Open(options);
+  EXPECT_EQ(source->info().native_size, cv::Size(640, 480));
+  EXPECT_EQ(source->info().size, cv::Size(320, 240));
+  EXPECT_DOUBLE_EQ(source->info().scale_x, 0.5);
+  StereoFrame frame;
+  ASSERT_TRUE(source->Next(&frame));
+  EXPECT_EQ(frame.left.size(), cv::Size(320, 240));
+  ExpectColour(frame.left, Colour(1, 0));
+}
+
+TEST(Sequence, BadImageFoldersAndFramesAreBadInput) {
+  testing::TempDir dir;
+  const std::string missing = (dir.path() / "nope").string();
+  std::string message = ErrorOf<InputError>([&] { FrameSource::Open(ImagesOptions(missing)); });
+  EXPECT_NE(message.find("images " + missing + ": no such folder"), std::string::npos) << message;
+
+  const std::string file = dir.Write("plain.txt", "x");
+  message = ErrorOf<InputError>([&] { FrameSource::Open(ImagesOptions(file)); });
+  EXPECT_NE(message.find("not a folder"), std::string::npos) << message;
+
+  fs::create_directories(dir.path() / "empty");
+  dir.Write("empty/readme.txt", "no frames here");
+  const std::string empty = (dir.path() / "empty").string();
+  message = ErrorOf<InputError>([&] { FrameSource::Open(ImagesOptions(empty)); });
+  EXPECT_NE(message.find("images " + empty + ": no frames (expected files ending in .png"),
+            std::string::npos)
+      << message;
+
+  // A frame that is not an image is reported with its index and path when reached.
+  const std::string bad = (dir.path() / "bad").string();
+  WriteImage(bad + "/1.png", Uniform({8, 6}, Colour(0, 0)));
+  dir.Write("bad/2.png", "not a png");
+  WriteImage(bad + "/3.png", Uniform({8, 6}, Colour(2, 0)));
+  WriteImage(bad + "/4.png", Uniform({9, 6}, Colour(3, 0)));
+  auto source = FrameSource::Open(ImagesOptions(bad));
+  StereoFrame frame;
+  ASSERT_TRUE(source->Next(&frame));
+  message = ErrorOf<InputError>([&] { source->Next(&frame); });
+  EXPECT_NE(message.find("frame 1 (" + bad + "/2.png): cannot be read or decoded"),
+            std::string::npos)
+      << message;
+  ASSERT_TRUE(source->Next(&frame));
+  EXPECT_EQ(frame.index, 2);
+  message = ErrorOf<InputError>([&] { source->Next(&frame); });
+  EXPECT_NE(message.find("frame 3 (" + bad + "/4.png): size 9x6 differs from the first frame's 8x6"),
+            std::string::npos)
+      << message;
 }
 
 TEST(Sequence, GreyAndSixteenBitImagesBecomeEightBitBgr) {

@@ -85,8 +85,8 @@ TEST(SceneRenderer, DisparityIsFocalTimesBaselineOverDepthOfTheNearestSurface) {
   // listed after it.
   EXPECT_EQ(frame.left_ids.at<int>(24, 28), 2);
   EXPECT_EQ(frame.left_ids.at<int>(14, 12), 1);
-  EXPECT_DOUBLE_EQ(FindGt(frame, 2)->disparity, 10.0);
-  EXPECT_DOUBLE_EQ(FindGt(frame, 3)->disparity, 2.5);
+  EXPECT_DOUBLE_EQ(FindGt(frame, 2)->disparity.value(), 10.0);
+  EXPECT_DOUBLE_EQ(FindGt(frame, 3)->disparity.value(), 2.5);
 }
 
 // Left pixel (x, y) shows the same surface point as right pixel (x - d, y); with noise off and
@@ -143,7 +143,7 @@ TEST(SceneRenderer, FullyHiddenObjectHasZeroFractionAndEmptyBox) {
   EXPECT_EQ(hidden->visible_fraction, 0.0);
   EXPECT_EQ(hidden->box, cv::Rect2d(0, 0, 0, 0));
   EXPECT_EQ(cv::countNonZero(frame.left_ids == 2), 0);
-  EXPECT_DOUBLE_EQ(hidden->disparity, kFocal * kBaseline / 3.0);
+  EXPECT_DOUBLE_EQ(hidden->disparity.value(), kFocal * kBaseline / 3.0);
   const GtObject* front = FindGt(frame, 1);
   EXPECT_EQ(front->visible_fraction, 1.0);
   EXPECT_EQ(front->box, cv::Rect2d(10, 9, 40, 30));
@@ -171,7 +171,7 @@ TEST(SceneRenderer, ObjectMuchLargerThanTheImageCoversItAndCountsItsArea) {
   const GtObject* gt = FindGt(frame, 1);
   EXPECT_EQ(gt->box, cv::Rect2d(0, 0, 64, 48));
   EXPECT_NEAR(gt->visible_fraction, 64.0 * 48.0 / (6400.0 * 4000.0), 1e-12);
-  EXPECT_DOUBLE_EQ(gt->disparity, 200.0);
+  EXPECT_DOUBLE_EQ(gt->disparity.value(), 200.0);
 }
 
 TEST(SceneRenderer, GroundTruthBoxesAreTheBoundingBoxesOfTheIdMap) {
@@ -205,7 +205,7 @@ TEST(SceneRenderer, ApproachingObjectGrows) {
     EXPECT_GE(gt->box.width, previous_width) << frame;
     EXPECT_NEAR(gt->box.width, 8.0 * 4.0 / depth, 1.0) << frame;  // f * size / Z
     previous_width = gt->box.width;
-    EXPECT_NEAR(gt->disparity, kFocal * kBaseline / depth, 1e-9);
+    EXPECT_NEAR(gt->disparity.value(), kFocal * kBaseline / depth, 1e-9);
   }
   EXPECT_EQ(previous_width, 32.0);  // four times the width at a quarter of the depth
 }

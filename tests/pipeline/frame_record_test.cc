@@ -1,0 +1,66 @@
+#include "pipeline/frame_record.h"
+
+#include <gtest/gtest.h>
+
+namespace attend {
+namespace {
+
+TEST(InputFromWorking, HalfSizeDoublesBoxesAndQuadruplesAreas) {
+  // 640x480 computed at 320x240: scale 0.5 per axis.
+  EXPECT_EQ(InputFromWorkingBox({10, 20, 30, 40}, 0.5, 0.5, {640, 480}), cv::Rect(20, 40, 60, 80));
+  EXPECT_EQ(InputFromWorkingBox({0, 0, 320, 240}, 0.5, 0.5, {640, 480}), cv::Rect(0, 0, 640, 480));
+  FrameRecord record;
+  record.frame = 7;
+  TargetRecord target;
+  target.id = 3;
+  target.bbox = {10, 20, 30, 40};
+  target.area = 1000;
+  target.saliency = 0.5;
+  target.state = "tracked";
+  record.targets = {target};
+  record.new_ids = {3};
+  const FrameRecord input = InputFromWorking(record, 0.5, 0.5, {640, 480});
+  ASSERT_EQ(input.targets.size(), 1u);
+  EXPECT_EQ(input.frame, 7);
+  EXPECT_EQ(input.targets[0].bbox, cv::Rect(20, 40, 60, 80));
+  EXPECT_EQ(input.targets[0].area, 4000);
+  EXPECT_EQ(input.targets[0].saliency, 0.5);
+  EXPECT_EQ(input.targets[0].state, "tracked");
+  EXPECT_EQ(input.new_ids, std::vector<int>{3});
+}
+
+TEST(InputFromWorking, EdgesRoundPerAxisAndStayInTheFrame) {
+  // 752x480 at 320x204 (fit): scales 320/752 and 204/480. Edges round to the nearest pixel:
+  // x 3 -> 7.05 -> 7, x 3 + 10 = 13 -> 30.55 -> 31; y 5 -> 11.76 -> 12, 5 + 7 = 12 -> 28.2 -> 28.
+  const double sx = 320.0 / 752.0, sy = 204.0 / 480.0;
+  EXPECT_EQ(InputFromWorkingBox({3, 5, 10, 7}, sx, sy, {752, 480}), cv::Rect(7, 12, 24, 16));
+  // The last working column ends at the input's last column.
+  EXPECT_EQ(InputFromWorkingBox({319, 203, 1, 1}, sx, sy, {752, 480}),
+            cv::Rect(750, 478, 2, 2));
+  // Stretch: different factors per axis (640x480 in 320x320).
+  EXPECT_EQ(InputFromWorkingBox({10, 30, 20, 30}, 0.5, 320.0 / 480.0, {640, 480}),
+            cv::Rect(20, 45, 40, 45));
+  // Native: unchanged.
+  EXPECT_EQ(InputFromWorkingBox({1, 2, 3, 4}, 1.0, 1.0, {16, 16}), cv::Rect(1, 2, 3, 4));
+}
+
+TEST(InputFromWorking, EnlargedInputKeepsNonEmptyBoxesAndAreas) {
+  // 80x60 enlarged to 320x240: a working pixel is a quarter of an input pixel.
+  EXPECT_EQ(InputFromWorkingBox({40, 40, 4, 8}, 4.0, 4.0, {80, 60}), cv::Rect(10, 10, 1, 2));
+  const cv::Rect one = InputFromWorkingBox({41, 41, 1, 1}, 4.0, 4.0, {80, 60});
+  EXPECT_EQ(one.width, 1);
+  EXPECT_EQ(one.height, 1);
+  const cv::Rect corner = InputFromWorkingBox({319, 239, 1, 1}, 4.0, 4.0, {80, 60});
+  EXPECT_EQ(corner, cv::Rect(79, 59, 1, 1));
+  FrameRecord record;
+  TargetRecord target;
+  target.bbox = {41, 41, 1, 1};
+  target.area = 1;
+  record.targets = {target};
+  EXPECT_EQ(InputFromWorking(record, 4.0, 4.0, {80, 60}).targets[0].area, 1);
+  // An empty box stays empty.
+  EXPECT_TRUE(InputFromWorkingBox({5, 5, 0, 0}, 4.0, 4.0, {80, 60}).empty());
+}
+
+}  // namespace
+}  // namespace attend
