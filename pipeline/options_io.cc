@@ -97,6 +97,8 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("distinctive_weights", &o->attention.tracker.distinctive_weights);
   v.Field("distinct_rate", &o->attention.tracker.distinct_rate, Range::Closed(0, 1));
   v.Field("motion_sigma", &o->attention.tracker.motion_sigma, Range::Closed(0, 100));
+  v.Field("bounded_min_overlap", &o->attention.tracker.bounded_min_overlap,
+          Range::Closed(0.01, 1));
   v.EndSection([o] { return o->attention.Check(); });
 
   v.Field("threads", &o->threads, Range::Closed(0, 256));

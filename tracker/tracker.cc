@@ -268,6 +268,9 @@ std::string TrackerOptions::Check() const {
   if (!(size_rate >= 0.f && size_rate <= 1.f)) return "size_rate must be in [0, 1]";
   if (!(distinct_rate >= 0.f && distinct_rate <= 1.f)) return "distinct_rate must be in [0, 1]";
   if (!(motion_sigma >= 0.f)) return "motion_sigma must be >= 0";
+  if (!(bounded_min_overlap > 0.f && bounded_min_overlap <= 1.f)) {
+    return "bounded_min_overlap must be in (0, 1]";
+  }
   return "";
 }
 
@@ -454,7 +457,10 @@ struct MultiTracker::Impl {
   Match Localise(const Target& target, const Hierarchy& h, std::vector<uint8_t>* in_target) {
     for (int l = std::min(WorkingLevel(target), h.bip->num_levels() - 1); l >= 0; --l) {
       Match match;
-      if (!SearchLevel(target, h, l, nullptr, options.min_overlap, &match)) continue;
+      const double min_overlap = options.mode == TrackerMode::kBounded
+                                     ? options.bounded_min_overlap
+                                     : options.min_overlap;
+      if (!SearchLevel(target, h, l, nullptr, min_overlap, &match)) continue;
       if (options.mode == TrackerMode::kBounded && l > 0) {
         const int cell = 1 << l;
         const cv::Rect window(match.displacement.x * cell - cell, match.displacement.y * cell - cell,

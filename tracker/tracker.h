@@ -56,6 +56,10 @@ struct TrackerOptions {
   // Bounded mode only: an accepted overlap counts times a Gaussian of its displacement's
   // distance to the previous motion, sigma = this times the box's mean side; 0: off.
   float motion_sigma = 0.5f;
+  // Bounded mode only: the weighted overlap that accepts a displacement, in place of
+  // `min_overlap` (real footage rarely matches a template by 70 %; the motion prior and the
+  // distinctive weights guard a lower bar).
+  float bounded_min_overlap = 0.4f;
 
   // The borders in pixels for images `width` wide (at least 1).
   int EpsilonPixels(int width) const;
