@@ -20,7 +20,8 @@
 //   BIP:      TargetTracker::Track of kind bip (MultiTracker::Track, its colour conversion
 //             included), once with tracker.mode thesis and once with bounded;
 //   CSRT:     TargetTracker::Track of kind csrt (cv::TrackerCSRT::update, default Params);
-//   KCF:      TargetTracker::Track of kind kcf (cv::TrackerKCF::update, default Params);
+//   KCF:      TargetTracker::Track of kind kcf (cv::TrackerKCF::update, default Params but
+//             kcf_detect_thresh 0: always reports a box);
 //             the OpenCV kinds run with lost_frames above any sequence's length, so that a
 //             failure keeps the last box for good (the OTB rule below) and never ends the run;
 //   CamShift: BGR -> HSV, the saturation/value mask, the hue back-projection of the histogram
@@ -330,6 +331,8 @@ attend::TargetTrackerOptions KindOptions(attend::TrackerKind kind,
   options.bip.mode = mode;
   // Longer than any sequence: a failing OpenCV tracker keeps its last box (the OTB rule).
   options.opencv.lost_frames = 1 << 30;
+  // As before the interface: KCF never reports a weak response as a failure.
+  options.opencv.kcf_detect_thresh = 0.f;
   return options;
 }
 
@@ -628,8 +631,8 @@ void WriteReport(const Options& options, const std::vector<TaskResult>& results,
   out << "Every method but CamShift runs through the tracker interface (TargetTracker, "
          "tracker/target_tracker.h). BIP: kind bip, TrackerOptions defaults (thesis values) with "
          "tracker.mode thesis, and again with tracker.mode bounded. CSRT, KCF: kinds csrt and kcf, "
-         "OpenCV default Params (KCF's detect_thresh 0.5), lost_frames above any sequence's "
-         "length. CamShift: hue histogram of "
+         "OpenCV default Params but KCF's detect_thresh 0 (tracker.kcf_detect_thresh), lost_frames "
+         "above any sequence's length. CamShift: hue histogram of "
       << kHueBins << " bins in the initial box over pixels with S >= " << kMinSaturation
       << " and V >= " << kMinValue
       << " (OpenCV HSV), back-projection masked the same way, cv::CamShift with 10 iterations / "

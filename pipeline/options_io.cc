@@ -95,6 +95,7 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
     v.Field("working_area", &t.bip.working_area, Range::Closed(0.01, 1));
     v.Field("min_overlap", &t.bip.min_overlap, Range::Closed(0.01, 1));
     v.Field("lost_frames", &t.opencv.lost_frames, Range::Closed(1, 1e6));
+    v.Field("kcf_detect_thresh", &t.opencv.kcf_detect_thresh, Range::Closed(0, 1));
     // A key of another kind than the chosen one would have no effect: it is an error when its
     // value differs from its default, so that a file that sets every key at its default (as
     // configs/default.yaml and RUN/config.yaml do, SPEC 3.4) can change the kind alone.
@@ -112,6 +113,8 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
     v.Owned("min_overlap", bip, t.bip.min_overlap == d.bip.min_overlap, bip_kinds, kind);
     v.Owned("lost_frames", !bip, t.opencv.lost_frames == d.opencv.lost_frames, opencv_kinds,
             kind);
+    v.Owned("kcf_detect_thresh", t.kind == TrackerKind::kKcf,
+            t.opencv.kcf_detect_thresh == d.opencv.kcf_detect_thresh, "kcf", kind);
   }
   v.EndSection([o] { return o->attention.Check(); });
 

@@ -43,6 +43,9 @@ bool TrackerKindFromName(const std::string& name, TrackerKind* kind) {
 
 std::string OpenCvTrackerOptions::Check() const {
   if (lost_frames < 1) return "lost_frames must be >= 1";
+  if (!(kcf_detect_thresh >= 0.f && kcf_detect_thresh <= 1.f)) {
+    return "kcf_detect_thresh must be in [0, 1]";
+  }
   return "";
 }
 
@@ -90,6 +93,9 @@ class BipTargetTracker final : public TargetTracker {
   TrackerKind kind() const override { return TrackerKind::kBip; }
   bool UsesSkin() const override { return true; }
   double milliseconds() const override { return tracker_.milliseconds(); }
+  double segmentation_milliseconds() const override {
+    return tracker_.segmentation_milliseconds();
+  }
 
  private:
   MultiTracker tracker_;
@@ -182,7 +188,11 @@ class OpenCvTargetTracker final : public TargetTracker {
   };
 
   cv::Ptr<cv::Tracker> MakeTracker() const {
-    if (kind_ == TrackerKind::kKcf) return cv::TrackerKCF::create();
+    if (kind_ == TrackerKind::kKcf) {
+      cv::TrackerKCF::Params params;
+      params.detect_thresh = options_.kcf_detect_thresh;
+      return cv::TrackerKCF::create(params);
+    }
     return cv::TrackerCSRT::create();
   }
 

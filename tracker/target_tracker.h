@@ -16,8 +16,9 @@
 //         the target's own pixels; a skin target (TrackSimilarity::kSkin) is matched on the
 //         skin map passed with each frame; lost when its template is forgotten (1 / alpha
 //         frames unseen).
-//   kcf,  one cv::TrackerKCF (default Params) or cv::TrackerCSRT (default Params) per target, on
-//   csrt  the 8-bit BGR frame; the similarity and the skin map are not used (the trackers learn
+//   kcf,  one cv::TrackerKCF (default Params but detect_thresh = kcf_detect_thresh) or
+//   csrt  cv::TrackerCSRT (default Params) per target, on
+//         the 8-bit BGR frame; the similarity and the skin map are not used (the trackers learn
 //         their own appearance model). A frame in which the tracker reports failure is occluded
 //         (the box stays the last one found); `lost_frames` failures in a row make it lost. The
 //         mask is the target's shape at its start (the start mask, or the filled box when
@@ -48,6 +49,9 @@ struct OpenCvTrackerOptions {
   // A target whose tracker reports failure this many frames in a row is lost (it is occluded
   // before that).
   int lost_frames = 10;
+  // kcf only: cv::TrackerKCF::Params::detect_thresh, the peak response below which KCF reports
+  // failure (and does not update its model). OpenCV's default; 0 never reports a weak response.
+  float kcf_detect_thresh = 0.5f;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
 };
@@ -107,8 +111,11 @@ class TargetTracker {
   const char* name() const { return TrackerKindName(kind()); }
   // Whether Track and the starts use the skin map (the caller may skip computing it).
   virtual bool UsesSkin() const { return false; }
-  // Milliseconds of the last Track() call.
+  // Milliseconds of the last Track() call, and the part of it spent segmenting (bip: the
+  // over-segmentation of the regions of interest, MultiTracker::segmentation_milliseconds; 0
+  // for the kinds that do not segment).
   virtual double milliseconds() const = 0;
+  virtual double segmentation_milliseconds() const { return 0.0; }
 
  protected:
   TargetTracker() = default;

@@ -147,6 +147,15 @@ TEST(OptionsIo, AnOptionOfAnotherTrackerKindIsAnErrorUnlessAtItsDefault) {
                          "bip"),
             std::string::npos)
       << message;
+  message = ConfigErrorOf(
+      [&] { LoadOptions(DefaultConfig(), {"tracker.kind=csrt", "tracker.kcf_detect_thresh=0"}); });
+  EXPECT_NE(message.find("tracker.kcf_detect_thresh: is used only by tracker.kind kcf, but "
+                         "tracker.kind is csrt"),
+            std::string::npos)
+      << message;
+  EXPECT_FLOAT_EQ(LoadOptions(DefaultConfig(), {"tracker.kind=kcf", "tracker.kcf_detect_thresh=0"})
+                      .attention.tracker.opencv.kcf_detect_thresh,
+                  0.f);
   // The chosen kind's own options are still checked.
   message = ConfigErrorOf([&] { LoadOptions(DefaultConfig(), {"tracker.kind=kcf",
                                                               "tracker.lost_frames=0"}); });
