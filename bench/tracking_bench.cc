@@ -706,6 +706,10 @@ void WriteReport(const Options& options, const std::vector<TaskResult>& results,
         << " (on the means).\n";
   }
 
+  if (cost.source.empty()) {
+    out << "\nSeveral targets in one pyramid: " << cost.failure << "\n";
+    return;
+  }
   out << "\n### Several targets in one pyramid (" << cost.source << ", " << cost.frames
       << " frames)\n\n";
   if (!cost.failure.empty()) {
