@@ -17,13 +17,15 @@ struct BenchOptions {
   int repeat = 7;             // timed rounds after one warm-up round
   std::string markdown_path;  // also write the report here
   std::string command_line;   // as invoked, for the report
+  std::string sequences;      // --sequences: a bench's own filter (only where it offers one)
 };
 
 // Parses argv into `options`, whose values on entry are the defaults. Returns -1 to go on, or
-// the exit status to return: 0 after --help, 2 after a bad command line.
+// the exit status to return: 0 after --help, 2 after a bad command line. A bench that can run
+// a subset of its inputs passes `sequences_help` to offer --sequences LIST.
 inline int ParseBenchOptions(const std::string& name, const std::string& description,
                              const std::string& data_help, int argc, char** argv,
-                             BenchOptions* options) {
+                             BenchOptions* options, const std::string& sequences_help = "") {
   options->command_line = name;
   for (int i = 1; i < argc; ++i) options->command_line += std::string(" ") + argv[i];
   CLI::App app{description, name};
@@ -34,6 +36,7 @@ inline int ParseBenchOptions(const std::string& name, const std::string& descrip
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
   app.add_option("--markdown", options->markdown_path, "also write the report to FILE");
+  if (!sequences_help.empty()) app.add_option("--sequences", options->sequences, sequences_help);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

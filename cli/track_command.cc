@@ -1,5 +1,5 @@
-// attend track: the BIP template tracker (tracker/tracker.h) over a sequence, started from boxes
-// on its first frame; attend eval-tracking: the OTB one-pass scores of its tracks.csv (SPEC 3.2,
+// attend track: a tracker of the kind tracker.kind (tracker/target_tracker.h: the BIP template
+// tracker, KCF or CSRT) over a sequence, started from boxes on its first frame; attend eval-tracking: the OTB one-pass scores of its tracks.csv (SPEC 3.2,
 // 4; docs/TRACKING.md).
 #include <algorithm>
 #include <cctype>
@@ -25,7 +25,7 @@
 #include "pipeline/options_io.h"
 #include "pipeline/overlay.h"
 #include "tracker/evaluation.h"
-#include "tracker/tracker.h"
+#include "tracker/target_tracker.h"
 #include "util/error.h"
 #include "util/output_folder.h"
 #include "util/strings.h"
@@ -42,7 +42,7 @@ const std::vector<std::string>& DumpKinds() {
 }
 
 // The keys of the configuration's tracker block (pipeline/options_io.h binds them to
-// TrackerOptions), without the "tracker." prefix.
+// TargetTrackerOptions), without the "tracker." prefix.
 const std::vector<std::string>& TrackerKeys() {
   static const std::vector<std::string> keys = [] {
     std::vector<std::string> result;
@@ -115,9 +115,10 @@ cv::Rect ParseBox(const std::string& text) {
   return {value[0], value[1], value[2], value[3]};
 }
 
-// The `tracker.*` keys of --set over TrackerOptions' defaults, read by the configuration's one
-// binding (pipeline/options_io.h), so that keys, ranges and messages are those of `attend run`.
-TrackerOptions ResolveTrackerOptions(const std::vector<std::string>& sets) {
+// The `tracker.*` keys of --set over TargetTrackerOptions' defaults, read by the configuration's
+// one binding (pipeline/options_io.h), so that keys, ranges and messages (a kind that does not
+// exist, an option of another kind) are those of `attend run`.
+TargetTrackerOptions ResolveTrackerOptions(const std::vector<std::string>& sets) {
   ParamBlock root = ParamBlock::Parse("", "--set");
   for (const std::string& assignment : sets) {
     if (assignment.rfind("tracker.", 0) != 0) {
@@ -358,7 +359,7 @@ void DumpFrame(const fs::path& out, const Dumps& dumps, const TrackFrame& frame,
 
 int Track(const TrackArguments& args) {
   // Everything on the command line is checked before any frame is read.
-  const TrackerOptions options = ResolveTrackerOptions(args.sets);
+  const TargetTrackerOptions options = ResolveTrackerOptions(args.sets);
   const FrameRange range = args.frames.empty() ? FrameRange() : ParseFrameRange(args.frames);
   const Dumps dumps = ParseDumps(args.dump);
   std::vector<cv::Rect> boxes;
@@ -377,19 +378,31 @@ int Track(const TrackArguments& args) {
   }
   const int first_frame = frame.index;
 
-  // Targets start on the first frame of the range, one per box, ids 1, 2, ... in order.
-  MultiTracker tracker(options);
+  // Targets start on the first frame of the range, one per box, ids 1, 2, ... in order. Every
+  // box must lie inside the frame (a usage error, like a box of zero size) before any starts.
+  const std::unique_ptr<TargetTracker> tracker = TargetTracker::Create(options);
   const cv::Rect image(0, 0, frame.bgr.cols, frame.bgr.rows);
+  auto what = [&](size_t i) {
+    return "--init " + BoxText(boxes[i]) + " (target " + std::to_string(i + 1) + ", frame " +
+           std::to_string(frame.index) + ", " + frame.path + ")";
+  };
   for (size_t i = 0; i < boxes.size(); ++i) {
-    const int id = tracker.StartFromBox(frame.bgr, boxes[i]);
+    if ((boxes[i] & image) == boxes[i]) continue;
+    throw ConfigError(what(i) + ": the box " +
+                      ((boxes[i] & image).empty() ? std::string("lies outside")
+                                                  : std::string("does not lie inside")) +
+                      " the " + std::to_string(image.width) + "x" +
+                      std::to_string(image.height) + " frame (x in 0.." +
+                      std::to_string(image.width) + " - w, y in 0.." +
+                      std::to_string(image.height) + " - h)");
+  }
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    const int id = tracker->StartFromBox(frame.bgr, boxes[i]);
     if (id >= 0) continue;
-    const std::string what = "--init " + BoxText(boxes[i]) + " (target " + std::to_string(i + 1) +
-                             ", frame " + std::to_string(frame.index) + ", " + frame.path + ")";
-    if ((boxes[i] & image).empty()) {
-      throw InputError(what + ": the box lies outside the " + std::to_string(image.width) + "x" +
-                       std::to_string(image.height) + " frame");
+    if (options.kind != TrackerKind::kBip) {
+      throw InputError(what(i) + ": the " + tracker->name() + " tracker cannot start on it");
     }
-    throw InputError(what +
+    throw InputError(what(i) +
                      ": no target: no region of the frame's over-segmentation lies mostly inside "
                      "the box, or the target is too thin for a template");
   }
@@ -397,7 +410,8 @@ int Track(const TrackArguments& args) {
   const fs::path out(args.out);
   PrepareOutputFolder(
       args.out, args.overwrite,
-      {"track output", {"tracks.csv", "masks", "overlay"}, [](const std::string& folder) {
+      {"track output", {"tracks.csv", "track.json", "masks", "overlay"},
+       [](const std::string& folder) {
          std::error_code error;
          return fs::is_regular_file(fs::path(folder) / "tracks.csv", error);
        }});
@@ -405,8 +419,8 @@ int Track(const TrackArguments& args) {
 
   std::vector<TrackRow> rows;
   std::vector<TargetView> views;
-  for (const int id : tracker.ids()) {
-    const cv::Mat mask = tracker.Mask(id).clone();
+  for (const int id : tracker->ids()) {
+    const cv::Mat mask = tracker->Mask(id).clone();
     const cv::Rect box = cv::boundingRect(mask);
     rows.push_back({frame.index, id, cv::Rect2d(box), "found"});
     views.push_back({id, "found", box, cv::Rect(), mask});
@@ -419,10 +433,10 @@ int Track(const TrackArguments& args) {
   std::vector<int> lost;
   std::vector<TrackResult> results;
   try {
-    while (!tracker.ids().empty() && input->Next(&frame)) {
+    while (!tracker->ids().empty() && input->Next(&frame)) {
       results.clear();
-      tracker.Track(frame.bgr, &results);
-      track_ms += tracker.milliseconds();
+      tracker->Track(frame.bgr, &results);
+      track_ms += tracker->milliseconds();
       ++frames;
       last_frame = frame.index;
       views.clear();
@@ -431,7 +445,7 @@ int Track(const TrackArguments& args) {
         rows.push_back({frame.index, result.id, cv::Rect2d(result.box), state});
         if (result.state == TrackState::kLost) lost.push_back(result.id);
         const cv::Mat mask =
-            result.state == TrackState::kFound ? tracker.Mask(result.id) : cv::Mat();
+            result.state == TrackState::kFound ? tracker->Mask(result.id) : cv::Mat();
         views.push_back({result.id, state, result.box, result.roi, mask});
       }
       DumpFrame(out, dumps, frame, views);
@@ -445,12 +459,18 @@ int Track(const TrackArguments& args) {
 
   const nlohmann::json summary = {{"source", input->Describe()},
                                   {"out", args.out},
+                                  {"tracker", tracker->name()},
                                   {"first_frame", first_frame},
                                   {"last_frame", last_frame},
                                   {"frames", frames},
                                   {"targets", boxes.size()},
                                   {"lost", lost},
                                   {"ms_per_frame", frames > 1 ? track_ms / (frames - 1) : 0.0}};
+  // The same summary beside tracks.csv, so that the folder says which kind tracked.
+  const std::string summary_path = (out / "track.json").string();
+  std::ofstream summary_file(summary_path);
+  summary_file << summary.dump(2) << "\n";
+  if (!summary_file) throw OutputError(summary_path + ": cannot write the summary");
   std::cout << summary.dump() << std::endl;
   return 0;
 }
@@ -601,12 +621,13 @@ void AddTrackCommand(CLI::App& app, const std::string&, CommandAction* action) {
   auto args = std::make_shared<TrackArguments>();
   CLI::App* command = app.add_subcommand(
       "track",
-      "Track objects with the BIP template tracker (thesis chapter 4; docs/TRACKING.md). "
-      "Targets start on the first frame of the range, one per --init box (ids 1, 2, ... in "
+      "Track objects with the tracker of kind tracker.kind: bip, the BIP template tracker "
+      "(thesis chapter 4, the default), or OpenCV's kcf or csrt (docs/TRACKING.md). Targets start on the first frame of the range, one per --init box (ids 1, 2, ... in "
       "order), and are tracked over the following frames at the source's native size. Writes "
       "OUT/tracks.csv (frame,id,x,y,w,h,state; one row per target per frame, the box the last "
-      "known one when the state is occluded or lost) and prints a one-line JSON summary whose "
-      "ms_per_frame is the mean time of MultiTracker::Track. A lost target has no further rows; "
+      "known one when the state is occluded or lost) and OUT/track.json, a summary (the tracker "
+      "kind, frames, lost targets, ms_per_frame: the mean time of the tracker's Track), which it "
+      "also prints on one line. A lost target has no further rows; "
       "the command stops when every target is lost.");
   CLI::Option* sequence = command->add_option(
       "--sequence", args->sequence,
@@ -617,7 +638,8 @@ void AddTrackCommand(CLI::App& app, const std::string&, CommandAction* action) {
   sequence->excludes(images);
   command
       ->add_option("--init", args->inits,
-                   "A target's box x,y,w,h in 0-based pixels of the first frame (repeatable)")
+                   "A target's box x,y,w,h in 0-based pixels of the first frame, inside it "
+                   "(repeatable)")
       ->type_name("X,Y,W,H")
       ->expected(1)
       ->allow_extra_args(false)

@@ -110,7 +110,10 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
     out.saliency = target.saliency;
     out.state = target.state;
     out.kind = target.skin ? "skin" : "object";
-    out.similarity = target.skin ? "skin" : "hsv";
+    const bool bip = options_.attention.tracker.kind == TrackerKind::kBip;
+    out.similarity = !bip ? "appearance" : target.skin ? "skin" : "hsv";
+    out.tracker = attention_.tracker_name();
+    out.reason = target.reason;
     record->targets.push_back(out);
   }
   record->new_ids = attended_.new_ids;

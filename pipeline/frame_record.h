@@ -18,7 +18,11 @@ struct TargetRecord {
   double saliency = 0.0;           // mean uninhibited saliency over its mask
   std::string state = "new";       // new, tracked, occluded, lost, released
   std::string kind = "object";     // object or skin
-  std::string similarity = "hsv";  // the tracker's similarity policy: hsv or skin
+  // The tracker's similarity policy: hsv or skin (tracker kind bip); appearance for the kinds
+  // that learn their own model (kcf, csrt).
+  std::string similarity = "hsv";
+  std::string tracker = "bip";  // the tracker kind that follows it: bip, kcf or csrt
+  std::string reason;           // why it was released (state released only; else empty)
 };
 
 struct FrameRecord {

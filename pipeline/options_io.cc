@@ -77,28 +77,60 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
 
   v.BeginSection("tracker");
   {
-    // The mode is an enum in TrackerOptions; the visitors see its name.
-    std::string mode = TrackerModeName(o->attention.tracker.mode);
+    // Enums in the options; the visitors see their names.
+    TargetTrackerOptions& t = o->attention.tracker;
+    std::string kind = TrackerKindName(t.kind);
+    v.Choice("kind", &kind, TrackerKindNames());
+    TrackerKindFromName(kind, &t.kind);
+    std::string mode = TrackerModeName(t.bip.mode);
     v.Choice("mode", &mode, {TrackerModeName(TrackerMode::kThesis),
                              TrackerModeName(TrackerMode::kBounded)});
-    o->attention.tracker.mode =
+    t.bip.mode =
         mode == TrackerModeName(TrackerMode::kBounded) ? TrackerMode::kBounded : TrackerMode::kThesis;
+    v.Field("t_colour", &t.bip.t_colour, Range::Closed(0.001, 1000));
+    v.Field("t_oversegment", &t.bip.t_oversegment, Range::Closed(0.001, 1000));
+    v.Field("t_refine", &t.bip.t_refine, Range::Closed(0, 1000));
+    v.Field("alpha", &t.bip.alpha, Range::Closed(0.001, 1));
+    v.Field("epsilon", &t.bip.epsilon, Range::Closed(0, 1000));
+    v.Field("epsilon_max", &t.bip.epsilon_max, Range::Closed(0, 1000));
+    v.Field("working_area", &t.bip.working_area, Range::Closed(0.01, 1));
+    v.Field("min_overlap", &t.bip.min_overlap, Range::Closed(0.01, 1));
+    v.Field("bounded_min_overlap", &t.bip.bounded_min_overlap, Range::Closed(0.01, 1));
+    v.Field("bound_growth", &t.bip.bound_growth, Range::Closed(0, 1));
+    v.Field("size_rate", &t.bip.size_rate, Range::Closed(0, 1));
+    v.Field("distinctive_weights", &t.bip.distinctive_weights);
+    v.Field("distinct_rate", &t.bip.distinct_rate, Range::Closed(0, 1));
+    v.Field("motion_sigma", &t.bip.motion_sigma, Range::Closed(0, 100));
+    v.Field("lost_frames", &t.opencv.lost_frames, Range::Closed(1, 1e6));
+    v.Field("kcf_detect_thresh", &t.opencv.kcf_detect_thresh, Range::Closed(0, 1));
+    // A key of another kind than the chosen one would have no effect: it is an error when its
+    // value differs from its default, so that a file that sets every key at its default (as
+    // configs/default.yaml and RUN/config.yaml do, SPEC 3.4) can change the kind alone.
+    const TargetTrackerOptions d;
+    const bool bip = t.kind == TrackerKind::kBip;
+    const std::string bip_kinds = "bip", opencv_kinds = "kcf or csrt";
+    v.Owned("mode", bip, t.bip.mode == d.bip.mode, bip_kinds, kind);
+    v.Owned("t_colour", bip, t.bip.t_colour == d.bip.t_colour, bip_kinds, kind);
+    v.Owned("t_oversegment", bip, t.bip.t_oversegment == d.bip.t_oversegment, bip_kinds, kind);
+    v.Owned("t_refine", bip, t.bip.t_refine == d.bip.t_refine, bip_kinds, kind);
+    v.Owned("alpha", bip, t.bip.alpha == d.bip.alpha, bip_kinds, kind);
+    v.Owned("epsilon", bip, t.bip.epsilon == d.bip.epsilon, bip_kinds, kind);
+    v.Owned("epsilon_max", bip, t.bip.epsilon_max == d.bip.epsilon_max, bip_kinds, kind);
+    v.Owned("working_area", bip, t.bip.working_area == d.bip.working_area, bip_kinds, kind);
+    v.Owned("min_overlap", bip, t.bip.min_overlap == d.bip.min_overlap, bip_kinds, kind);
+    v.Owned("bounded_min_overlap", bip, t.bip.bounded_min_overlap == d.bip.bounded_min_overlap,
+            bip_kinds, kind);
+    v.Owned("bound_growth", bip, t.bip.bound_growth == d.bip.bound_growth, bip_kinds, kind);
+    v.Owned("size_rate", bip, t.bip.size_rate == d.bip.size_rate, bip_kinds, kind);
+    v.Owned("distinctive_weights", bip, t.bip.distinctive_weights == d.bip.distinctive_weights,
+            bip_kinds, kind);
+    v.Owned("distinct_rate", bip, t.bip.distinct_rate == d.bip.distinct_rate, bip_kinds, kind);
+    v.Owned("motion_sigma", bip, t.bip.motion_sigma == d.bip.motion_sigma, bip_kinds, kind);
+    v.Owned("lost_frames", !bip, t.opencv.lost_frames == d.opencv.lost_frames, opencv_kinds,
+            kind);
+    v.Owned("kcf_detect_thresh", t.kind == TrackerKind::kKcf,
+            t.opencv.kcf_detect_thresh == d.opencv.kcf_detect_thresh, "kcf", kind);
   }
-  v.Field("t_colour", &o->attention.tracker.t_colour, Range::Closed(0.001, 1000));
-  v.Field("t_oversegment", &o->attention.tracker.t_oversegment, Range::Closed(0.001, 1000));
-  v.Field("t_refine", &o->attention.tracker.t_refine, Range::Closed(0, 1000));
-  v.Field("alpha", &o->attention.tracker.alpha, Range::Closed(0.001, 1));
-  v.Field("epsilon", &o->attention.tracker.epsilon, Range::Closed(0, 1000));
-  v.Field("epsilon_max", &o->attention.tracker.epsilon_max, Range::Closed(0, 1000));
-  v.Field("working_area", &o->attention.tracker.working_area, Range::Closed(0.01, 1));
-  v.Field("min_overlap", &o->attention.tracker.min_overlap, Range::Closed(0.01, 1));
-  v.Field("bound_growth", &o->attention.tracker.bound_growth, Range::Closed(0, 1));
-  v.Field("size_rate", &o->attention.tracker.size_rate, Range::Closed(0, 1));
-  v.Field("distinctive_weights", &o->attention.tracker.distinctive_weights);
-  v.Field("distinct_rate", &o->attention.tracker.distinct_rate, Range::Closed(0, 1));
-  v.Field("motion_sigma", &o->attention.tracker.motion_sigma, Range::Closed(0, 100));
-  v.Field("bounded_min_overlap", &o->attention.tracker.bounded_min_overlap,
-          Range::Closed(0.01, 1));
   v.EndSection([o] { return o->attention.Check(); });
 
   v.Field("threads", &o->threads, Range::Closed(0, 256));
@@ -147,6 +179,14 @@ class Reader {
   void Features(const std::string& key, std::vector<FeatureSpec>* specs) {
     *specs = ReadFeatureList(top(), key);
   }
+  // A key that only some choices of `choice_key` (here tracker.kind) use: set away from its
+  // default while another is chosen, it is an error naming its line.
+  void Owned(const std::string& key, bool belongs, bool is_default, const std::string& owners,
+             const std::string& chosen) {
+    if (belongs || is_default) return;
+    top().Fail(key, "is used only by tracker.kind " + owners + ", but tracker.kind is " + chosen +
+                        " (" + top().Where("kind") + "); remove it or choose another kind");
+  }
   void Finish() { top().CheckNoUnknownKeys(); }
 
  private:
@@ -193,6 +233,7 @@ class Writer {
     }
     out_ << YAML::EndSeq;
   }
+  void Owned(const std::string&, bool, bool, const std::string&, const std::string&) {}
   std::string Finish() {
     out_ << YAML::EndMap;
     return std::string(out_.c_str()) + "\n";
@@ -228,6 +269,7 @@ class KeyLister {
     Add(key);
   }
   void Features(const std::string& key, std::vector<FeatureSpec>*) { Add(key); }
+  void Owned(const std::string&, bool, bool, const std::string&, const std::string&) {}
   std::vector<std::string> keys;
 
  private:

@@ -40,6 +40,7 @@ nlohmann::ordered_json SummaryJson(const RunSummary& summary, const SequenceInfo
           {"wall_seconds", summary.wall_seconds},
           {"timings_ms", timings},
           {"targets_attended", summary.targets_attended},
+          {"tracker", TrackerKindName(request.options.attention.tracker.kind)},
           {"interrupted", summary.interrupted},
           {"error", summary.error.empty() ? nlohmann::ordered_json()
                                           : nlohmann::ordered_json(summary.error)},

@@ -40,9 +40,10 @@ std::string AttentionOptions::Check() const {
 }
 
 AttentionStage::AttentionStage(const AttentionOptions& options, SkinModel skin_model)
-    : options_(options), skin_model_(std::move(skin_model)), tracker_(options.tracker) {
+    : options_(options), skin_model_(std::move(skin_model)) {
   const std::string error = options_.Check();
   if (!error.empty()) throw ConfigError(error);
+  tracker_ = TargetTracker::Create(options_.tracker);
 }
 
 AttentionStage::~AttentionStage() = default;
@@ -53,7 +54,7 @@ void AttentionStage::Track(const cv::Mat& bgr, const cv::Mat& tsl) {
   SkinMap(tsl, skin_model_, SkinOutput::kBinary, &skin_map);
   skin_map.convertTo(skin_, CV_8U, 255.0);
   results_.clear();
-  tracker_.Track(bgr, &results_, skin_);
+  tracker_->Track(bgr, &results_, skin_);
   track_ms_ = stopwatch.ElapsedMs();
 }
 
@@ -64,6 +65,17 @@ double MeanOver(const cv::Mat& map, const cv::Mat& mask) {
 }
 
 }  // namespace
+
+std::string AttentionStage::ReleaseReason(const AttendedTarget& target, int low_frames,
+                                          const cv::Rect& image) const {
+  if (target.area > options_.select.max_area_fraction * image.area()) return "too_large";
+  if (target.box.width >= kSpansImageFraction * image.width &&
+      target.box.height >= kSpansImageFraction * image.height) {
+    return "spans_image";
+  }
+  if (low_frames >= options_.drop.frames) return "low_saliency";
+  return "";
+}
 
 void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
                             const Segmentation& segmentation, AttentionFrame* frame) {
@@ -90,25 +102,29 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
     target.id = result.id;
     target.box = result.box & image;
     target.skin = active->skin;
-    const cv::Mat mask = result.state == TrackState::kFound ? tracker_.Mask(result.id) : cv::Mat();
+    const cv::Mat mask =
+        result.state == TrackState::kFound ? tracker_->Mask(result.id) : cv::Mat();
     if (result.state == TrackState::kFound && !mask.empty()) {
       target.state = "tracked";
       target.area = result.area;
       target.saliency = MeanOver(saliency, mask);
-      // Inhibit the mask, dilated, within its box plus the margin.
-      const cv::Rect around =
-          cv::Rect(target.box.x - margin, target.box.y - margin, target.box.width + 2 * margin,
-                   target.box.height + 2 * margin) &
-          image;
-      cv::Mat grown;
-      cv::dilate(mask(around), grown, kernel);
-      inhibition_(around).setTo(1.f, grown);
-      covered_.setTo(255, mask);
       active->low_frames =
           target.saliency < options_.drop.min_saliency ? active->low_frames + 1 : 0;
-      if (active->low_frames >= options_.drop.frames) {
+      // Released targets inhibit nothing, from the frame they are released in.
+      target.reason = ReleaseReason(target, active->low_frames, image);
+      if (!target.reason.empty()) {
         target.state = "released";
         removed.push_back(result.id);
+      } else {
+        // Inhibit the mask, dilated, within its box plus the margin.
+        const cv::Rect around =
+            cv::Rect(target.box.x - margin, target.box.y - margin, target.box.width + 2 * margin,
+                     target.box.height + 2 * margin) &
+            image;
+        cv::Mat grown;
+        cv::dilate(mask(around), grown, kernel);
+        inhibition_(around).setTo(1.f, grown);
+        covered_.setTo(255, mask);
       }
     } else if (result.state == TrackState::kOccluded) {
       target.state = "occluded";
@@ -124,7 +140,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
     frame->targets.push_back(target);
   }
   for (const int id : removed) {
-    tracker_.Remove(id);
+    tracker_->Remove(id);
     active_.erase(std::remove_if(active_.begin(), active_.end(),
                                  [id](const Active& a) { return a.id == id; }),
                   active_.end());
@@ -200,7 +216,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         const double skin_share =
             static_cast<double>(cv::countNonZero(skin_ & mask)) / segmentation.regions[best].area;
         const bool skin = skin_share >= options_.skin_fraction;
-        const int id = tracker_.StartFromRegion(
+        const int id = tracker_->StartFromRegion(
             bgr, colour, best, skin ? TrackSimilarity::kSkin : TrackSimilarity::kColour, skin_);
         if (id < 0) continue;
         active_.push_back({id, skin, 0});
@@ -208,7 +224,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         ++started;
         AttendedTarget target;
         target.id = id;
-        const cv::Mat own = tracker_.Mask(id);
+        const cv::Mat own = tracker_->Mask(id);
         target.box = cv::boundingRect(own);
         target.area = cv::countNonZero(own);
         target.saliency = MeanOver(saliency, own);

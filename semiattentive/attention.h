@@ -14,8 +14,12 @@
 //   select.max_new targets start a frame, select.max_targets are active at once. A region that
 //   is mostly skin starts a skin-similarity tracker.
 // Lifecycle: new (the frame it starts) -> tracked (found) / occluded (not found) -> lost (its
-// template forgotten). A target whose own uninhibited saliency (mean over its mask) stays
-// below drop.min_saliency for drop.frames frames in a row is released.
+// template forgotten, or for the OpenCV kinds tracker.lost_frames failures in a row). A found
+// target is released, and inhibits nothing from that frame on, when its mask covers more than
+// select.max_area_fraction of the image ("too_large"), when its box spans the image: at least
+// 0.9 of its width and 0.9 of its height ("spans_image"), or when its own uninhibited saliency
+// (mean over its mask) stays below drop.min_saliency for drop.frames frames in a row
+// ("low_saliency"); the first rule that holds is the reason recorded.
 #pragma once
 
 #include <memory>
@@ -25,9 +29,13 @@
 
 #include "features/skin_model.h"
 #include "pyramid/segmentation.h"
-#include "tracker/tracker.h"
+#include "tracker/target_tracker.h"
 
 namespace attend {
+
+// A found target whose box is at least this share of the image's width and of its height
+// spans the image and is released ("spans_image").
+constexpr double kSpansImageFraction = 0.9;
 
 struct SelectOptions {
   float min_saliency = 0.2f;   // mean inhibited saliency of a candidate region, 0..1
@@ -54,7 +62,7 @@ struct AttentionOptions {
   SelectOptions select;
   DropOptions drop;
   InhibitionOptions inhibition;
-  TrackerOptions tracker;
+  TargetTrackerOptions tracker;  // the kind and its options (tracker/target_tracker.h)
   // A target is a skin target when at least this share of its colour region is skin, by the
   // skin model in `skin_model` (a file as made by attend skin-train).
   float skin_fraction = 0.5f;
@@ -70,6 +78,9 @@ struct AttendedTarget {
   int area = 0;
   double saliency = 0.0;  // mean uninhibited saliency over its mask (or its box when hidden)
   std::string state;      // new, tracked, occluded, lost, released
+  // Why a released target was released: "too_large", "spans_image" or "low_saliency" (empty in
+  // every other state).
+  std::string reason;
   bool skin = false;
 };
 
@@ -96,12 +107,19 @@ class AttentionStage {
   const cv::Mat& inhibition() const { return inhibition_; }  // CV_32FC1, 0 or 1
   const cv::Mat& inhibited() const { return inhibited_; }    // CV_32FC1
   int targets_attended() const { return attended_; }
+  // The tracker kind that follows the targets ("bip", "kcf", "csrt").
+  const char* tracker_name() const { return tracker_->name(); }
 
  private:
   struct Active;
+  // Why a found target is released this frame ("" when it is not): SPEC 2.4's drop rule and
+  // the size rules above.
+  std::string ReleaseReason(const AttendedTarget& target, int low_frames,
+                            const cv::Rect& image) const;
+
   AttentionOptions options_;
   SkinModel skin_model_;
-  MultiTracker tracker_;
+  std::unique_ptr<TargetTracker> tracker_;
   std::vector<Active> active_;
   std::vector<TrackResult> results_;
   cv::Mat skin_, inhibition_, inhibited_;

@@ -262,6 +262,26 @@ TEST(TrackCommand, ReportsAnOccludedTargetAndFindsItAgain) {
   EXPECT_GT((cv::Rect(rows[17].box) & RedBox(17)).area(), 0.8 * RedBox(17).area());
 }
 
+// Every kind follows the rectangle and the summary (printed and OUT/track.json) names it.
+TEST(TrackCommand, EveryKindFollowsTheRectangleAndTheSummaryNamesIt) {
+  TempDir dir;
+  WriteFrames(dir.File("seq/left"), kFrames, [](int f) { return Frame(f, {{RedBox(f), kRed}}); });
+  for (const std::string kind : {"bip", "kcf", "csrt"}) {
+    const Result r = Attend(dir, {"track", "--sequence", "seq", "--init", BoxArgument(RedBox(0)),
+                                  "--out", "out_" + kind, "--set", "tracker.kind=" + kind});
+    ASSERT_EQ(r.status, 0) << kind << "\n" << r.err;
+    EXPECT_EQ(LastLineJson(r.out)["tracker"], kind);
+    const nlohmann::json written =
+        nlohmann::json::parse(ReadText(dir.File("out_" + kind + "/track.json")));
+    EXPECT_EQ(written["tracker"], kind);
+    EXPECT_EQ(written["frames"], kFrames);
+    const std::vector<TrackRow> rows = ReadTracksCsv(dir.File("out_" + kind + "/tracks.csv"));
+    ASSERT_EQ(rows.size(), static_cast<size_t>(kFrames)) << kind;
+    SCOPED_TRACE(kind);
+    ExpectEveryFrameAbove(BoxesOf(rows, 1), Truth(kFrames, RedBox), 0.5);
+  }
+}
+
 TEST(TrackCommand, SetChangesTheTrackerOptions) {
   TempDir dir;
   WriteFrames(dir.File("seq/left"), 6, [](int f) { return Frame(f, {{RedBox(f), kRed}}); });
@@ -334,6 +354,13 @@ TEST(TrackCommand, UsageAndConfigurationErrorsExitTwo) {
       {{"--sequence", "seq", "--init", box, "--out", "o", "--dump", "mask"},
        {"mask", "did you mean 'masks'"}},
       {{"--sequence", "seq", "--init", box, "--out", "o", "--bogus"}, {"--bogus"}},
+      {{"--sequence", "seq", "--init", box, "--out", "o", "--set", "tracker.kind=kfc"},
+       {"tracker.kind", "'kfc'", "did you mean 'kcf'"}},
+      {{"--sequence", "seq", "--init", box, "--out", "o", "--set", "tracker.kind=csrt", "--set",
+        "tracker.t_colour=25"},
+       {"--set tracker.t_colour=25", "tracker.t_colour", "tracker.kind is csrt"}},
+      {{"--sequence", "seq", "--init", box, "--out", "o", "--set", "tracker.lost_frames=3"},
+       {"tracker.lost_frames", "tracker.kind is bip"}},
   };
   for (const Case& c : cases) {
     const Result r = run(c.args);
@@ -348,6 +375,29 @@ TEST(TrackCommand, UsageAndConfigurationErrorsExitTwo) {
   // An output path below a regular file.
   dir.Write("file", "x");
   EXPECT_EQ(run({"--sequence", "seq", "--init", box, "--out", "file/out"}).status, 2);
+}
+
+TEST(TrackCommand, BoxesOutsideTheFrameOrEmptyExitTwo) {
+  TempDir dir;
+  WriteFrames(dir.File("seq/left"), 4, [](int f) { return Frame(f, {{RedBox(f), kRed}}); });
+  const std::string good = BoxArgument(RedBox(0));
+  const cv::Size size = Frame(0, {}).size();
+  const std::string right_edge = std::to_string(size.width - 10) + ",10,20,20";
+  for (const std::string& kind : {"bip", "kcf"}) {
+    for (const std::string& box : {std::string("500,10,20,20"), right_edge,
+                                   std::string("-1,10,20,20"), std::string("10,10,0,20")}) {
+      const Result r = Attend(dir, {"track", "--sequence", "seq", "--init", good, "--init", box,
+                                    "--out", "o", "--set", "tracker.kind=" + kind});
+      EXPECT_EQ(r.status, 2) << kind << " " << box << "\n" << r.err;
+      EXPECT_TRUE(Contains(r.err, "--init " + box)) << r.err;
+      EXPECT_FALSE(fs::exists(dir.File("o/tracks.csv")));
+    }
+  }
+  const Result r = Attend(dir, {"track", "--sequence", "seq", "--init", "500,10,20,20", "--out",
+                                "o"});
+  EXPECT_TRUE(Contains(r.err, "outside the " + std::to_string(size.width) + "x" +
+                                  std::to_string(size.height) + " frame"))
+      << r.err;
 }
 
 TEST(TrackCommand, BadInputExitsThreeNamingTheBoxOrFrame) {
@@ -369,11 +419,8 @@ TEST(TrackCommand, BadInputExitsThreeNamingTheBoxOrFrame) {
   EXPECT_EQ(r.status, 3);
   EXPECT_TRUE(Contains(r.err, "8 frames")) << r.err;
 
-  // A box outside the frame, and one over the plain background after a good one.
-  r = Attend(dir, {"track", "--sequence", "seq", "--init", "500,10,20,20", "--out", "o"});
-  EXPECT_EQ(r.status, 3);
-  EXPECT_TRUE(Contains(r.err, "--init 500,10,20,20")) << r.err;
-  EXPECT_TRUE(Contains(r.err, "outside")) << r.err;
+  // A box over the plain background after a good one (boxes outside the frame are usage
+  // errors, exit 2: BoxesOutsideTheFrameOrEmptyExitTwo).
   r = Attend(dir,
              {"track", "--sequence", "seq", "--init", box, "--init", "100,100,1,1", "--out", "o"});
   EXPECT_EQ(r.status, 3);

@@ -104,6 +104,64 @@ TEST(OptionsIo, EffectiveConfigurationRoundTrips) {
   EXPECT_EQ(again.features[2].params.GetString("output", ""), "soft");  // plugin keys survive
 }
 
+// tracker.kind chooses the tracker; an unknown kind names the key and line.
+TEST(OptionsIo, TrackerKindIsReadAndAnUnknownKindNamesTheLine) {
+  EXPECT_EQ(LoadOptions(DefaultConfig(), {}).attention.tracker.kind, TrackerKind::kBip);
+  EXPECT_EQ(LoadOptions(DefaultConfig(), {"tracker.kind=csrt"}).attention.tracker.kind,
+            TrackerKind::kCsrt);
+  testing::TempDir dir;
+  const std::string path = dir.Write("k.yaml", "tracker:\n  alpha: 0.1\n  kind: mosse\n");
+  const std::string message = ConfigErrorOf([&] { LoadOptions(path, {}); });
+  EXPECT_NE(message.find(path + ":3: tracker.kind: 'mosse' is not one of bip, kcf, csrt"),
+            std::string::npos)
+      << message;
+}
+
+// A key of another kind than the chosen one is an error when set away from its default
+// (naming its line), and allowed at its default: the shipped defaults, which set every key,
+// can change the kind alone, and RUN/config.yaml of such a run reads back.
+TEST(OptionsIo, AnOptionOfAnotherTrackerKindIsAnErrorUnlessAtItsDefault) {
+  for (const char* kind : {"kcf", "csrt"}) {
+    const AttendOptions options =
+        LoadOptions(DefaultConfig(), {std::string("tracker.kind=") + kind, "tracker.lost_frames=3"});
+    EXPECT_EQ(options.attention.tracker.opencv.lost_frames, 3);
+    const std::string yaml = OptionsToYaml(options);
+    EXPECT_EQ(OptionsToYaml(ReadOptions(ParamBlock::Parse(yaml, "config.yaml"))), yaml);
+  }
+  testing::TempDir dir;
+  std::string path = dir.Write("f.yaml", "tracker:\n  kind: kcf\n  t_colour: 30\n  alpha: 0.2\n");
+  std::string message = ConfigErrorOf([&] { LoadOptions(path, {}); });
+  EXPECT_NE(message.find(path + ":4: tracker.alpha: is used only by tracker.kind bip, but "
+                                "tracker.kind is kcf (" + path + ":2)"),
+            std::string::npos)
+      << message;
+  path = dir.Write("g.yaml", "tracker:\n  lost_frames: 5\n");
+  message = ConfigErrorOf([&] { LoadOptions(path, {}); });
+  EXPECT_NE(message.find(path + ":2: tracker.lost_frames: is used only by tracker.kind kcf or "
+                                "csrt, but tracker.kind is bip"),
+            std::string::npos)
+      << message;
+  message = ConfigErrorOf(
+      [&] { LoadOptions(DefaultConfig(), {"tracker.kind=csrt", "tracker.mode=bounded"}); });
+  EXPECT_NE(message.find("--set tracker.mode=bounded: tracker.mode: is used only by tracker.kind "
+                         "bip"),
+            std::string::npos)
+      << message;
+  message = ConfigErrorOf(
+      [&] { LoadOptions(DefaultConfig(), {"tracker.kind=csrt", "tracker.kcf_detect_thresh=0"}); });
+  EXPECT_NE(message.find("tracker.kcf_detect_thresh: is used only by tracker.kind kcf, but "
+                         "tracker.kind is csrt"),
+            std::string::npos)
+      << message;
+  EXPECT_FLOAT_EQ(LoadOptions(DefaultConfig(), {"tracker.kind=kcf", "tracker.kcf_detect_thresh=0"})
+                      .attention.tracker.opencv.kcf_detect_thresh,
+                  0.f);
+  // The chosen kind's own options are still checked.
+  message = ConfigErrorOf([&] { LoadOptions(DefaultConfig(), {"tracker.kind=kcf",
+                                                              "tracker.lost_frames=0"}); });
+  EXPECT_NE(message.find("tracker.lost_frames"), std::string::npos) << message;
+}
+
 TEST(OptionsIo, ErrorsNameKeyLineAndClosestKey) {
   testing::TempDir dir;
   std::string path = dir.Write("a.yaml", "sequence:\n  stride: 2\n  widht: 100\n");

@@ -66,12 +66,24 @@ TEST(RunSequence, WritesOneRecordPerFrameConfigAndSummary) {
   EXPECT_EQ(json["interrupted"], false);
   EXPECT_TRUE(json["timings_ms"].contains("read"));
   EXPECT_EQ(json["sequence"]["size"][0], 32);
+  EXPECT_EQ(json["tracker"], "bip");
   EXPECT_TRUE(fs::exists(dir.File("run/overlay/000004.png")));
 
   // config.yaml is a valid configuration that reproduces the options.
   const AttendOptions again = LoadOptions(dir.File("run/config.yaml"), {});
   EXPECT_EQ(again.sequence.stride, 2);
   EXPECT_EQ(OptionsToYaml(again), OptionsToYaml(request.options));
+}
+
+// summary.json names the tracker kind and config.yaml keeps it (the frames.jsonl targets' own
+// "tracker" is checked in tests/semiattentive, on a scene that attends something).
+TEST(RunSequence, TheRecordsNameTheTrackerKind) {
+  testing::TempDir dir;
+  RunRequest request = TinyRequest(dir, 4);
+  request.options.attention.tracker.kind = TrackerKind::kKcf;
+  RunSequence(request);
+  EXPECT_EQ(ReadJson(dir.File("run/summary.json"))["tracker"], "kcf");
+  EXPECT_EQ(LoadOptions(dir.File("run/config.yaml"), {}).attention.tracker.kind, TrackerKind::kKcf);
 }
 
 TEST(RunSequence, StopFlagFinishesWithInterruptedSummary) {

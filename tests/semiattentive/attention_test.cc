@@ -25,7 +25,8 @@ struct SceneRun {
   std::vector<cv::Mat> inhibited;
 };
 
-SceneRun RunScene(const std::string& scene_yaml, int frames, int threads = 1) {
+SceneRun RunScene(const std::string& scene_yaml, int frames, int threads = 1,
+                  TrackerKind kind = TrackerKind::kBip) {
   const SceneRenderer renderer(ParseScene(scene_yaml, "test scene"));
   AttendOptions options;
   options.features = ReadFeatureList(
@@ -34,6 +35,7 @@ SceneRun RunScene(const std::string& scene_yaml, int frames, int threads = 1) {
                         "test.yaml"),
       "features");
   options.threads = threads;
+  options.attention.tracker.kind = kind;
   FeatureSetup setup;
   setup.home = testing::ProjectRoot();
   options.attention.skin_model = setup.home + "/configs/skin_tsl.yaml";
@@ -82,6 +84,37 @@ TEST(Attention, ThreeSalientObjectsAreAttendedOnceEach) {
   }
   EXPECT_EQ(scores.revisits, 0);
   EXPECT_EQ(scores.identity_switches, 0);
+}
+
+// The same scene through the loop with every tracker kind: the records name the kind that
+// tracked, each object is attended once and then tracked.
+TEST(Attention, EveryTrackerKindRunsTheLoopAndTheRecordsSayWhichTracked) {
+  const std::string scene = std::string(kHeader) + R"(
+  - {id: 1, shape: rectangle, size: [0.4, 0.3], colour: [210, 40, 40], path: [{frame: 0, x: 70, y: 70, depth: 3}, {frame: 12, x: 100, y: 80, depth: 3}]}
+  - {id: 2, shape: ellipse, size: [0.3, 0.3], colour: [40, 80, 210], path: [{frame: 0, x: 230, y: 80, depth: 3}]}
+  - {id: 3, shape: rectangle, size: [0.35, 0.35], colour: [40, 180, 60], path: [{frame: 0, x: 160, y: 180, depth: 3}]}
+)";
+  for (const TrackerKind kind : {TrackerKind::kBip, TrackerKind::kKcf, TrackerKind::kCsrt}) {
+    const std::string name = TrackerKindName(kind);
+    SCOPED_TRACE(name);
+    const SceneRun run = RunScene(scene, 12, 1, kind);
+    int tracked = 0, targets = 0;
+    for (const FrameRecord& record : run.records) {
+      for (const TargetRecord& target : record.targets) {
+        ++targets;
+        EXPECT_EQ(target.tracker, name) << "frame " << record.frame;
+        EXPECT_EQ(target.similarity, kind == TrackerKind::kBip ? "hsv" : "appearance");
+        EXPECT_NE(FrameRecordToJson(record).find("\"tracker\":\"" + name + "\""),
+                  std::string::npos);
+        if (target.state == "tracked") ++tracked;
+      }
+    }
+    EXPECT_GE(targets, 20);
+    EXPECT_GE(tracked, 15);
+    const AttentionScores scores = EvaluateAttention(run.records, run.truth);
+    EXPECT_EQ(scores.attended, 3);
+    EXPECT_EQ(scores.revisits, 0);
+  }
 }
 
 TEST(Attention, AnObjectEnteringIsAttendedWithinFiveFrames) {
@@ -190,8 +223,75 @@ TEST(Attention, ATargetWhoseSaliencyDropsIsReleased) {
     frame = Step(&stage, Draw({{box, red}}, {}, f));
     ASSERT_EQ(frame.targets.size(), 1u) << "frame " << f;
     EXPECT_EQ(frame.targets[0].state, f < 4 ? "tracked" : "released") << "frame " << f;
+    EXPECT_EQ(frame.targets[0].reason, f < 4 ? "" : "low_saliency") << "frame " << f;
   }
+  // Released: it inhibits nothing in the frame it is released in, nor after.
+  EXPECT_EQ(cv::countNonZero(stage.inhibition()), 0);
   frame = Step(&stage, Draw({{box, red}}, {}, 5));
+  EXPECT_TRUE(frame.targets.empty());
+}
+
+// A target that grows: while its mask is within select.max_area_fraction of the image it is
+// tracked and inhibits; the frame its mask passes the fraction it is released as too_large and
+// inhibits nothing from then on (the region is then too large to be selected again).
+TEST(Attention, ATargetWhoseMaskGrowsPastTheAreaFractionIsReleased) {
+  AttentionOptions options;
+  options.select.max_area_fraction = 0.2f;  // of 160 x 120: 3840 px
+  AttentionStage stage(options, ShippedSkinModel());
+  const cv::Scalar red(40, 40, 210);
+  auto grown = [](int f) { return cv::Rect(40, 30, 40 + 10 * f, 30 + 8 * f); };
+  AttentionFrame frame = Step(&stage, Draw({{grown(0), red}}, {grown(0)}, 0));
+  ASSERT_EQ(frame.new_ids, std::vector<int>{1});
+  bool released = false;
+  for (int f = 1; f <= 6 && !released; ++f) {
+    frame = Step(&stage, Draw({{grown(f), red}}, {grown(f)}, f));
+    ASSERT_EQ(frame.targets.size(), 1u) << "frame " << f;
+    const AttendedTarget& target = frame.targets[0];
+    ASSERT_EQ(target.id, 1) << "frame " << f;
+    if (target.area > 0.2 * 160 * 120) {
+      EXPECT_EQ(target.state, "released") << "frame " << f << ", area " << target.area;
+      EXPECT_EQ(target.reason, "too_large") << "frame " << f;
+      EXPECT_EQ(cv::countNonZero(stage.inhibition()), 0) << "frame " << f;
+      released = true;
+    } else {
+      EXPECT_EQ(target.state, "tracked") << "frame " << f << ", area " << target.area;
+      EXPECT_GT(cv::countNonZero(stage.inhibition()), target.area * 0.9) << "frame " << f;
+    }
+  }
+  ASSERT_TRUE(released) << "the target never grew past the fraction";
+  frame = Step(&stage, Draw({{grown(6), red}}, {grown(6)}, 7));
+  EXPECT_TRUE(frame.targets.empty());
+  EXPECT_EQ(cv::countNonZero(stage.inhibition()), 0);
+}
+
+// With no area limit, a target whose box comes to span the image (>= 0.9 of its width and of
+// its height) is released as spans_image.
+TEST(Attention, ATargetWhoseBoxSpansTheImageIsReleased) {
+  AttentionOptions options;
+  options.select.max_area_fraction = 1.f;
+  options.drop.frames = 100;  // salient only where it starts: no other target, no drop
+  AttentionStage stage(options, ShippedSkinModel());
+  const cv::Scalar red(40, 40, 210);
+  // 40 x 30 px to 152 x 114 px over frames 0..14, 8 x 6 px a frame (the image is 160 x 120:
+  // 144 x 108 spans it).
+  auto grown = [](int f) { return cv::Rect(4, 3, 40 + 8 * f, 30 + 6 * f); };
+  AttentionFrame frame = Step(&stage, Draw({{grown(0), red}}, {grown(0)}, 0));
+  ASSERT_EQ(frame.new_ids, std::vector<int>{1});
+  bool released = false;
+  for (int f = 1; f <= 14 && !released; ++f) {
+    frame = Step(&stage, Draw({{grown(f), red}}, {}, f));
+    ASSERT_EQ(frame.targets.size(), 1u) << "frame " << f;
+    const AttendedTarget& target = frame.targets[0];
+    SCOPED_TRACE("box " + std::to_string(target.box.width) + "x" +
+                 std::to_string(target.box.height));
+    const bool spans = target.box.width >= 144 && target.box.height >= 108;
+    EXPECT_EQ(target.state, spans ? "released" : "tracked") << "frame " << f;
+    EXPECT_EQ(target.reason, spans ? "spans_image" : "") << "frame " << f;
+    released = spans;
+  }
+  ASSERT_TRUE(released) << "the target's box never spanned the image";
+  EXPECT_EQ(cv::countNonZero(stage.inhibition()), 0);
+  frame = Step(&stage, Draw({{grown(14), red}}, {}, 15));
   EXPECT_TRUE(frame.targets.empty());
 }
 

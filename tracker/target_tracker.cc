@@ -1,0 +1,240 @@
+#include "tracker/target_tracker.h"
+
+#include <algorithm>
+#include <map>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/tracking.hpp>
+#include <opencv2/video/tracking.hpp>
+
+#include "util/error.h"
+#include "util/timer.h"
+
+namespace attend {
+
+const char* TrackerKindName(TrackerKind kind) {
+  switch (kind) {
+    case TrackerKind::kBip:
+      return "bip";
+    case TrackerKind::kKcf:
+      return "kcf";
+    case TrackerKind::kCsrt:
+      return "csrt";
+  }
+  ATTEND_CHECK(false) << "unknown tracker kind";
+  return "";
+}
+
+const std::vector<std::string>& TrackerKindNames() {
+  static const std::vector<std::string> names = {TrackerKindName(TrackerKind::kBip),
+                                                 TrackerKindName(TrackerKind::kKcf),
+                                                 TrackerKindName(TrackerKind::kCsrt)};
+  return names;
+}
+
+bool TrackerKindFromName(const std::string& name, TrackerKind* kind) {
+  for (const TrackerKind k : {TrackerKind::kBip, TrackerKind::kKcf, TrackerKind::kCsrt}) {
+    if (name == TrackerKindName(k)) {
+      *kind = k;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string OpenCvTrackerOptions::Check() const {
+  if (lost_frames < 1) return "lost_frames must be >= 1";
+  if (!(kcf_detect_thresh >= 0.f && kcf_detect_thresh <= 1.f)) {
+    return "kcf_detect_thresh must be in [0, 1]";
+  }
+  return "";
+}
+
+std::string TargetTrackerOptions::Check() const {
+  return kind == TrackerKind::kBip ? bip.Check() : opencv.Check();
+}
+
+int TargetTracker::StartFromRegion(const cv::Mat& frame, const cv::Mat& labels, int region,
+                                   TrackSimilarity similarity, const cv::Mat& skin) {
+  ATTEND_CHECK(labels.type() == CV_32SC1 && labels.size() == frame.size())
+      << "labels must be CV_32SC1 of the frame's size";
+  const cv::Mat mask = labels == region;
+  if (cv::countNonZero(mask) == 0) return -1;
+  return StartFromMask(frame, mask, similarity, skin);
+}
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// bip: MultiTracker as it is.
+
+class BipTargetTracker final : public TargetTracker {
+ public:
+  explicit BipTargetTracker(const TrackerOptions& options) : tracker_(options) {}
+
+  int StartFromBox(const cv::Mat& frame, const cv::Rect& box, TrackSimilarity similarity,
+                   const cv::Mat& skin) override {
+    return tracker_.StartFromBox(frame, box, similarity, skin);
+  }
+  int StartFromMask(const cv::Mat& frame, const cv::Mat& mask, TrackSimilarity similarity,
+                    const cv::Mat& skin) override {
+    return tracker_.StartFromMask(frame, mask, similarity, skin);
+  }
+  int StartFromRegion(const cv::Mat& frame, const cv::Mat& labels, int region,
+                      TrackSimilarity similarity, const cv::Mat& skin) override {
+    return tracker_.StartFromRegion(frame, labels, region, similarity, skin);
+  }
+  void Track(const cv::Mat& frame, std::vector<TrackResult>* results,
+             const cv::Mat& skin) override {
+    tracker_.Track(frame, results, skin);
+  }
+  cv::Mat Mask(int id) const override { return tracker_.Mask(id); }
+  void Remove(int id) override { tracker_.Remove(id); }
+  std::vector<int> ids() const override { return tracker_.ids(); }
+  TrackerKind kind() const override { return TrackerKind::kBip; }
+  bool UsesSkin() const override { return true; }
+  double milliseconds() const override { return tracker_.milliseconds(); }
+  double segmentation_milliseconds() const override {
+    return tracker_.segmentation_milliseconds();
+  }
+
+ private:
+  MultiTracker tracker_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// kcf, csrt: one OpenCV tracker per target.
+
+class OpenCvTargetTracker final : public TargetTracker {
+ public:
+  OpenCvTargetTracker(TrackerKind kind, const OpenCvTrackerOptions& options)
+      : kind_(kind), options_(options) {}
+
+  int StartFromBox(const cv::Mat& frame, const cv::Rect& box, TrackSimilarity,
+                   const cv::Mat&) override {
+    const cv::Rect inside = box & cv::Rect(0, 0, frame.cols, frame.rows);
+    if (inside.empty()) return -1;
+    return Start(frame, inside, cv::Mat(inside.size(), CV_8UC1, cv::Scalar(255)));
+  }
+
+  int StartFromMask(const cv::Mat& frame, const cv::Mat& mask, TrackSimilarity,
+                    const cv::Mat&) override {
+    ATTEND_CHECK(mask.type() == CV_8UC1 && mask.size() == frame.size())
+        << "mask must be CV_8UC1 of the frame's size";
+    const cv::Rect box = cv::boundingRect(mask);
+    if (box.empty()) return -1;
+    cv::Mat shape = mask(box) != 0;
+    return Start(frame, box, shape);
+  }
+
+  void Track(const cv::Mat& frame, std::vector<TrackResult>* results, const cv::Mat&) override {
+    const Stopwatch stopwatch;
+    const cv::Rect image(0, 0, frame.cols, frame.rows);
+    std::vector<int> lost;
+    for (auto& [id, target] : targets_) {
+      cv::Rect box = target.box;
+      bool found = false;
+      try {
+        found = target.tracker->update(frame, box);
+      } catch (const cv::Exception&) {
+        found = false;  // OpenCV refuses a degenerate window: a failure like any other
+      }
+      box &= image;
+      found = found && !box.empty();
+      TrackResult result;
+      result.id = id;
+      if (found) {
+        target.box = box;
+        target.failures = 0;
+        target.mask = ShapeMask(target.shape, box, frame.size());
+        result.state = TrackState::kFound;
+        result.area = cv::countNonZero(target.mask);
+      } else {
+        target.mask.release();
+        ++target.failures;
+        result.state =
+            target.failures >= options_.lost_frames ? TrackState::kLost : TrackState::kOccluded;
+        if (result.state == TrackState::kLost) lost.push_back(id);
+      }
+      result.box = target.box;
+      result.roi = target.box;
+      result.centroid = cv::Point2f(target.box.x + 0.5f * target.box.width,
+                                    target.box.y + 0.5f * target.box.height);
+      results->push_back(result);
+    }
+    for (const int id : lost) targets_.erase(id);
+    milliseconds_ = stopwatch.ElapsedMs();
+  }
+
+  cv::Mat Mask(int id) const override {
+    const auto it = targets_.find(id);
+    return it == targets_.end() ? cv::Mat() : it->second.mask;
+  }
+  void Remove(int id) override { targets_.erase(id); }
+  std::vector<int> ids() const override {
+    std::vector<int> result;
+    for (const auto& [id, target] : targets_) result.push_back(id);
+    return result;
+  }
+  TrackerKind kind() const override { return kind_; }
+  double milliseconds() const override { return milliseconds_; }
+
+ private:
+  struct Target {
+    cv::Ptr<cv::Tracker> tracker;
+    cv::Rect box;      // the last box found
+    cv::Mat shape;     // CV_8UC1 of the start box's size: the target's start shape
+    cv::Mat mask;      // frame size; empty when not found in the last frame
+    int failures = 0;  // failed updates in a row
+  };
+
+  cv::Ptr<cv::Tracker> MakeTracker() const {
+    if (kind_ == TrackerKind::kKcf) {
+      cv::TrackerKCF::Params params;
+      params.detect_thresh = options_.kcf_detect_thresh;
+      return cv::TrackerKCF::create(params);
+    }
+    return cv::TrackerCSRT::create();
+  }
+
+  // The start shape resized to `box` and placed there, in a mask of `size`.
+  static cv::Mat ShapeMask(const cv::Mat& shape, const cv::Rect& box, const cv::Size& size) {
+    cv::Mat mask(size, CV_8UC1, cv::Scalar(0));
+    cv::Mat inside = mask(box);
+    cv::resize(shape, inside, box.size(), 0, 0, cv::INTER_NEAREST);
+    return mask;
+  }
+
+  int Start(const cv::Mat& frame, const cv::Rect& box, const cv::Mat& shape) {
+    ATTEND_CHECK(frame.type() == CV_8UC3) << "frames must be 8-bit BGR";
+    Target target;
+    target.tracker = MakeTracker();
+    try {
+      target.tracker->init(frame, box);
+    } catch (const cv::Exception&) {
+      return -1;  // a box too small for the tracker's features
+    }
+    target.box = box;
+    target.shape = shape;
+    target.mask = ShapeMask(shape, box, frame.size());
+    const int id = next_id_++;
+    targets_.emplace(id, std::move(target));
+    return id;
+  }
+
+  TrackerKind kind_;
+  OpenCvTrackerOptions options_;
+  std::map<int, Target> targets_;
+  int next_id_ = 1;
+  double milliseconds_ = 0.0;
+};
+
+}  // namespace
+
+std::unique_ptr<TargetTracker> TargetTracker::Create(const TargetTrackerOptions& options) {
+  const std::string error = options.Check();
+  if (!error.empty()) throw ConfigError("tracker." + error);
+  if (options.kind == TrackerKind::kBip) return std::make_unique<BipTargetTracker>(options.bip);
+  return std::make_unique<OpenCvTargetTracker>(options.kind, options.opencv);
+}
+
+}  // namespace attend
