@@ -2,6 +2,7 @@
 
 #include "features/contrast.h"
 #include "features/disparity_feature.h"
+#include "features/motion.h"
 #include "features/skin.h"
 
 namespace attend {
@@ -19,6 +20,10 @@ FeatureRegistry BuiltinFeatures() {
                "stereo disparity, nearer is more salient: box-filtered ZNCC and Sun's two-stage "
                "dynamic programming (thesis 5.1.1)",
                &CreateDisparityFeature);
+  registry.Add("motion",
+               "luminance change against the previous frames, less global brightness change "
+               "and sensor noise (not in the thesis; issue 13)",
+               &CreateMotionFeature);
   return registry;
 }
 

@@ -2,6 +2,8 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <cstdio>
+#include <opencv2/imgproc.hpp>
 
 namespace attend {
 
@@ -50,6 +52,128 @@ void SkinMap(const cv::Mat& tsl, const SkinModel& model, SkinOutput output, cv::
       }
     }
   }
+}
+
+void SkinDistanceMap(const cv::Mat& tsl, const SkinModel& model, cv::Mat* out) {
+  CV_Assert(tsl.type() == CV_32FC3);
+  out->create(tsl.size(), CV_32FC1);
+  // The same arithmetic as SkinMap, so that d^2 < T_s here is exactly SkinMap's skin.
+  const Eigen::Matrix2d inverse = model.covariance.inverse();
+  const float a = static_cast<float>(inverse(0, 0));
+  const float b2 = static_cast<float>(inverse(0, 1) + inverse(1, 0));
+  const float c = static_cast<float>(inverse(1, 1));
+  const float mean_t = static_cast<float>(model.mean.x());
+  const float mean_s = static_cast<float>(model.mean.y());
+  for (int y = 0; y < tsl.rows; ++y) {
+    const float* pixel = tsl.ptr<float>(y);
+    float* value = out->ptr<float>(y);
+    for (int x = 0; x < tsl.cols; ++x) {
+      const float dt = pixel[3 * x] - mean_t;
+      const float ds = pixel[3 * x + 1] - mean_s;
+      value[x] = a * dt * dt + b2 * dt * ds + c * ds * ds;
+    }
+  }
+}
+
+std::string SkinRegionOptions::Check() const {
+  if (!(confident > 0.0 && confident <= 1.0)) return "confident: must be in (0, 1]";
+  if (!(min_confident_share >= 0.0 && min_confident_share <= 1.0))
+    return "min_confident_share: must be in [0, 1]";
+  if (!(max_mean_distance >= 0.0 && max_mean_distance <= 1.0))
+    return "max_mean_distance: must be in [0, 1]";
+  if (!(min_solidity >= 0.0 && min_solidity <= 1.0)) return "min_solidity: must be in [0, 1]";
+  if (!(max_aspect_ratio >= 1.0)) return "max_aspect_ratio: must be >= 1";
+  if (!(max_area_fraction > 0.0 && max_area_fraction <= 1.0))
+    return "max_area_fraction: must be in (0, 1]";
+  if (min_area < 1) return "min_area: must be >= 1";
+  return "";
+}
+
+std::string SkinRegionVerdict::Describe() const {
+  char line[256];
+  std::snprintf(line, sizeof(line),
+                "%s: area %d (%.4f of the image), confident %.3f, mean distance %.3f, "
+                "solidity %.3f, aspect %.2f%s%s",
+                skin ? "skin" : "not skin", area, area_fraction, confident_share, mean_distance,
+                solidity, aspect_ratio, failed.empty() ? "" : "; failed ", failed.c_str());
+  return line;
+}
+
+SkinRegionVerdict JudgeSkinRegion(const cv::Mat& mask, const cv::Mat& distances,
+                                  double threshold, const SkinRegionOptions& options) {
+  CV_Assert(mask.type() == CV_8UC1 && distances.type() == CV_32FC1 &&
+            mask.size() == distances.size() && threshold > 0.0);
+  CV_Assert(options.Check().empty());
+  SkinRegionVerdict verdict;
+  const float confident_bound = static_cast<float>(options.confident * threshold);
+  const double inverse_threshold = 1.0 / threshold;
+  int64_t area = 0, confident = 0;
+  double distance_sum = 0.0;
+  cv::Rect box;  // of the region, to bound the shape measurements
+  int min_x = mask.cols, min_y = mask.rows, max_x = -1, max_y = -1;
+  for (int y = 0; y < mask.rows; ++y) {
+    const uchar* inside = mask.ptr<uchar>(y);
+    const float* d2 = distances.ptr<float>(y);
+    for (int x = 0; x < mask.cols; ++x) {
+      if (!inside[x]) continue;
+      ++area;
+      if (d2[x] < confident_bound) ++confident;
+      distance_sum += std::min(1.0, std::sqrt(std::max(0.f, d2[x]) * inverse_threshold));
+      min_x = std::min(min_x, x), max_x = std::max(max_x, x);
+      min_y = std::min(min_y, y), max_y = std::max(max_y, y);
+    }
+  }
+  verdict.area = static_cast<int>(area);
+  verdict.area_fraction = static_cast<double>(area) / mask.total();
+  if (area == 0) {
+    verdict.failed = "min_area";
+    return verdict;
+  }
+  box = cv::Rect(min_x, min_y, max_x - min_x + 1, max_y - min_y + 1);
+  verdict.confident_share = static_cast<double>(confident) / area;
+  verdict.mean_distance = distance_sum / area;
+
+  // Shape, from the region's outer contours (all pieces together: a hand cut in two by a
+  // shadow is judged as one). Holes count as region for the hull, not for the area.
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(mask(box).clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+  std::vector<cv::Point> points;
+  for (const auto& contour : contours) points.insert(points.end(), contour.begin(), contour.end());
+  std::vector<cv::Point> hull;
+  cv::convexHull(points, hull);
+  // The hull of pixel centres misses half a pixel all round; count the hull's own pixels.
+  cv::Mat hull_mask = cv::Mat::zeros(box.size(), CV_8UC1);
+  cv::fillConvexPoly(hull_mask, hull, cv::Scalar(255));
+  const int hull_area = std::max(1, cv::countNonZero(hull_mask | (mask(box) != 0)));
+  verdict.solidity = static_cast<double>(area) / hull_area;
+  const cv::RotatedRect rectangle = cv::minAreaRect(points);
+  const double long_side = std::max(rectangle.size.width, rectangle.size.height) + 1.0;
+  const double short_side = std::min(rectangle.size.width, rectangle.size.height) + 1.0;
+  verdict.aspect_ratio = long_side / short_side;
+
+  // The tests, cheapest reason first in the order a reader checks them.
+  if (area < options.min_area) {
+    verdict.failed = "min_area";
+  } else if (verdict.area_fraction > options.max_area_fraction) {
+    verdict.failed = "max_area_fraction";
+  } else if (verdict.confident_share < options.min_confident_share) {
+    verdict.failed = "min_confident_share";
+  } else if (verdict.mean_distance > options.max_mean_distance) {
+    verdict.failed = "max_mean_distance";
+  } else if (verdict.solidity < options.min_solidity) {
+    verdict.failed = "min_solidity";
+  } else if (verdict.aspect_ratio > options.max_aspect_ratio) {
+    verdict.failed = "max_aspect_ratio";
+  }
+  verdict.skin = verdict.failed.empty();
+  return verdict;
+}
+
+SkinRegionVerdict JudgeSkinRegionTsl(const cv::Mat& mask, const cv::Mat& tsl,
+                                     const SkinModel& model, const SkinRegionOptions& options) {
+  cv::Mat distances;
+  SkinDistanceMap(tsl, model, &distances);
+  return JudgeSkinRegion(mask, distances, model.threshold, options);
 }
 
 void AverageOverRegions(const Segmentation& segmentation, cv::Mat* map) {

@@ -1,0 +1,161 @@
+#include "features/motion.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "features/skin.h"
+
+namespace attend {
+
+namespace {
+
+// The median of `values` (reordered).
+float Median(std::vector<float>* values) {
+  CV_Assert(!values->empty());
+  auto middle = values->begin() + values->size() / 2;
+  std::nth_element(values->begin(), middle, values->end());
+  return *middle;
+}
+
+// Every `stride`-th pixel of every `stride`-th row: the statistics of a frame from a regular
+// sample, so that they do not depend on anything but the image.
+void Sample(const cv::Mat& image, int stride, std::vector<float>* out) {
+  out->clear();
+  for (int y = stride / 2; y < image.rows; y += stride) {
+    const float* row = image.ptr<float>(y);
+    for (int x = stride / 2; x < image.cols; x += stride) out->push_back(row[x]);
+  }
+  if (out->empty()) out->push_back(image.at<float>(0, 0));
+}
+
+class MotionFeature final : public FeatureMap {
+ public:
+  explicit MotionFeature(const MotionOptions& options)
+      : detector_(options), per_region_(options.per_region) {}
+  void Compute(const FrameContext& context, cv::Mat* out) override {
+    detector_.Compute(context.frame_index(), context.left(),
+                      per_region_ ? &context.Regions() : nullptr, out);
+  }
+
+ private:
+  MotionDetector detector_;
+  bool per_region_;
+};
+
+}  // namespace
+
+std::string MotionOptions::Check() const {
+  if (!(blur >= 0.0 && blur <= 50.0)) return "blur: must be in [0, 50]";
+  if (!(rate > 0.0 && rate <= 1.0)) return "rate: must be in (0, 1]";
+  if (!(min_change >= 0.0 && min_change <= 255.0)) return "min_change: must be in [0, 255]";
+  if (!(noise_factor >= 0.0 && noise_factor <= 100.0)) return "noise_factor: must be in [0, 100]";
+  if (window < 1 || window > 201 || window % 2 == 0) return "window: must be odd, 1..201";
+  return "";
+}
+
+MotionDetector::MotionDetector(const MotionOptions& options) : options_(options) {
+  const std::string error = options_.Check();
+  CV_Assert(error.empty());
+}
+
+void MotionDetector::Compute(int frame_index, const cv::Mat& bgr,
+                             const Segmentation* segmentation, cv::Mat* out) {
+  CV_Assert(bgr.type() == CV_8UC3 && !bgr.empty());
+  CV_Assert(!options_.per_region || segmentation != nullptr);
+  cv::cvtColor(bgr, grey_, cv::COLOR_BGR2GRAY);
+  grey_.convertTo(luminance_, CV_32F);
+  if (options_.blur > 0.0) {
+    cv::GaussianBlur(luminance_, luminance_, cv::Size(), options_.blur, options_.blur,
+                     cv::BORDER_REPLICATE);
+  }
+  const bool restart = frame_index <= previous_index_ || background_.size() != luminance_.size();
+  previous_index_ = frame_index;
+  if (restart) {
+    luminance_.copyTo(background_);
+    out->create(bgr.size(), CV_32FC1);
+    out->setTo(0.f);
+    last_noise_ = 0.0;
+    last_gain_ = 1.0;
+    last_offset_ = 0.0;
+    return;
+  }
+
+  // The frame-wide part of the change, L = g B + o (the light, the camera's exposure), fitted
+  // by least squares on a regular sample of pixels, then again on the pixels the first fit
+  // explains (most of a frame does not move; what moves would bias the fit).
+  constexpr int kStride = 3;
+  Sample(background_, kStride, &background_sample_);
+  Sample(luminance_, kStride, &luminance_sample_);
+  std::vector<uint8_t> inlier(background_sample_.size(), 1);
+  double gain = 1.0, offset = 0.0, noise = 0.0;
+  for (int pass = 0; pass < 2; ++pass) {
+    double n = 0, sb = 0, sl = 0, sbb = 0, sbl = 0;
+    for (size_t i = 0; i < inlier.size(); ++i) {
+      if (!inlier[i]) continue;
+      const double b = background_sample_[i], l = luminance_sample_[i];
+      n += 1, sb += b, sl += l, sbb += b * b, sbl += b * l;
+    }
+    if (n >= 2) {
+      const double variance = sbb - sb * sb / n;
+      gain = variance > 1e-6 * n ? (sbl - sb * sl / n) / variance : 1.0;
+      offset = (sl - gain * sb) / n;
+    }
+    // The residual's median (left-over offset) and robust spread (the sensor noise).
+    sample_.resize(inlier.size());
+    for (size_t i = 0; i < inlier.size(); ++i) {
+      sample_[i] = static_cast<float>(luminance_sample_[i] - gain * background_sample_[i] - offset);
+    }
+    std::vector<float> residuals = sample_;
+    const float median = Median(&sample_);
+    offset += median;
+    for (float& v : residuals) v -= median;
+    sample_ = residuals;
+    for (float& v : sample_) v = std::abs(v);
+    noise = 1.4826 * Median(&sample_);
+    const double bound = std::max(options_.min_change, options_.noise_factor * noise);
+    for (size_t i = 0; i < inlier.size(); ++i) inlier[i] = std::abs(residuals[i]) <= bound;
+  }
+  last_gain_ = gain;
+  last_offset_ = offset;
+  last_noise_ = noise;
+  const double floor = std::max(options_.min_change, options_.noise_factor * noise);
+  // r = L - g B - o
+  cv::scaleAdd(background_, -gain, luminance_, residual_);
+  residual_ -= offset;
+  scratch_ = cv::abs(residual_);
+  scratch_ -= floor;
+  cv::max(scratch_, 0.0, scratch_);
+  if (options_.per_region) {
+    scratch_.copyTo(*out);
+    AverageOverRegions(*segmentation, out);
+  } else if (options_.window > 1) {
+    cv::boxFilter(scratch_, *out, CV_32F, cv::Size(options_.window, options_.window),
+                  cv::Point(-1, -1), true, cv::BORDER_REPLICATE);
+  } else {
+    scratch_.copyTo(*out);
+  }
+
+  // The background follows the frame (eq. above; rate 1 keeps just the previous frame).
+  if (options_.rate >= 1.0) {
+    luminance_.copyTo(background_);
+  } else {
+    cv::addWeighted(background_, 1.0 - options_.rate, luminance_, options_.rate, 0.0,
+                    background_);
+  }
+}
+
+std::unique_ptr<FeatureMap> CreateMotionFeature(const ParamBlock& params, const FeatureSetup&) {
+  MotionOptions options;
+  options.blur = params.GetDouble("blur", options.blur, Range::Closed(0, 50));
+  options.rate = params.GetDouble("rate", options.rate, Range{0.0, 1.0, true, false});
+  options.min_change = params.GetDouble("min_change", options.min_change, Range::Closed(0, 255));
+  options.noise_factor =
+      params.GetDouble("noise_factor", options.noise_factor, Range::Closed(0, 100));
+  options.window = params.GetInt("window", options.window, Range::Closed(1, 201));
+  if (options.window % 2 == 0) params.Fail("window", "must be odd");
+  options.per_region = params.GetBool("per_region", options.per_region);
+  return std::make_unique<MotionFeature>(options);
+}
+
+}  // namespace attend
