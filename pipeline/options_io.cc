@@ -63,6 +63,18 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("saliency_t_max", &o->attention.select.saliency_t_max, Range::Closed(0.001, 1000));
   v.Field("skin_fraction", &o->attention.skin_fraction, Range::Closed(0, 1));
   v.Field("skin_model", &o->attention.skin_model);
+  v.Field("skin_check", &o->attention.skin_check);
+  v.Field("skin_confident", &o->attention.skin_region.confident, Range::Closed(0.001, 1));
+  v.Field("skin_min_confident_share", &o->attention.skin_region.min_confident_share,
+          Range::Closed(0, 1));
+  v.Field("skin_max_mean_distance", &o->attention.skin_region.max_mean_distance,
+          Range::Closed(0, 1));
+  v.Field("skin_min_solidity", &o->attention.skin_region.min_solidity, Range::Closed(0, 1));
+  v.Field("skin_max_aspect_ratio", &o->attention.skin_region.max_aspect_ratio,
+          Range::Closed(1, 1000));
+  v.Field("skin_max_area_fraction", &o->attention.skin_region.max_area_fraction,
+          Range::Closed(0, 1));
+  v.Field("skin_min_area", &o->attention.skin_region.min_area, Range::Closed(1, 1e8));
   v.EndSection([o] { return o->attention.Check(); });
 
   v.BeginSection("drop");

@@ -34,6 +34,8 @@ std::string AttentionOptions::Check() const {
   if (drop.frames < 1) return "drop.frames must be >= 1";
   if (inhibition.margin < 0) return "inhibition.margin must be >= 0";
   if (!(skin_fraction >= 0.f && skin_fraction <= 1.f)) return "skin_fraction must be in [0, 1]";
+  const std::string skin_error = skin_region.Check();
+  if (!skin_error.empty()) return "select.skin_region: " + skin_error;
   const std::string tracker_error = tracker.Check();
   if (!tracker_error.empty()) return "tracker." + tracker_error;
   return "";
@@ -50,9 +52,8 @@ AttentionStage::~AttentionStage() = default;
 
 void AttentionStage::Track(const cv::Mat& bgr, const cv::Mat& tsl) {
   const Stopwatch stopwatch;
-  cv::Mat skin_map;
-  SkinMap(tsl, skin_model_, SkinOutput::kBinary, &skin_map);
-  skin_map.convertTo(skin_, CV_8U, 255.0);
+  SkinDistanceMap(tsl, skin_model_, &skin_distance_);
+  skin_ = skin_distance_ < skin_model_.threshold;
   results_.clear();
   tracker_->Track(bgr, &results_, skin_);
   track_ms_ = stopwatch.ElapsedMs();
@@ -215,7 +216,13 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         const cv::Mat mask = colour == best;
         const double skin_share =
             static_cast<double>(cv::countNonZero(skin_ & mask)) / segmentation.regions[best].area;
-        const bool skin = skin_share >= options_.skin_fraction;
+        // A mostly-skin region is a skin target only when it is confident, skin-shaped skin
+        // (features/skin.h, JudgeSkinRegion), unless skin_check is off (the thesis's rule).
+        const bool skin =
+            skin_share >= options_.skin_fraction &&
+            (!options_.skin_check ||
+             JudgeSkinRegion(mask, skin_distance_, skin_model_.threshold, options_.skin_region)
+                 .skin);
         const int id = tracker_->StartFromRegion(
             bgr, colour, best, skin ? TrackSimilarity::kSkin : TrackSimilarity::kColour, skin_);
         if (id < 0) continue;

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "features/skin.h"
 #include "features/skin_model.h"
 #include "pyramid/segmentation.h"
 #include "tracker/target_tracker.h"
@@ -67,6 +68,10 @@ struct AttentionOptions {
   // skin model in `skin_model` (a file as made by attend skin-train).
   float skin_fraction = 0.5f;
   std::string skin_model = "configs/skin_tsl.yaml";
+  // Whether a mostly-skin region must also be confident, skin-shaped skin to start a skin
+  // target (false: the thesis's rule, the share alone), and the bounds of that test.
+  bool skin_check = true;
+  SkinRegionOptions skin_region;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
 };
@@ -123,6 +128,7 @@ class AttentionStage {
   std::vector<Active> active_;
   std::vector<TrackResult> results_;
   cv::Mat skin_, inhibition_, inhibited_;
+  cv::Mat skin_distance_;  // squared distance to the skin model per pixel (SkinDistanceMap)
   cv::Mat covered_;  // pixels of the active targets (masks, or boxes while occluded)
   BipBuilder saliency_builder_;
   int attended_ = 0;
