@@ -72,10 +72,11 @@ std::string FrameRecordToJson(const FrameRecord& record) {
   }
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
   for (const auto& [stage, ms] : record.timings.stages()) timings[stage] = ms;
-  const nlohmann::ordered_json line = {{"frame", record.frame},
-                                       {"targets", targets},
-                                       {"new", record.new_ids},
-                                       {"timings_ms", timings}};
+  nlohmann::ordered_json line = {{"frame", record.frame},
+                                 {"targets", targets},
+                                 {"new", record.new_ids}};
+  if (record.inhibited_fraction >= 0.0) line["inhibited_fraction"] = record.inhibited_fraction;
+  line["timings_ms"] = timings;
   return line.dump();
 }
 

@@ -29,6 +29,8 @@ struct FrameRecord {
   int frame = 0;  // index of the frame in its sequence
   std::vector<TargetRecord> targets;
   std::vector<int> new_ids;  // targets first attended in this frame
+  // Share of the image inhibited in this frame (the inhibition map's mean), 0..1; -1 unknown.
+  double inhibited_fraction = -1.0;
   StageTimes timings;
 };
 

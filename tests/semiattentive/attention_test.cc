@@ -333,5 +333,36 @@ TEST(Attention, ASkinObjectIsTrackedWithTheSkinSimilarity) {
   for (const AttendedTarget& target : frame.targets) EXPECT_EQ(target.state, "tracked");
 }
 
+
+// A skin-coloured strip 6 times as long as it is high (a wall's edge, a plank), salient: by
+// colour it is skin, by shape it is not a face or a hand. With select.skin_check (the default)
+// it starts a colour target; with the thesis's rule, the share alone, a skin target.
+TEST(Attention, ASkinColouredStripIsNotASkinTargetUnderTheSkinCheck) {
+  const cv::Rect strip(20, 50, 120, 20);
+  const cv::Scalar skin(140, 172, 224);
+  for (const bool check : {true, false}) {
+    AttentionOptions options;
+    options.skin_check = check;
+    AttentionStage stage(options, ShippedSkinModel());
+    const AttentionFrame frame = Step(&stage, Draw({{strip, skin}}, {strip}, 0));
+    ASSERT_EQ(frame.targets.size(), 1u) << "check " << check;
+    EXPECT_EQ(frame.targets[0].skin, !check) << "check " << check;
+  }
+}
+
+TEST(Attention, TheRecordsGiveTheInhibitedShareOfTheImage) {
+  const std::string scene = std::string(kHeader) + R"(
+  - {id: 1, shape: rectangle, size: [0.4, 0.3], colour: [210, 40, 40], path: [{frame: 0, x: 70, y: 70, depth: 3}]}
+)";
+  const SceneRun run = RunScene(scene, 4);
+  ASSERT_EQ(run.records.size(), 4u);
+  EXPECT_GE(run.records[0].inhibited_fraction, 0.0);
+  // From frame 1 on the red box is tracked and inhibits about its own area and margin.
+  for (size_t f = 1; f < run.records.size(); ++f) {
+    EXPECT_GT(run.records[f].inhibited_fraction, 0.01) << "frame " << f;
+    EXPECT_LT(run.records[f].inhibited_fraction, 0.5) << "frame " << f;
+  }
+}
+
 }  // namespace
 }  // namespace attend
