@@ -60,6 +60,8 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("max_new", &o->attention.select.max_new, Range::Closed(1, 1000));
   v.Field("max_targets", &o->attention.select.max_targets, Range::Closed(1, 1000));
   v.Field("max_area_fraction", &o->attention.select.max_area_fraction, Range::Closed(0.001, 1));
+  v.Field("max_inhibited_fraction", &o->attention.select.max_inhibited_fraction,
+          Range::Closed(0.001, 1));
   v.Field("saliency_t_max", &o->attention.select.saliency_t_max, Range::Closed(0.001, 1000));
   v.Field("skin_fraction", &o->attention.skin_fraction, Range::Closed(0, 1));
   v.Field("skin_model", &o->attention.skin_model);

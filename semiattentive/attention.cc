@@ -28,6 +28,9 @@ std::string AttentionOptions::Check() const {
     return "select.max_area_fraction must be in (0, 1]";
   }
   if (!(select.saliency_t_max > 0.f)) return "select.saliency_t_max must be > 0";
+  if (!(select.max_inhibited_fraction > 0.f && select.max_inhibited_fraction <= 1.f)) {
+    return "select.max_inhibited_fraction must be in (0, 1]";
+  }
   if (!(drop.min_saliency >= 0.f && drop.min_saliency <= 1.f)) {
     return "drop.min_saliency must be in [0, 1]";
   }
@@ -204,6 +207,11 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         }
       }
       const double max_area = options_.select.max_area_fraction * bgr.total();
+      // New targets are started only while the inhibition stays within
+      // select.max_inhibited_fraction of the image: attention that covers everything attends
+      // nothing (each new region counts with its own area).
+      double inhibited_area = cv::countNonZero(inhibition_);
+      const double max_inhibited = options_.select.max_inhibited_fraction * bgr.total();
       int started = 0;
       for (size_t k = 0; k < ranked.size(); ++k) {
         if (started >= std::min(options_.select.max_new, free_slots)) break;
@@ -212,6 +220,8 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
           if (pixels > best_count) best = region, best_count = pixels;
         }
         if (best < 0 || taken[best] || segmentation.regions[best].area > max_area) continue;
+        if (inhibited_area + segmentation.regions[best].area > max_inhibited) continue;
+        inhibited_area += segmentation.regions[best].area;
         taken[best] = 1;
         const cv::Mat mask = colour == best;
         const double skin_share =

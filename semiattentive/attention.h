@@ -45,6 +45,9 @@ struct SelectOptions {
   int max_targets = 12;        // targets active at once
   // A colour region larger than this share of the image is background, never a target.
   float max_area_fraction = 0.2f;
+  // No new target starts while the inhibition (with the new region) would cover more than
+  // this share of the image; 1: no bound (the thesis's).
+  float max_inhibited_fraction = 0.35f;
   // T_max of the BIP that segments the saliency map, in saliency units times 255.
   float saliency_t_max = 40.f;
 };

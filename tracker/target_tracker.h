@@ -58,7 +58,10 @@ struct OpenCvTrackerOptions {
 
 struct TargetTrackerOptions {
   TrackerKind kind = TrackerKind::kBip;
-  TrackerOptions bip;           // used by kind bip only
+  // Used by kind bip only. The configuration's default is the bounded mode, which measures
+  // best on real footage (docs/TRACKING.md, "Modes"); TrackerOptions alone defaults to the
+  // thesis's tracker.
+  TrackerOptions bip = BoundedTrackerOptions();
   OpenCvTrackerOptions opencv;  // used by kinds kcf and csrt only
   // "" when valid; otherwise names the field ("mode", "t_colour", "lost_frames", ...) and the
   // broken constraint. Checks only the options of `kind`.

@@ -68,6 +68,13 @@ struct TrackerOptions {
   std::string Check() const;
 };
 
+// TrackerOptions with mode = kBounded, the other fields at their defaults.
+inline TrackerOptions BoundedTrackerOptions() {
+  TrackerOptions options;
+  options.mode = TrackerMode::kBounded;
+  return options;
+}
+
 enum class TrackState { kFound, kOccluded, kLost };
 // "found", "occluded", "lost" (the state column of tracks.csv, SPEC 3.2).
 const char* TrackStateName(TrackState state);

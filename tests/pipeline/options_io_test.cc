@@ -142,8 +142,8 @@ TEST(OptionsIo, AnOptionOfAnotherTrackerKindIsAnErrorUnlessAtItsDefault) {
             std::string::npos)
       << message;
   message = ConfigErrorOf(
-      [&] { LoadOptions(DefaultConfig(), {"tracker.kind=csrt", "tracker.mode=bounded"}); });
-  EXPECT_NE(message.find("--set tracker.mode=bounded: tracker.mode: is used only by tracker.kind "
+      [&] { LoadOptions(DefaultConfig(), {"tracker.kind=csrt", "tracker.mode=thesis"}); });
+  EXPECT_NE(message.find("--set tracker.mode=thesis: tracker.mode: is used only by tracker.kind "
                          "bip"),
             std::string::npos)
       << message;

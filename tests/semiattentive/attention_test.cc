@@ -237,6 +237,8 @@ TEST(Attention, ATargetWhoseSaliencyDropsIsReleased) {
 TEST(Attention, ATargetWhoseMaskGrowsPastTheAreaFractionIsReleased) {
   AttentionOptions options;
   options.select.max_area_fraction = 0.2f;  // of 160 x 120: 3840 px
+  // The thesis's tracker follows the fast growth; the bounded mode grows 5 % a side a frame.
+  options.tracker.bip.mode = TrackerMode::kThesis;
   AttentionStage stage(options, ShippedSkinModel());
   const cv::Scalar red(40, 40, 210);
   auto grown = [](int f) { return cv::Rect(40, 30, 40 + 10 * f, 30 + 8 * f); };
@@ -270,6 +272,8 @@ TEST(Attention, ATargetWhoseBoxSpansTheImageIsReleased) {
   AttentionOptions options;
   options.select.max_area_fraction = 1.f;
   options.drop.frames = 100;  // salient only where it starts: no other target, no drop
+  options.select.max_inhibited_fraction = 1.f;
+  options.tracker.bip.mode = TrackerMode::kThesis;  // follows the fast growth
   AttentionStage stage(options, ShippedSkinModel());
   const cv::Scalar red(40, 40, 210);
   // 40 x 30 px to 152 x 114 px over frames 0..14, 8 x 6 px a frame (the image is 160 x 120:
