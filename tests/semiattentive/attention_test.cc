@@ -368,5 +368,25 @@ TEST(Attention, TheRecordsGiveTheInhibitedShareOfTheImage) {
   }
 }
 
+
+// Two salient boxes of 720 px each in a 160 x 120 image (3.75 % each): with
+// select.max_inhibited_fraction at 6 % (1152 px) only the first starts, as the second would
+// bring the inhibition (the first's 1080 px with its margin, and 720) past it; at 1 (no bound)
+// both start.
+TEST(Attention, NoNewTargetStartsPastTheInhibitedFraction) {
+  const cv::Rect a(20, 30, 30, 24), b(100, 60, 30, 24);
+  const cv::Scalar red(40, 40, 210), green(60, 180, 50);
+  for (const float bound : {0.06f, 1.f}) {
+    AttentionOptions options;
+    options.select.max_inhibited_fraction = bound;
+    AttentionStage stage(options, ShippedSkinModel());
+    Step(&stage, Draw({{a, red}, {b, green}}, {a, b}, 0));
+    const AttentionFrame frame = Step(&stage, Draw({{a, red}, {b, green}}, {a, b}, 1));
+    EXPECT_EQ(stage.targets_attended(), bound < 1.f ? 1 : 2) << "bound " << bound;
+    EXPECT_LE(cv::countNonZero(stage.inhibition()), bound * 160 * 120) << "bound " << bound;
+    EXPECT_FALSE(frame.targets.empty());
+  }
+}
+
 }  // namespace
 }  // namespace attend
