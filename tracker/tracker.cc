@@ -304,6 +304,9 @@ struct MultiTracker::Impl {
     // Bounded mode: per colour bin, the share of the target's pixels among the target's and
     // its surroundings' (each normalised by its count); empty: every weight counts wholly.
     std::vector<float> distinct;
+    // Bounded mode: the box before rounding, so that a size that follows its evidence by a
+    // small share a frame can grow (a rounded box would round each small step back).
+    cv::Rect2d smooth;
   };
 
   TrackerOptions options;
@@ -715,8 +718,11 @@ struct MultiTracker::Impl {
   // that evidence by a share `size_rate` a frame, so that one frame whose segmentation takes
   // too little or too much does not make the box jump.
   cv::Rect SmoothBox(const Target& target, cv::Point shift, cv::Rect mask_box,
-                     const cv::Rect& plausible, const cv::Rect& image) const {
+                     const cv::Rect& plausible, const cv::Rect& image, cv::Rect2d* smooth) const {
     const cv::Rect moved = target.box + shift;
+    // The unrounded box moved as the rounded one: only its size and sub-pixel offset carry.
+    const cv::Rect2d last = target.smooth.area() > 0 ? target.smooth : cv::Rect2d(target.box);
+    const cv::Rect2d moved_smooth(last.x + shift.x, last.y + shift.y, last.width, last.height);
     int x0 = mask_box.x, y0 = mask_box.y;
     int x1 = mask_box.x + mask_box.width, y1 = mask_box.y + mask_box.height;
     if (x0 <= plausible.x && plausible.x > 0) x0 = std::max(x0, moved.x);
@@ -729,10 +735,12 @@ struct MultiTracker::Impl {
     }
     if (x1 <= x0 || y1 <= y0) return moved & image;
     const double rate = options.size_rate;
-    const double w = (1 - rate) * moved.width + rate * (x1 - x0);
-    const double hgt = (1 - rate) * moved.height + rate * (y1 - y0);
-    const double cx = (1 - rate) * (moved.x + moved.width / 2.0) + rate * (x0 + x1) / 2.0;
-    const double cy = (1 - rate) * (moved.y + moved.height / 2.0) + rate * (y0 + y1) / 2.0;
+    const double w = (1 - rate) * moved_smooth.width + rate * (x1 - x0);
+    const double hgt = (1 - rate) * moved_smooth.height + rate * (y1 - y0);
+    const double cx = (1 - rate) * (moved_smooth.x + moved_smooth.width / 2.0) + rate * (x0 + x1) / 2.0;
+    const double cy =
+        (1 - rate) * (moved_smooth.y + moved_smooth.height / 2.0) + rate * (y0 + y1) / 2.0;
+    *smooth = cv::Rect2d(cx - w / 2, cy - hgt / 2, std::max(1.0, w), std::max(1.0, hgt));
     cv::Rect box(static_cast<int>(std::lround(cx - w / 2)),
                  static_cast<int>(std::lround(cy - hgt / 2)),
                  std::max(1, static_cast<int>(std::lround(w))),
@@ -838,7 +846,9 @@ struct MultiTracker::Impl {
             PaintTarget(h, in_target, plausible, frame.size(), &target.mask);
             const cv::Rect mask_box = cv::boundingRect(target.mask(plausible)) + plausible.tl();
             if (!mask_box.empty()) {
-              keep = SmoothBox(target, shift, mask_box, plausible, image);
+              cv::Rect2d smooth;
+              keep = SmoothBox(target, shift, mask_box, plausible, image, &smooth);
+              target.smooth = smooth;
               target.box = keep;
             }
           } else {
