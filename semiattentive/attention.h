@@ -47,7 +47,7 @@ struct SelectOptions {
   float max_area_fraction = 0.2f;
   // No new target starts while the inhibition (with the new region) would cover more than
   // this share of the image; 1: no bound (the thesis's).
-  float max_inhibited_fraction = 0.35f;
+  float max_inhibited_fraction = 0.3f;
   // T_max of the BIP that segments the saliency map, in saliency units times 255.
   float saliency_t_max = 40.f;
 };
