@@ -27,24 +27,14 @@ class SkinFeature : public FeatureMap {
 }  // namespace
 
 void SkinMap(const cv::Mat& tsl, const SkinModel& model, SkinOutput output, cv::Mat* out) {
-  CV_Assert(tsl.type() == CV_32FC3);
-  out->create(tsl.size(), CV_32FC1);
-  // d^2 = a dt^2 + 2 b dt ds + c ds^2 with [a b; b c] the inverse covariance.
-  const Eigen::Matrix2d inverse = model.covariance.inverse();
-  const float a = static_cast<float>(inverse(0, 0));
-  const float b2 = static_cast<float>(inverse(0, 1) + inverse(1, 0));
-  const float c = static_cast<float>(inverse(1, 1));
-  const float mean_t = static_cast<float>(model.mean.x());
-  const float mean_s = static_cast<float>(model.mean.y());
+  // d^2 per pixel (SkinDistanceMap), then the binary or soft map of it, in place.
+  SkinDistanceMap(tsl, model, out);
   const float threshold = static_cast<float>(model.threshold);
   const float inverse_threshold = 1.f / threshold;
-  for (int y = 0; y < tsl.rows; ++y) {
-    const float* pixel = tsl.ptr<float>(y);
+  for (int y = 0; y < out->rows; ++y) {
     float* value = out->ptr<float>(y);
-    for (int x = 0; x < tsl.cols; ++x) {
-      const float dt = pixel[3 * x] - mean_t;
-      const float ds = pixel[3 * x + 1] - mean_s;
-      const float d2 = a * dt * dt + b2 * dt * ds + c * ds * ds;
+    for (int x = 0; x < out->cols; ++x) {
+      const float d2 = value[x];
       if (output == SkinOutput::kBinary) {
         value[x] = d2 < threshold ? 1.f : 0.f;
       } else {
@@ -57,7 +47,8 @@ void SkinMap(const cv::Mat& tsl, const SkinModel& model, SkinOutput output, cv::
 void SkinDistanceMap(const cv::Mat& tsl, const SkinModel& model, cv::Mat* out) {
   CV_Assert(tsl.type() == CV_32FC3);
   out->create(tsl.size(), CV_32FC1);
-  // The same arithmetic as SkinMap, so that d^2 < T_s here is exactly SkinMap's skin.
+  // d^2 = a dt^2 + 2 b dt ds + c ds^2 with [a b; b c] the inverse covariance; SkinMap thresholds
+  // this, so d^2 < T_s here is exactly SkinMap's skin.
   const Eigen::Matrix2d inverse = model.covariance.inverse();
   const float a = static_cast<float>(inverse(0, 0));
   const float b2 = static_cast<float>(inverse(0, 1) + inverse(1, 0));

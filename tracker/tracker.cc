@@ -514,6 +514,15 @@ struct MultiTracker::Impl {
     cv::Point best_d;
     bool found = false;
     const int width = occupied.width;
+    // The overlap of displacement d (PlacedOverlap: exact when above `bar`).
+    auto score_at = [&](const cv::Point& d, int64_t bar) {
+      const size_t from =
+          static_cast<size_t>(occupied.y + d.y - roi.y) * roi.width + (occupied.x + d.x - roi.x);
+      return PlacedOverlap(search_.colour[0].data(), search_.colour[1].data(),
+                           search_.colour[2].data(), search_.weight.data(), width, occupied.height,
+                           &search_.roi[0][from], &search_.roi[1][from], &search_.roi[2][from],
+                           roi.width, t2, total, bar);
+    };
     if (options.mode == TrackerMode::kBounded && options.motion_sigma > 0.f) {
       // The bounded mode weighs each accepted overlap by a Gaussian of the displacement's
       // distance to the previous motion, of `motion_sigma` times the box's mean side: among
@@ -530,12 +539,7 @@ struct MultiTracker::Impl {
         if (found && k * total <= best_weighted) break;
         const int64_t bar = std::max<int64_t>(
             accepted - 1, found ? static_cast<int64_t>(std::floor(best_weighted / k)) : 0);
-        const size_t from =
-            static_cast<size_t>(occupied.y + d.y - roi.y) * roi.width + (occupied.x + d.x - roi.x);
-        const int64_t score = PlacedOverlap(
-            search_.colour[0].data(), search_.colour[1].data(), search_.colour[2].data(),
-            search_.weight.data(), width, occupied.height, &search_.roi[0][from],
-            &search_.roi[1][from], &search_.roi[2][from], roi.width, t2, total, bar);
+        const int64_t score = score_at(d, bar);
         if (score > bar && k * score > best_weighted) {
           best_weighted = k * score;
           best = score;
@@ -545,12 +549,7 @@ struct MultiTracker::Impl {
       }
     } else {
       for (const cv::Point& d : displacements) {
-        const size_t from =
-            static_cast<size_t>(occupied.y + d.y - roi.y) * roi.width + (occupied.x + d.x - roi.x);
-        const int64_t score = PlacedOverlap(
-            search_.colour[0].data(), search_.colour[1].data(), search_.colour[2].data(),
-            search_.weight.data(), width, occupied.height, &search_.roi[0][from],
-            &search_.roi[1][from], &search_.roi[2][from], roi.width, t2, total, best);
+        const int64_t score = score_at(d, best);
         if (score > best) {
           best = score;
           best_d = d;
