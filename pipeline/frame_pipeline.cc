@@ -101,7 +101,7 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   record->timings.Add("track", attended_.track_ms);
   record->timings.Add("inhibit", attended_.inhibit_ms);
   record->timings.Add("select", attended_.select_ms);
-  record->inhibited_fraction = cv::mean(attention_.inhibition())[0];
+  record->inhibited_fraction = attended_.inhibited_fraction;
   record->targets.clear();
   for (const AttendedTarget& target : attended_.targets) {
     TargetRecord out;

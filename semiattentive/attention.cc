@@ -151,6 +151,8 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
   }
   cv::subtract(cv::Scalar(1.f), inhibition_, inhibited_);
   cv::multiply(saliency, inhibited_, inhibited_);
+  const int inhibited_pixels = cv::countNonZero(inhibition_);
+  frame->inhibited_fraction = static_cast<double>(inhibited_pixels) / inhibition_.total();
   frame->inhibit_ms = stage.ElapsedMs();
 
   // Candidates: regions of homogeneous inhibited saliency (a BIP over the saliency map).
@@ -210,7 +212,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
       // New targets are started only while the inhibition stays within
       // select.max_inhibited_fraction of the image: attention that covers everything attends
       // nothing (each new region counts with its own area).
-      double inhibited_area = cv::countNonZero(inhibition_);
+      double inhibited_area = inhibited_pixels;
       const double max_inhibited = options_.select.max_inhibited_fraction * bgr.total();
       int started = 0;
       for (size_t k = 0; k < ranked.size(); ++k) {

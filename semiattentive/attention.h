@@ -95,6 +95,7 @@ struct AttendedTarget {
 struct AttentionFrame {
   std::vector<AttendedTarget> targets;
   std::vector<int> new_ids;
+  double inhibited_fraction = 0.0;  // share of the image inhibited this frame, before selection
   // Milliseconds of the stage's parts: tracking, inhibition, selection.
   double track_ms = 0.0, inhibit_ms = 0.0, select_ms = 0.0;
 };

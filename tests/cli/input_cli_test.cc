@@ -26,7 +26,6 @@ using testing::Contains;
 using testing::ReadText;
 using testing::Result;
 
-const char kReferenceData[] = "/work/shared/data";
 
 std::vector<nlohmann::json> Frames(const testing::TempDir& dir, const std::string& run) {
   std::vector<nlohmann::json> frames;
@@ -266,7 +265,7 @@ TEST(InputCli, GreyFramesAttendABrightObject) {
 }
 
 TEST(InputCli, RealOtbFolderRunsWithImages) {
-  const std::string img = std::string(kReferenceData) + "/otb/Dog1/img";
+  const std::string img = testing::SharedData() + "/otb/Dog1/img";
   if (!fs::is_directory(img)) GTEST_SKIP() << "reference data not found: " << img;
   testing::TempDir dir;
   const Result r = Attend(dir, {"run", "--images", img, "--frames", "0:4", "--out", "run",

@@ -494,14 +494,8 @@ TEST(SkinSplit, IsDeterministicAndHoldsOutTheFraction) {
 }
 
 // The reference data folder: $ATTEND_SHARED_DATA, else ../shared/data beside the project.
-std::string SharedData() {
-  const char* data = std::getenv("ATTEND_SHARED_DATA");
-  if (data != nullptr) return data;
-  return (fs::path(testing::ProjectRoot()) / ".." / "shared" / "data").lexically_normal().string();
-}
-
 TEST(SkinModel, ShippedModelReproducesItsRecordedRatesOnTheUciData) {
-  const std::string uci = SharedData() + "/skin/Skin_NonSkin.txt";
+  const std::string uci = testing::SharedData() + "/skin/Skin_NonSkin.txt";
   if (!fs::exists(uci)) {
     GTEST_SKIP() << uci << " is absent (set ATTEND_SHARED_DATA to the reference data folder): "
                  << "cannot check configs/skin_tsl.yaml against the UCI Skin Segmentation data";

@@ -180,14 +180,8 @@ TEST(SkinRegion, FaceAndHandOfTheBundledSceneAreSkinRegions) {
 }
 
 // The reference data folder: $ATTEND_SHARED_DATA, else ../shared/data beside the project.
-std::string SharedData() {
-  const char* data = std::getenv("ATTEND_SHARED_DATA");
-  if (data != nullptr) return data;
-  return (fs::path(testing::ProjectRoot()) / ".." / "shared" / "data").lexically_normal().string();
-}
-
 TEST(SkinRegion, UciSkinSamplesMakeSkinRegionsAndOthersDoNot) {
-  const std::string uci = SharedData() + "/skin/Skin_NonSkin.txt";
+  const std::string uci = testing::SharedData() + "/skin/Skin_NonSkin.txt";
   if (!fs::exists(uci)) GTEST_SKIP() << uci << " is absent (set ATTEND_SHARED_DATA)";
   const SkinModel model = Shipped();
   const SkinClassifier classifier(model);
@@ -251,7 +245,7 @@ std::map<int, std::vector<cv::Rect>> ReadPeople(const std::string& csv) {
 }
 
 TEST(SkinRegion, OnStreetFramesOnlyRegionsOnPeoplePass) {
-  const std::string root = SharedData() + "/mot";
+  const std::string root = testing::SharedData() + "/mot";
   if (!fs::exists(root + "/TUD-Campus/gt/objects.csv")) {
     GTEST_SKIP() << root << " is absent (set ATTEND_SHARED_DATA)";
   }

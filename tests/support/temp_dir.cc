@@ -39,4 +39,12 @@ std::string ProjectRoot() {
   return home != nullptr ? home : ATTEND_SOURCE_ROOT_FALLBACK;
 }
 
+std::string SharedData() {
+  const char* data = std::getenv("ATTEND_SHARED_DATA");
+  if (data != nullptr) return data;
+  return (std::filesystem::path(ProjectRoot()) / ".." / "shared" / "data")
+      .lexically_normal()
+      .string();
+}
+
 }  // namespace attend::testing

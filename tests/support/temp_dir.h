@@ -26,4 +26,8 @@ class TempDir {
 // The project root (ATTEND_HOME, set by ctest), for bundled configs and scenes.
 std::string ProjectRoot();
 
+// The reference data folder (shared/data beside the project, or ATTEND_SHARED_DATA): tests
+// that use it skip when it is absent.
+std::string SharedData();
+
 }  // namespace attend::testing
