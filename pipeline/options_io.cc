@@ -115,6 +115,12 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
     v.Field("distinctive_weights", &t.bip.distinctive_weights);
     v.Field("distinct_rate", &t.bip.distinct_rate, Range::Closed(0, 1));
     v.Field("motion_sigma", &t.bip.motion_sigma, Range::Closed(0, 100));
+    v.Field("appearance", &t.bip.appearance);
+    v.Field("appearance_share", &t.bip.appearance_share, Range::Closed(0, 1));
+    v.Field("appearance_rate", &t.bip.appearance_rate, Range::Closed(0, 1));
+    v.Field("min_score", &t.bip.min_score, Range::Closed(0.01, 1));
+    v.Field("redetect_range", &t.bip.redetect_range, Range::Closed(0, 10));
+    v.Field("redetect_ratio", &t.bip.redetect_ratio, Range::Closed(0.01, 1));
     v.Field("lost_frames", &t.opencv.lost_frames, Range::Closed(1, 1e6));
     v.Field("kcf_detect_thresh", &t.opencv.kcf_detect_thresh, Range::Closed(0, 1));
     // A key of another kind than the chosen one would have no effect: it is an error when its
@@ -140,6 +146,14 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
             bip_kinds, kind);
     v.Owned("distinct_rate", bip, t.bip.distinct_rate == d.bip.distinct_rate, bip_kinds, kind);
     v.Owned("motion_sigma", bip, t.bip.motion_sigma == d.bip.motion_sigma, bip_kinds, kind);
+    v.Owned("appearance", bip, t.bip.appearance == d.bip.appearance, bip_kinds, kind);
+    v.Owned("appearance_share", bip, t.bip.appearance_share == d.bip.appearance_share, bip_kinds,
+            kind);
+    v.Owned("appearance_rate", bip, t.bip.appearance_rate == d.bip.appearance_rate, bip_kinds,
+            kind);
+    v.Owned("min_score", bip, t.bip.min_score == d.bip.min_score, bip_kinds, kind);
+    v.Owned("redetect_range", bip, t.bip.redetect_range == d.bip.redetect_range, bip_kinds, kind);
+    v.Owned("redetect_ratio", bip, t.bip.redetect_ratio == d.bip.redetect_ratio, bip_kinds, kind);
     v.Owned("lost_frames", !bip, t.opencv.lost_frames == d.opencv.lost_frames, opencv_kinds,
             kind);
     v.Owned("kcf_detect_thresh", t.kind == TrackerKind::kKcf,

@@ -77,6 +77,7 @@ std::string AttentionStage::ReleaseReason(const AttendedTarget& target, int low_
       target.box.height >= kSpansImageFraction * image.height) {
     return "spans_image";
   }
+  if (target.box.area() < options_.select.min_area) return "too_small";
   if (low_frames >= options_.drop.frames) return "low_saliency";
   return "";
 }

@@ -17,7 +17,8 @@
 // template forgotten, or for the OpenCV kinds tracker.lost_frames failures in a row). A found
 // target is released, and inhibits nothing from that frame on, when its mask covers more than
 // select.max_area_fraction of the image ("too_large"), when its box spans the image: at least
-// 0.9 of its width and 0.9 of its height ("spans_image"), or when its own uninhibited saliency
+// 0.9 of its width and 0.9 of its height ("spans_image"), when its box holds fewer than
+// select.min_area pixels ("too_small"), or when its own uninhibited saliency
 // (mean over its mask) stays below drop.min_saliency for drop.frames frames in a row
 // ("low_saliency"); the first rule that holds is the reason recorded.
 #pragma once
@@ -86,8 +87,8 @@ struct AttendedTarget {
   int area = 0;
   double saliency = 0.0;  // mean uninhibited saliency over its mask (or its box when hidden)
   std::string state;      // new, tracked, occluded, lost, released
-  // Why a released target was released: "too_large", "spans_image" or "low_saliency" (empty in
-  // every other state).
+  // Why a released target was released: "too_large", "spans_image", "too_small" or
+  // "low_saliency" (empty in every other state).
   std::string reason;
   bool skin = false;
 };

@@ -147,6 +147,13 @@ ATTEND_VECTOR_CLONES int64_t PlacedOverlap(const float* t0, const float* t1, con
   return score;
 }
 
+// The grey standard deviation below which a target's appearance model is taken as flat.
+constexpr double kMinAppearanceDeviation = 10.0;
+
+// The colour overlap an appearance match needs besides its score: the correlation alone
+// may follow an occluder or the background that took the target's place.
+constexpr double kMinAppearanceOverlap = 0.1;
+
 // Template weights in the search are fixed point, 1 = kWeightOne, so that sums are exact and
 // do not depend on their order.
 constexpr double kWeightOne = 65536.0;
@@ -271,6 +278,13 @@ std::string TrackerOptions::Check() const {
   if (!(bounded_min_overlap > 0.f && bounded_min_overlap <= 1.f)) {
     return "bounded_min_overlap must be in (0, 1]";
   }
+  if (!(appearance_share >= 0.f && appearance_share <= 1.f)) {
+    return "appearance_share must be in [0, 1]";
+  }
+  if (!(appearance_rate >= 0.f && appearance_rate <= 1.f)) return "appearance_rate must be in [0, 1]";
+  if (!(min_score > 0.f && min_score <= 1.f)) return "min_score must be in (0, 1]";
+  if (!(redetect_range >= 0.f && redetect_range <= 10.f)) return "redetect_range must be in [0, 10]";
+  if (!(redetect_ratio > 0.f && redetect_ratio <= 1.f)) return "redetect_ratio must be in (0, 1]";
   return "";
 }
 
@@ -307,6 +321,12 @@ struct MultiTracker::Impl {
     // Bounded mode: the box before rounding, so that a size that follows its evidence by a
     // small share a frame can grow (a rounded box would round each small step back).
     cv::Rect2d smooth;
+    // Bounded mode with `appearance`: the grey model of the box (CV_32FC1, the first box's
+    // size), and the running means of the correlation it had where the target was found.
+    cv::Mat appearance;
+    bool appearance_judged = false;  // whether the first box was judged for texture
+    double typical_correlation = 0.0;
+    double typical_distinct = 0.0;  // running mean of MeanDistinct over the found box
   };
 
   TrackerOptions options;
@@ -319,6 +339,16 @@ struct MultiTracker::Impl {
   Segmenter segmenter;           // chooses a target's regions in a box (thesis 4.2.1)
   cv::Mat union_mask;
   LevelSearch search_;
+  // Bounded mode with `appearance`: the frame in grey, and the ZNCC of the searched target's
+  // model over its ROI; correlation_(y, x) is that of the box moved by (x, y) - box_to_roi_.
+  cv::Mat grey_;
+  cv::Mat frame_;  // the current frame (a header), for MeanDistinct
+  mutable cv::Mat cylinder_;
+  cv::Mat correlation_;
+  cv::Point box_to_roi_;
+  bool correlated_ = false;
+  double best_correlation_ = 0.0;  // at the last accepted displacement
+  mutable cv::Mat model_, patch_;
   mutable std::vector<int> region_inside_, region_all_;  // BoundTarget's counts
   mutable std::vector<float> fg_, bg_;                  // LearnDistinct's histograms
 
@@ -458,6 +488,8 @@ struct MultiTracker::Impl {
   // and the matched vertices are those of level 0 (a coarse cell of 2^l pixels otherwise
   // rounds the motion by up to 2^l pixels).
   Match Localise(const Target& target, const Hierarchy& h, std::vector<uint8_t>* in_target) {
+    correlated_ = Correlate(target, target.roi, &correlation_);
+    box_to_roi_ = target.box.tl() - target.roi.tl();
     for (int l = std::min(WorkingLevel(target), h.bip->num_levels() - 1); l >= 0; --l) {
       Match match;
       const double min_overlap = options.mode == TrackerMode::kBounded
@@ -523,7 +555,36 @@ struct MultiTracker::Impl {
                            &search_.roi[0][from], &search_.roi[1][from], &search_.roi[2][from],
                            roi.width, t2, total, bar);
     };
-    if (options.mode == TrackerMode::kBounded && options.motion_sigma > 0.f) {
+    if (correlated_) {
+      // The appearance joins the overlap (TrackerOptions::appearance). The score is not
+      // monotone in the search order, so every displacement is scored exactly.
+      const double sigma = std::max(1.0, options.motion_sigma *
+                                             std::sqrt(static_cast<double>(target.box.area())) /
+                                             (1 << l));
+      const double share = options.appearance_share;
+      double best_score = 0.0;
+      for (const cv::Point& d : displacements) {
+        const double ex = d.x - prior.x, ey = d.y - prior.y;
+        const double k =
+            options.motion_sigma > 0.f ? std::exp(-(ex * ex + ey * ey) / (2 * sigma * sigma)) : 1.0;
+        if (k <= best_score) break;  // nearest first: k only falls
+        const double c = std::max(0.0, CorrelationAt(d, l));
+        const int64_t overlap = score_at(d, -1);
+        const double score =
+            k * ((1 - share) * static_cast<double>(overlap) / total + share * c);
+        if (score > best_score) {
+          best_score = score;
+          best = overlap;
+          best_d = d;
+          best_correlation_ = c;
+        }
+      }
+      // The prior-weighted score is the one accepted: a far displacement needs a strong match.
+      // The correlation alone may follow an occluder or the background that took the
+      // target's place, so some colour overlap is needed too.
+      found = best_score > options.min_score &&
+              static_cast<double>(best) / total >= kMinAppearanceOverlap;
+    } else if (options.mode == TrackerMode::kBounded && options.motion_sigma > 0.f) {
       // The bounded mode weighs each accepted overlap by a Gaussian of the displacement's
       // distance to the previous motion, of `motion_sigma` times the box's mean side: among
       // displacements that match, the target most likely moved little. Displacements come
@@ -669,6 +730,101 @@ struct MultiTracker::Impl {
     }
   }
 
+  // Bounded mode with `appearance`: the ZNCC of the target's grey model, at its box's size,
+  // over `area` of the frame; false when there is no model or `area` cannot hold the box.
+  bool Correlate(const Target& target, const cv::Rect& area, cv::Mat* correlation) const {
+    if (options.mode != TrackerMode::kBounded || !options.appearance ||
+        target.appearance.empty() || grey_.empty()) {
+      return false;
+    }
+    const cv::Rect& box = target.box;
+    if (box.width < 2 || box.height < 2 || area.width < box.width || area.height < box.height) {
+      return false;
+    }
+    cv::resize(target.appearance, model_, box.size(), 0, 0, cv::INTER_LINEAR);
+    grey_(area).convertTo(patch_, CV_32F);
+    cv::matchTemplate(patch_, model_, *correlation, cv::TM_CCOEFF_NORMED);
+    return true;
+  }
+
+  // The correlation of the box moved by displacement d of level l; 0 where it was not computed.
+  double CorrelationAt(const cv::Point& d, int l) const {
+    const int x = (d.x << l) + box_to_roi_.x, y = (d.y << l) + box_to_roi_.y;
+    if (x < 0 || y < 0 || x >= correlation_.cols || y >= correlation_.rows) return 0.0;
+    return correlation_.at<float>(y, x);
+  }
+
+  // The mean distinctiveness (the colour table of LearnDistinct) of the frame's pixels in
+  // `box`; -1 without a table.
+  double MeanDistinct(const Target& target, const cv::Rect& box) const {
+    const cv::Rect inside = box & cv::Rect(0, 0, frame_.cols, frame_.rows);
+    if (target.distinct.empty() || inside.empty()) return -1.0;
+    BgrToCylinder(frame_(inside), &cylinder_);
+    double sum = 0.0;
+    for (int y = 0; y < cylinder_.rows; ++y) {
+      const float* f = cylinder_.ptr<float>(y);
+      for (int x = 0; x < cylinder_.cols; ++x) sum += target.distinct[ColourBin(f + 3 * x)];
+    }
+    return sum / inside.area();
+  }
+
+  // Bounded mode with `appearance`: the model follows the found box by `appearance_rate`.
+  void LearnAppearance(Target* target) const {
+    if (!options.appearance || target->similarity != TrackSimilarity::kColour || grey_.empty()) {
+      return;
+    }
+    const cv::Rect box = target->box & cv::Rect(0, 0, grey_.cols, grey_.rows);
+    if (box.width < 2 || box.height < 2) return;
+    grey_(box).convertTo(patch_, CV_32F);
+    if (!target->appearance_judged) {
+      target->appearance_judged = true;
+      // A flat patch's correlation is noise (and OpenCV gives a flat model 1 everywhere): a
+      // target without texture when it starts has no appearance model.
+      cv::Scalar mean, deviation;
+      cv::meanStdDev(patch_, mean, deviation);
+      if (deviation[0] >= kMinAppearanceDeviation) target->appearance = patch_.clone();
+      return;
+    }
+    if (target->appearance.empty()) return;
+    cv::resize(patch_, patch_, target->appearance.size(), 0, 0, cv::INTER_AREA);
+    cv::addWeighted(target->appearance, 1.0 - options.appearance_rate, patch_,
+                    options.appearance_rate, 0.0, target->appearance);
+  }
+
+  // Bounded mode with `appearance`, a target not found: its model is searched for within
+  // `redetect_range` box sides around its box, and where it correlates by `redetect_ratio` of
+  // its typical correlation or more, the box and the template move there (the target is
+  // still not found in this frame; the next frame's search starts there).
+  void Redetect(Target* target) {
+    if (target->typical_correlation <= 0.0) return;
+    const cv::Rect& box = target->box;
+    const int gx = static_cast<int>(std::lround(options.redetect_range * box.width));
+    const int gy = static_cast<int>(std::lround(options.redetect_range * box.height));
+    const cv::Rect area = cv::Rect(box.x - gx, box.y - gy, box.width + 2 * gx, box.height + 2 * gy) &
+                          cv::Rect(0, 0, grey_.cols, grey_.rows);
+    cv::Mat correlation;
+    if (!Correlate(*target, area, &correlation)) return;
+    double best = 0.0;
+    cv::Point at;
+    cv::minMaxLoc(correlation, nullptr, &best, nullptr, &at);
+    if (best < options.redetect_ratio * target->typical_correlation) return;
+    const cv::Point shift = area.tl() + at - box.tl();
+    // The grey correlation does not see colour: the place must also have the target's
+    // distinctive colours, by the same share of their typical mean.
+    if (target->typical_distinct > 0.0 &&
+        MeanDistinct(*target, box + shift) < options.redetect_ratio * target->typical_distinct) {
+      return;
+    }
+    for (size_t l = 0; l < target->levels.size(); ++l) {
+      target->levels[l].cells.x += static_cast<int>(std::lround(shift.x / static_cast<double>(1 << l)));
+      target->levels[l].cells.y += static_cast<int>(std::lround(shift.y / static_cast<double>(1 << l)));
+    }
+    target->box += shift;
+    target->smooth.x += shift.x;
+    target->smooth.y += shift.y;
+    target->centroid += cv::Point2f(shift);
+  }
+
   // Bounded refinement (TrackerMode::kBounded). The target may only be where the last box,
   // moved by the match, plausibly is now: that box grown by `bound_growth` of its size on each
   // side. Refinement looks only there, and a region (first stage or refinement) belongs to the
@@ -750,6 +906,10 @@ struct MultiTracker::Impl {
 
   void Track(const cv::Mat& frame, const cv::Mat& skin, std::vector<TrackResult>* results) {
     segmentation_ms = 0.0;
+    if (options.mode == TrackerMode::kBounded && options.appearance) {
+      cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
+      frame_ = frame;
+    }
     const cv::Rect image(0, 0, frame.cols, frame.rows);
     const int epsilon_max = options.EpsilonMaxPixels(frame.cols);
     for (const TrackSimilarity similarity : {TrackSimilarity::kColour, TrackSimilarity::kSkin}) {
@@ -867,7 +1027,22 @@ struct MultiTracker::Impl {
           }
           target.motion = shift;
           target.border = options.EpsilonPixels(frame.cols);
-          if (options.mode == TrackerMode::kBounded) LearnDistinct(h, &target);
+          if (options.mode == TrackerMode::kBounded) {
+            LearnDistinct(h, &target);
+            LearnAppearance(&target);
+            if (correlated_) {
+              target.typical_correlation =
+                  target.typical_correlation == 0.0
+                      ? best_correlation_
+                      : 0.9 * target.typical_correlation + 0.1 * best_correlation_;
+              const double distinct = MeanDistinct(target, target.box);
+              if (distinct >= 0.0) {
+                target.typical_distinct = target.typical_distinct == 0.0
+                                              ? distinct
+                                              : 0.9 * target.typical_distinct + 0.1 * distinct;
+              }
+            }
+          }
           result.state = TrackState::kFound;
           result.level = match.level;
           result.area = static_cast<int>(moments.m00);
@@ -882,6 +1057,7 @@ struct MultiTracker::Impl {
           while (!target.levels.empty() && target.levels.back().Empty()) target.levels.pop_back();
           target.border = std::min(target.border + 1, epsilon_max);
           target.motion = {0, 0};
+          if (!target.levels.empty()) Redetect(&target);
           result.state = target.levels.empty() ? TrackState::kLost : TrackState::kOccluded;
         }
         result.box = target.box;
@@ -935,6 +1111,10 @@ struct MultiTracker::Impl {
     if (options.mode == TrackerMode::kBounded && similarity == TrackSimilarity::kColour) {
       target.roi = cv::boundingRect(build_mask);
       LearnDistinct(h, &target);
+      if (options.appearance) {
+        cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
+        LearnAppearance(&target);
+      }
     }
     target.id = next_id++;
     targets.push_back(std::move(target));

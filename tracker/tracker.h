@@ -60,6 +60,19 @@ struct TrackerOptions {
   // `min_overlap` (real footage rarely matches a template by 70 %; the motion prior and the
   // distinctive weights guard a lower bar).
   float bounded_min_overlap = 0.4f;
+  // Bounded mode only: the target's grey appearance, a model of its box blended in by
+  // `appearance_rate` each frame it is found, is matched by normalised cross-correlation (ZNCC)
+  // over the ROI. A displacement then scores the motion prior times
+  // (1 - appearance_share) x overlap + appearance_share x max(0, ZNCC), and the best score is
+  // accepted above `min_score` (which replaces `bounded_min_overlap`). A target that is not
+  // found is searched for by its appearance alone within `redetect_range` box sides of its
+  // box, and moves there when it matches by `redetect_ratio` of its typical correlation.
+  bool appearance = true;
+  float appearance_share = 0.7f;
+  float appearance_rate = 0.05f;
+  float min_score = 0.3f;
+  float redetect_range = 1.5f;
+  float redetect_ratio = 0.8f;
 
   // The borders in pixels for images `width` wide (at least 1).
   int EpsilonPixels(int width) const;

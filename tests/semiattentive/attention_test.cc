@@ -231,6 +231,33 @@ TEST(Attention, ATargetWhoseSaliencyDropsIsReleased) {
   EXPECT_TRUE(frame.targets.empty());
 }
 
+// A target that shrinks: while its box holds select.min_area pixels it is tracked; the frame
+// its box holds fewer it is released as too_small (it can no longer cover its object, which
+// would then be selected again while the target is still on it).
+TEST(Attention, ATargetWhoseBoxShrinksUnderTheMinimumAreaIsReleased) {
+  AttentionOptions options;
+  options.select.min_area = 1000;
+  // The thesis's tracker follows the fast shrinking; the bounded box follows it by 10 %.
+  options.tracker.bip.mode = TrackerMode::kThesis;
+  AttentionStage stage(options, ShippedSkinModel());
+  const cv::Scalar red(40, 40, 210);
+  auto shrunk = [](int f) { return cv::Rect(40, 30, 40 - f, 30 - f); };
+  AttentionFrame frame = Step(&stage, Draw({{shrunk(0), red}}, {shrunk(0)}, 0));
+  ASSERT_EQ(frame.new_ids, std::vector<int>{1});
+  bool released = false;
+  for (int f = 1; f <= 6 && !released; ++f) {
+    frame = Step(&stage, Draw({{shrunk(f), red}}, {shrunk(f)}, f));
+    ASSERT_FALSE(frame.targets.empty()) << "frame " << f;
+    const AttendedTarget& target = frame.targets[0];
+    ASSERT_EQ(target.id, 1) << "frame " << f;
+    const bool small = target.box.area() < 1000;
+    EXPECT_EQ(target.state, small ? "released" : "tracked") << "frame " << f << ", box " << target.box;
+    EXPECT_EQ(target.reason, small ? "too_small" : "") << "frame " << f;
+    released = small;
+  }
+  EXPECT_TRUE(released) << "the box never fell under select.min_area";
+}
+
 // A target that grows: while its mask is within select.max_area_fraction of the image it is
 // tracked and inhibits; the frame its mask passes the fraction it is released as too_large and
 // inhibits nothing from then on (the region is then too large to be selected again).

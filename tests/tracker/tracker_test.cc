@@ -563,6 +563,95 @@ TEST(BoundedTracker, CoarseMatchMeasuresTheMotionAtLevelZero) {
   }
 }
 
+// A textured patch (fixed random 4x4-pixel blocks of reds and greys) on a noisy grey
+// background: hidden behind a flat panel in frames 5..7, it comes back in frame 8 at 28 px
+// from where it was hidden, past the ROI border (at most 15 px at this width).
+struct JumpingPatch {
+  cv::Mat texture;
+  JumpingPatch() : texture(24, 24, CV_8UC3) {
+    cv::Mat blocks(6, 6, CV_8UC3);
+    cv::RNG(7).fill(blocks, cv::RNG::UNIFORM, 20, 235);
+    cv::resize(blocks, texture, texture.size(), 0, 0, cv::INTER_NEAREST);
+  }
+  static cv::Rect Box(int frame) {
+    const int x = frame < 8 ? 30 + 2 * frame : 50 + 2 * frame;
+    return {x, 40, 24, 24};
+  }
+  static bool Hidden(int frame) { return frame >= 5 && frame <= 7; }
+  cv::Mat Draw(int frame) const {
+    cv::Mat bgr = Frame(kSize, {}, frame + 1);
+    if (Hidden(frame)) {
+      const cv::Rect box = Box(frame);
+      cv::rectangle(bgr, cv::Rect(box.x - 4, box.y - 4, box.width + 8, box.height + 8),
+                    cv::Scalar(120, 124, 126), cv::FILLED);
+    } else {
+      texture.copyTo(bgr(Box(frame)));
+    }
+    return bgr;
+  }
+};
+
+// The IoU of the box with the patch in each frame 1..14; -1 where it was not found.
+std::vector<double> FollowJumpingPatch(bool appearance) {
+  TrackerOptions options;
+  options.mode = TrackerMode::kBounded;
+  options.appearance = appearance;
+  MultiTracker tracker(options);
+  const JumpingPatch patch;
+  EXPECT_EQ(tracker.StartFromBox(patch.Draw(0), JumpingPatch::Box(0)), 1);
+  std::vector<double> ious;
+  for (int frame = 1; frame <= 14; ++frame) {
+    std::vector<TrackResult> results;
+    tracker.Track(patch.Draw(frame), &results);
+    const bool found = results.size() == 1 && results[0].state == TrackState::kFound;
+    ious.push_back(found ? Iou(results[0].box, JumpingPatch::Box(frame)) : -1.0);
+  }
+  return ious;
+}
+
+TEST(BoundedTracker, AppearanceFindsATargetAgainPastItsRoiAfterAnOcclusion) {
+  const std::vector<double> ious = FollowJumpingPatch(true);
+  for (int frame = 1; frame <= 14; ++frame) {
+    const double iou = ious[frame - 1];
+    if (frame < 5) {
+      EXPECT_GT(iou, 0.8) << "frame " << frame;
+    } else if (JumpingPatch::Hidden(frame)) {
+      EXPECT_LT(iou, 0.0) << "frame " << frame << ": found behind the panel";
+    } else if (frame >= 10) {
+      // Frame 8 re-detects it (still not found), frame 9 finds it where it moved.
+      EXPECT_GT(iou, 0.8) << "frame " << frame;
+    }
+  }
+}
+
+TEST(BoundedTracker, WithoutAppearanceTheJumpedTargetIsNotFoundAgain) {
+  const std::vector<double> ious = FollowJumpingPatch(false);
+  for (int frame = 10; frame <= 14; ++frame) {
+    EXPECT_LT(ious[frame - 1], 0.3) << "frame " << frame;
+  }
+}
+
+TEST(BoundedTracker, AFlatTargetHasNoAppearanceModel) {
+  // A flat object's correlation would be noise: it is tracked by colour alone, the same
+  // with appearance on or off.
+  auto run = [](bool appearance) {
+    TrackerOptions options;
+    options.mode = TrackerMode::kBounded;
+    options.appearance = appearance;
+    MultiTracker tracker(options);
+    auto object = [](int frame) { return cv::Rect(20 + 3 * frame, 30 + frame % 2, 30, 24); };
+    tracker.StartFromBox(Frame(kSize, {{object(0), kRed}}), object(0));
+    std::vector<cv::Rect> boxes;
+    for (int frame = 1; frame <= 12; ++frame) {
+      std::vector<TrackResult> results;
+      tracker.Track(Frame(kSize, {{object(frame), kRed}}, frame + 1), &results);
+      boxes.push_back(results.empty() ? cv::Rect() : results[0].box);
+    }
+    return boxes;
+  };
+  EXPECT_EQ(run(true), run(false));
+}
+
 TEST(TrackerOptions, ModeNamesAndBoundedRanges) {
   EXPECT_STREQ(TrackerModeName(TrackerMode::kThesis), "thesis");
   EXPECT_STREQ(TrackerModeName(TrackerMode::kBounded), "bounded");
@@ -573,6 +662,14 @@ TEST(TrackerOptions, ModeNamesAndBoundedRanges) {
   options.bound_growth = 0.05f;
   options.size_rate = 1.5f;
   EXPECT_NE(options.Check().find("size_rate"), std::string::npos);
+  options.size_rate = 0.1f;
+  options.appearance_share = 1.5f;
+  EXPECT_NE(options.Check().find("appearance_share"), std::string::npos);
+  options.appearance_share = 0.7f;
+  options.redetect_ratio = 0.f;
+  EXPECT_NE(options.Check().find("redetect_ratio"), std::string::npos);
+  options.redetect_ratio = 0.8f;
+  EXPECT_EQ(options.Check(), "");
 }
 
 }  // namespace
