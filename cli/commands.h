@@ -21,5 +21,9 @@ void AddEvalCommand(CLI::App& app, const std::string& command_line, CommandActio
 void AddSkinTrainCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 void AddCompareCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 void AddReportCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
+void AddSaliencyCommand(CLI::App& app, const std::string& command_line,
+                        CommandAction* action);
+void AddEvalFixationsCommand(CLI::App& app, const std::string& command_line,
+                             CommandAction* action);
 
 }  // namespace attend

@@ -34,6 +34,8 @@ int main(int argc, char** argv) {
   attend::AddSkinTrainCommand(app, command_line, &action);
   attend::AddCompareCommand(app, command_line, &action);
   attend::AddReportCommand(app, command_line, &action);
+  attend::AddSaliencyCommand(app, command_line, &action);
+  attend::AddEvalFixationsCommand(app, command_line, &action);
 
   try {
     app.parse(argc, argv);

@@ -1,5 +1,6 @@
 #include "features/builtin.h"
 
+#include "features/centre_bias.h"
 #include "features/contrast.h"
 #include "features/disparity_feature.h"
 #include "features/motion.h"
@@ -24,6 +25,10 @@ FeatureRegistry BuiltinFeatures() {
                "luminance change against the previous frames, less global brightness change "
                "and sensor noise (not in the thesis; issue 13)",
                &CreateMotionFeature);
+  registry.Add("centre_bias",
+               "a Gaussian centred on the image: where people look in photographs (not in the "
+               "thesis; issue 14)",
+               &CreateCentreBiasFeature);
   return registry;
 }
 

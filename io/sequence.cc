@@ -320,30 +320,6 @@ class VideoReader final : public NativeReader {
 // ---------------------------------------------------------------------------------------------
 // Range, stride, size checks and the working size, common to every source.
 
-cv::Size WorkingSize(const SequenceOptions& options, cv::Size native) {
-  if (options.resize == "native") return native;
-  if (options.resize == "stretch") return {options.width, options.height};
-  // fit: the side that limits gets the box's size exactly, the other keeps the aspect ratio.
-  const int64_t width_limited = static_cast<int64_t>(native.width) * options.height;
-  const int64_t height_limited = static_cast<int64_t>(native.height) * options.width;
-  if (width_limited >= height_limited) {
-    const double height = static_cast<double>(native.height) * options.width / native.width;
-    return {options.width, std::max(1, static_cast<int>(std::lround(height)))};
-  }
-  const double width = static_cast<double>(native.width) * options.height / native.height;
-  return {std::max(1, static_cast<int>(std::lround(width))), options.height};
-}
-
-// A continuous image of `size`: area averaging when shrinking (no aliasing), bilinear when any
-// side grows.
-cv::Mat ToWorkingSize(const cv::Mat& image, cv::Size size) {
-  if (image.size() == size) return image.isContinuous() ? image : image.clone();
-  const bool shrinking = size.width <= image.cols && size.height <= image.rows;
-  cv::Mat resized;
-  cv::resize(image, resized, size, 0, 0, shrinking ? cv::INTER_AREA : cv::INTER_LINEAR);
-  return resized;
-}
-
 class Sequence final : public FrameSource {
  public:
   Sequence(const SequenceOptions& options, std::unique_ptr<NativeReader> reader, SequenceInfo info)
@@ -433,6 +409,30 @@ class Sequence final : public FrameSource {
 };
 
 }  // namespace
+
+cv::Size WorkingSize(const SequenceOptions& options, cv::Size native) {
+  if (options.resize == "native") return native;
+  if (options.resize == "stretch") return {options.width, options.height};
+  // fit: the side that limits gets the box's size exactly, the other keeps the aspect ratio.
+  const int64_t width_limited = static_cast<int64_t>(native.width) * options.height;
+  const int64_t height_limited = static_cast<int64_t>(native.height) * options.width;
+  if (width_limited >= height_limited) {
+    const double height = static_cast<double>(native.height) * options.width / native.width;
+    return {options.width, std::max(1, static_cast<int>(std::lround(height)))};
+  }
+  const double width = static_cast<double>(native.width) * options.height / native.height;
+  return {std::max(1, static_cast<int>(std::lround(width))), options.height};
+}
+
+// A continuous image of `size`: area averaging when shrinking (no aliasing), bilinear when any
+// side grows.
+cv::Mat ToWorkingSize(const cv::Mat& image, cv::Size size) {
+  if (image.size() == size) return image.isContinuous() ? image : image.clone();
+  const bool shrinking = size.width <= image.cols && size.height <= image.rows;
+  cv::Mat resized;
+  cv::resize(image, resized, size, 0, 0, shrinking ? cv::INTER_AREA : cv::INTER_LINEAR);
+  return resized;
+}
 
 const std::vector<std::string>& FrameFileExtensions() {
   static const std::vector<std::string> extensions = {".png", ".jpg", ".jpeg", ".ppm", ".pgm"};

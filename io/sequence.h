@@ -60,6 +60,13 @@ const std::vector<std::string>& FrameFileExtensions();
 // read or decoded.
 cv::Mat ReadFrameFile(int index, const std::string& path);
 
+// The working size of frames of size `native` under `options` (width, height, resize).
+cv::Size WorkingSize(const SequenceOptions& options, cv::Size native);
+
+// `image` at `size`, continuous: area averaging when shrinking (no aliasing), bilinear when any
+// side grows.
+cv::Mat ToWorkingSize(const cv::Mat& image, cv::Size size);
+
 // What is known about an opened sequence.
 struct SequenceInfo {
   std::string name;  // sequence.yaml name, or the folder/video stem

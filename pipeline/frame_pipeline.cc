@@ -95,6 +95,7 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
     }
   }
   CombineMaps(normalised_, frame_weights_, context_.size(), &saliency_);
+  SmoothSaliency(options_.saliency, &saliency_);
   record->timings.Add("saliency", stage.ElapsedMs());
 
   attention_.Select(frame.left, saliency_, context_.Regions(), &attended_);

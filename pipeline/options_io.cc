@@ -52,6 +52,7 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.BeginSection("saliency");
   v.Choice("normalisation", &o->saliency.normalisation, SaliencyOptions::Normalisations());
   v.Field("local_maxima_window", &o->saliency.local_maxima_window, Range::Closed(3, 1001));
+  v.Field("blur", &o->saliency.blur, Range::Closed(0, 1));
   v.EndSection([o] { return o->saliency.Check(); });
 
   v.BeginSection("select");

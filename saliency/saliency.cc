@@ -58,6 +58,7 @@ std::string SaliencyOptions::Check() const {
   if (local_maxima_window < 3 || local_maxima_window % 2 == 0) {
     return "local_maxima_window must be odd and at least 3";
   }
+  if (!(blur >= 0.0 && blur <= 1.0)) return "blur must be in [0, 1]";
   return "";
 }
 
@@ -88,6 +89,17 @@ void CombineMaps(const std::vector<cv::Mat>& normalised, const std::vector<doubl
     if (weights[i] == 0.0) continue;
     cv::scaleAdd(normalised[i], static_cast<float>(weights[i] / total), *out, *out);
   }
+}
+
+void SmoothSaliency(const SaliencyOptions& options, cv::Mat* map) {
+  if (options.blur <= 0.0 || map->empty()) return;
+  double low = 0.0, high = 0.0;
+  cv::minMaxLoc(*map, &low, &high);
+  const double sigma = options.blur * std::max(map->cols, map->rows);
+  cv::GaussianBlur(*map, *map, cv::Size(), sigma, sigma, cv::BORDER_REPLICATE);
+  double blurred_high = 0.0;
+  cv::minMaxLoc(*map, nullptr, &blurred_high);
+  if (blurred_high > 0.0) *map *= high / blurred_high;
 }
 
 }  // namespace attend

@@ -19,6 +19,11 @@ namespace attend {
 struct SaliencyOptions {
   std::string normalisation = "minmax";  // one of Normalisations()
   int local_maxima_window = 15;          // odd window side in pixels, for local_maxima
+  // The combined map is blurred by a Gaussian of this share of the image's larger side (0:
+  // none), then scaled back to its maximum. Region-based features are piecewise constant with
+  // hard edges, and people look near a salient thing, not exactly at it (issue 14); not in the
+  // thesis.
+  double blur = 0.0;
 
   static const std::vector<std::string>& Normalisations();
   // "" when valid; otherwise names the field and the broken constraint.
@@ -32,5 +37,8 @@ void NormaliseMap(const cv::Mat& map, const SaliencyOptions& options, cv::Mat* o
 // 0, give a zero map of `size`.
 void CombineMaps(const std::vector<cv::Mat>& normalised, const std::vector<double>& weights,
                  cv::Size size, cv::Mat* out);
+
+// Blurs `map` (CV_32FC1) in place as `options.blur` says (nothing when it is 0).
+void SmoothSaliency(const SaliencyOptions& options, cv::Mat* map);
 
 }  // namespace attend

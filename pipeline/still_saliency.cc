@@ -1,0 +1,97 @@
+#include "pipeline/still_saliency.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include "io/sequence.h"
+#include "pipeline/frame_pipeline.h"
+
+namespace attend {
+
+namespace {
+
+// A map of the working size at the image's size (bilinear; maps are smooth or piecewise
+// constant, and the metrics compare them at the stimulus's pixels).
+cv::Mat ToImageSize(const cv::Mat& map, cv::Size size) {
+  if (map.size() == size) return map.clone();
+  cv::Mat out;
+  cv::resize(map, out, size, 0, 0, cv::INTER_LINEAR);
+  return out;
+}
+
+}  // namespace
+
+StillSaliency::StillSaliency(const AttendOptions& options, const std::string& home,
+                             std::vector<std::string>* dropped)
+    : options_(options), home_(home) {
+  const FeatureRegistry registry = LoadFeatureRegistry(options_.plugins);
+  FeatureSetup setup;
+  setup.stereo = true;  // to ask each feature whether it needs stereo
+  setup.home = home_;
+  for (FeatureSpec& spec : options_.features) {
+    if (!spec.enabled) continue;
+    if (registry.Create(spec, setup)->NeedsStereo()) {
+      spec.enabled = false;
+      if (dropped != nullptr) dropped->push_back(spec.name);
+    }
+  }
+  // Every other problem of the configuration shows here, before any image is read.
+  setup.stereo = false;
+  FramePipeline check(options_, registry, setup);
+}
+
+StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features,
+                                 int scanpath_steps) const {
+  CV_Assert(bgr.type() == CV_8UC3 && !bgr.empty());
+  // A pipeline per image: nothing (motion background, targets, inhibition) carries over.
+  const FeatureRegistry registry = LoadFeatureRegistry(options_.plugins);
+  FeatureSetup setup;
+  setup.stereo = false;
+  setup.home = home_;
+  FramePipeline pipeline(options_, registry, setup);
+
+  StillMaps maps;
+  maps.image_size = bgr.size();
+  maps.working_size = WorkingSize(options_.sequence, bgr.size());
+  StereoFrame frame;
+  frame.index = 0;
+  frame.left = ToWorkingSize(bgr, maps.working_size);
+  FrameRecord record;
+  pipeline.Process(frame, &record);
+  maps.saliency = ToImageSize(pipeline.saliency(), maps.image_size);
+  if (with_features) {
+    for (size_t i = 0; i < pipeline.features().size(); ++i) {
+      maps.feature_names.push_back(pipeline.features()[i].name);
+      maps.features.push_back(ToImageSize(pipeline.normalised()[i], maps.image_size));
+    }
+  }
+  // Attention on the still image: the same frame again, each showing selects new targets
+  // where the inhibition leaves the saliency high.
+  const double sx = static_cast<double>(maps.image_size.width) / maps.working_size.width;
+  const double sy = static_cast<double>(maps.image_size.height) / maps.working_size.height;
+  for (int shown = 0; static_cast<int>(maps.scanpath.size()) < scanpath_steps; ++shown) {
+    if (shown > 0) {
+      frame.index = shown;
+      record = FrameRecord();
+      pipeline.Process(frame, &record);
+    }
+    if (record.new_ids.empty()) break;
+    for (const int id : record.new_ids) {
+      for (const TargetRecord& target : record.targets) {
+        if (target.id != id) continue;
+        const cv::Rect box(static_cast<int>(std::lround(target.bbox.x * sx)),
+                           static_cast<int>(std::lround(target.bbox.y * sy)),
+                           static_cast<int>(std::lround(target.bbox.width * sx)),
+                           static_cast<int>(std::lround(target.bbox.height * sy)));
+        maps.scanpath_boxes.push_back(box);
+        maps.scanpath.emplace_back(box.x + box.width / 2.0, box.y + box.height / 2.0);
+      }
+    }
+  }
+  if (static_cast<int>(maps.scanpath.size()) > scanpath_steps) {
+    maps.scanpath.resize(scanpath_steps);
+    maps.scanpath_boxes.resize(scanpath_steps);
+  }
+  return maps;
+}
+
+}  // namespace attend

@@ -1,0 +1,44 @@
+// The pre-attentive stage on still images (`attend saliency`, issue 14): each image on its
+// own, as `attend run` computes the first frame of a sequence (the BIP segmentation, the
+// feature plugins, their normalised weighted sum), with nothing carried from one image to the
+// next. Features that need stereo are left out. Maps come back at the image's own size.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "pipeline/attend_options.h"
+
+namespace attend {
+
+struct StillMaps {
+  cv::Size image_size;    // the input image's
+  cv::Size working_size;  // where the maps were computed (sequence.width/height/resize)
+  cv::Mat saliency;       // CV_32FC1 at image_size, [0, 1]
+  std::vector<std::string> feature_names;
+  std::vector<cv::Mat> features;  // each normalised to [0, 1], CV_32FC1 at image_size
+  // With `scanpath_steps` > 0: the centres of the targets attention selects, in the order it
+  // selects them (image pixels), and their boxes; the image is shown again as a still frame
+  // until that many targets were selected or a frame selects none.
+  std::vector<cv::Point2d> scanpath;
+  std::vector<cv::Rect> scanpath_boxes;
+};
+
+class StillSaliency {
+ public:
+  // `home`: the folder of bundled files (plugins' relative data paths). ConfigError for
+  // features or plugins that cannot be used. `dropped` gets the names of the features left out
+  // because they need stereo.
+  StillSaliency(const AttendOptions& options, const std::string& home,
+                std::vector<std::string>* dropped = nullptr);
+
+  // `bgr`: 8-bit BGR of any size. `with_features`: also return each feature's map.
+  StillMaps Compute(const cv::Mat& bgr, bool with_features, int scanpath_steps) const;
+
+ private:
+  AttendOptions options_;
+  std::string home_;
+};
+
+}  // namespace attend
