@@ -49,7 +49,8 @@ std::string ParseLine(const std::string& line, Fixation* fixation) {
   long long subject_value = 0;
   if (!ParseWhole(subject, &subject_value)) return "subject '" + subject + "' is not an integer";
   if (subject_value < 0) return "subject " + subject + " is negative";
-  if (subject_value > std::numeric_limits<int>::max()) return "subject " + subject + " is too large";
+  if (subject_value > std::numeric_limits<int>::max())
+    return "subject " + subject + " is too large";
   double x_value = 0.0, y_value = 0.0;
   if (!ParseWhole(x, &x_value)) return "x '" + x + "' is not a number";
   if (!ParseWhole(y, &y_value)) return "y '" + y + "' is not a number";
@@ -84,6 +85,8 @@ std::map<std::string, fs::path> FilesByStem(const fs::path& folder,
 }  // namespace
 
 std::vector<Fixation> ReadFixationFile(const std::string& path) {
+  // An ifstream opens a folder without complaint and then reads nothing.
+  if (fs::is_directory(path)) throw InputError(path + ": is a folder, not a fixation file");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read the fixation file");
   std::vector<Fixation> fixations;

@@ -13,8 +13,8 @@
 // bugs and fail an ATTEND_CHECK.
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
@@ -22,8 +22,9 @@
 
 namespace attend {
 
-// The fixation density: a Gaussian of `sigma` px at each fixation (cv::GaussianBlur of the
-// fixation count map, zero beyond the image), normalised to sum 1. CV_64F. Datasets usually
+// The fixation density: a Gaussian of `sigma` px at each fixation, i.e. cv::GaussianBlur of the
+// fixation count map (kernel to 4 sigma, zero beyond the image), normalised to sum 1. CV_64F.
+// Costs (rows with a fixation) x 8 sigma x width, not a full 2-D blur. Datasets usually
 // take sigma as about one degree of visual angle (e.g. 0.025 x max(width, height)).
 cv::Mat FixationDensity(cv::Size size, const std::vector<Fixation>& fixations, double sigma);
 

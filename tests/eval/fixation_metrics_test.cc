@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "tests/support/error_message.h"
@@ -35,7 +36,8 @@ cv::Mat RandomMap(uint64_t seed) {
   std::uniform_real_distribution<double> noise(0.0, 1.0);
   cv::Mat map(kSize, CV_64F);
   for (int r = 0; r < map.rows; ++r) {
-    for (int c = 0; c < map.cols; ++c) map.at<double>(r, c) = std::sin(0.2 * c + 0.1 * r) + noise(rng);
+    for (int c = 0; c < map.cols; ++c)
+      map.at<double>(r, c) = std::sin(0.2 * c + 0.1 * r) + noise(rng);
   }
   return map;
 }
@@ -68,14 +70,32 @@ TEST(FixationDensity, SumsToOneAndPeaksAtAnIsolatedFixation) {
   EXPECT_TRUE(max_at == cv::Point(10, 12) || max_at == cv::Point(40, 30)) << max_at;
 }
 
+TEST(FixationDensity, EqualsAGaussianBlurOfTheCountMap) {
+  const std::vector<Fixation> fixations = {At(1, 2),   At(1, 2),   At(30.4, 2),
+                                           At(48, 39), At(20, 20), At(80, 3)};
+  cv::Mat counts(kSize, CV_64F, cv::Scalar(0.0));
+  counts.at<double>(2, 1) = 2.0;
+  counts.at<double>(2, 30) = 1.0;
+  counts.at<double>(39, 48) = 1.0;
+  counts.at<double>(20, 20) = 1.0;
+  for (double sigma : {0.8, 3.0, 30.0}) {  // the last one's kernel is wider than the map
+    cv::Mat blurred;
+    cv::GaussianBlur(counts, blurred, cv::Size(0, 0), sigma, sigma, cv::BORDER_CONSTANT);
+    blurred /= cv::sum(blurred)[0];
+    EXPECT_LT(cv::norm(FixationDensity(kSize, fixations, sigma), blurred, cv::NORM_INF), 1e-15)
+        << sigma;
+  }
+}
+
 TEST(FixationDensity, CountsDuplicateFixations) {
   const cv::Mat density = FixationDensity(kSize, {At(10, 12), At(10, 12), At(40, 30)}, 2.0);
   EXPECT_NEAR(density.at<double>(12, 10) / density.at<double>(30, 40), 2.0, 1e-9);
 }
 
 TEST(FixationDensity, NoFixationInsideIsAnError) {
-  EXPECT_NE(InputErrorOf([] { FixationDensity(kSize, {At(50, 0), At(0, -1)}, 2.0); })
-                .find("no fixation falls inside the 50x40"),
+  EXPECT_NE(InputErrorOf([] {
+              FixationDensity(kSize, {At(50, 0), At(0, -1)}, 2.0);
+            }).find("no fixation falls inside the 50x40"),
             std::string::npos);
 }
 
@@ -103,8 +123,8 @@ TEST(AucJudd, MapThatIsOneExactlyAtTheFixationsIsPerfect) {
   // Fractional coordinates round to the nearest pixel: 10.4 -> 10, 12.6 -> 13.
   const std::vector<Fixation> fixations = {At(10.4, 12.6), At(30, 5), At(44.5, 33), At(0, 0)};
   cv::Mat map(kSize, CV_64F, cv::Scalar(0.0));
-  for (const cv::Point& p : {cv::Point(10, 13), cv::Point(30, 5), cv::Point(45, 33),
-                             cv::Point(0, 0)}) {
+  for (const cv::Point& p :
+       {cv::Point(10, 13), cv::Point(30, 5), cv::Point(45, 33), cv::Point(0, 0)}) {
     map.at<double>(p) = 1.0;
   }
   EXPECT_NEAR(AucJudd(map, fixations), 1.0, 1e-9);
@@ -232,15 +252,19 @@ TEST(MeanWithInterval, UsesTheSampleStandardDeviation) {
 
 TEST(FixationMetrics, BadMapsAreInputErrors) {
   const cv::Mat map = RandomMap(1);
-  EXPECT_NE(InputErrorOf([&] { Cc(map, cv::Mat(kSize.height, kSize.width + 1, CV_64F)); })
-                .find("CC: the maps differ in size (50x40 and 51x40)"),
+  EXPECT_NE(InputErrorOf([&] {
+              Cc(map, cv::Mat(kSize.height, kSize.width + 1, CV_64F, cv::Scalar(0.0)));
+            }).find("CC: the maps differ in size (50x40 and 51x40)"),
             std::string::npos);
   EXPECT_NE(InputErrorOf([] { Nss(cv::Mat(), FewFixations()); }).find("NSS: the map is empty"),
             std::string::npos);
-  EXPECT_NE(InputErrorOf([] { AucJudd(cv::Mat(kSize, CV_8U, cv::Scalar(1)), FewFixations()); })
-                .find("one-channel CV_32F or CV_64F"),
+  EXPECT_NE(InputErrorOf([] {
+              AucJudd(cv::Mat(kSize, CV_8U, cv::Scalar(1)), FewFixations());
+            }).find("one-channel CV_32F or CV_64F"),
             std::string::npos);
-  EXPECT_NE(InputErrorOf([&] { AucJudd(map, {At(60, 1), At(1, 45)}); }).find("no fixation falls"),
+  EXPECT_NE(InputErrorOf([&] {
+              AucJudd(map, {At(60, 1), At(1, 45)});
+            }).find("no fixation falls"),
             std::string::npos);
   cv::Mat with_nan = map.clone();
   with_nan.at<double>(3, 3) = std::nan("");
@@ -255,24 +279,23 @@ TEST(ScoreMap, EqualsTheSingleMetricsAndIteratesByName) {
   const cv::Mat density = FixationDensity(kSize, fixations, 2.0);
   const cv::Mat baseline = CentreBias(kSize);
   const FixationScores scores = ScoreMap(map, fixations, others, density, baseline);
-  const std::vector<double> expected = {Nss(map, fixations),
-                                        AucJudd(map, fixations),
-                                        AucBorji(map, fixations),
-                                        ShuffledAuc(map, fixations, others),
-                                        Cc(map, density),
-                                        Kl(map, density),
-                                        Sim(map, density),
-                                        InformationGain(map, baseline, fixations)};
+  const std::vector<double> expected = {
+      Nss(map, fixations),      AucJudd(map, fixations),
+      AucBorji(map, fixations), ShuffledAuc(map, fixations, others),
+      Cc(map, density),         Kl(map, density),
+      Sim(map, density),        InformationGain(map, baseline, fixations)};
   const std::vector<std::string> names = {"nss", "auc_judd", "auc_borji", "sauc",
                                           "cc",  "kl",       "sim",       "ig"};
   ASSERT_EQ(FixationMetricNames(), names);
-  for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(Get(scores, names[i]), expected[i]) << names[i];
+  for (size_t i = 0; i < names.size(); ++i)
+    EXPECT_EQ(Get(scores, names[i]), expected[i]) << names[i];
   // Every metric is computed (none left at its default).
   for (const std::string& name : names) EXPECT_NE(Get(scores, name), 0.0) << name;
   EXPECT_NE(ConfigErrorOf([&] { Get(scores, "sacu"); }).find("did you mean 'sauc'"),
             std::string::npos);
-  EXPECT_NE(InputErrorOf([&] { ScoreMap(map, fixations, others, density, CentreBias({10, 10})); })
-                .find("baseline"),
+  EXPECT_NE(InputErrorOf([&] {
+              ScoreMap(map, fixations, others, density, CentreBias({10, 10}));
+            }).find("baseline"),
             std::string::npos);
 }
 
