@@ -37,7 +37,8 @@ struct EvalFixationsArguments {
   double baseline_blur = 0.03;
   double sigma = 0.0;  // px at the scored size; 0: 0.025 x the larger side
   int max_side = 640;
-  int first = 0;  // score only the first N items; 0: all
+  int skip = 0;   // leave out the first N items (by id)
+  int first = 0;  // then score only the first N items; 0: all
   bool quiet = false;
   std::string command_line;
 };
@@ -113,6 +114,7 @@ std::string Table(const std::vector<Method>& methods) {
 int EvalFixations(const EvalFixationsArguments& args) {
   const FixationDataset dataset = OpenFixationDataset(args.dataset);
   std::vector<FixationItem> items = dataset.items;
+  items.erase(items.begin(), items.begin() + std::min<size_t>(args.skip, items.size()));
   if (args.first > 0 && static_cast<int>(items.size()) > args.first) items.resize(args.first);
 
   std::vector<Method> methods;
@@ -280,6 +282,8 @@ int EvalFixations(const EvalFixationsArguments& args) {
     const nlohmann::json report = {{"dataset", args.dataset},
                                    {"skipped", dataset.skipped},
                                    {"failed", failed},
+                                   {"skip", args.skip},
+                                   {"first", args.first},
                                    {"max_side", args.max_side},
                                    {"sigma_px", args.sigma},
                                    {"baseline_blur", args.baseline_blur},
@@ -330,7 +334,10 @@ void AddEvalFixationsCommand(CLI::App& app, const std::string& command_line,
                   "Score at most this many px on the larger side (maps and fixations scaled); 0: "
                   "the stimulus's size")
       ->check(CLI::Range(0, 100000));
-  cmd->add_option("--first", args->first, "Score only the first N images (by id)")
+  cmd->add_option("--skip", args->skip,
+                  "Leave out the first N images (by id): a held-out split after --first")
+      ->check(CLI::Range(0, 1000000));
+  cmd->add_option("--first", args->first, "Score only the first N images (by id, after --skip)")
       ->check(CLI::Range(0, 1000000));
   cmd->add_option("--out", args->out, "Write <method>.csv (per image) and fixations.json here");
   cmd->add_flag("--quiet", args->quiet, "No progress or notes");

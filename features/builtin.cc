@@ -1,6 +1,7 @@
 #include "features/builtin.h"
 
 #include "features/centre_bias.h"
+#include "features/centre_surround.h"
 #include "features/contrast.h"
 #include "features/disparity_feature.h"
 #include "features/motion.h"
@@ -29,6 +30,10 @@ FeatureRegistry BuiltinFeatures() {
                "a Gaussian centred on the image: where people look in photographs (not in the "
                "thesis; issue 14)",
                &CreateCentreBiasFeature);
+  registry.Add("centre_surround",
+               "Lab colour and lightness contrast at several scales, as centre-surround "
+               "differences of Gaussians (Itti et al. 1998; not in the thesis; issue 14)",
+               &CreateCentreSurroundFeature);
   return registry;
 }
 

@@ -94,7 +94,11 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
       if (!(high > low)) frame_weights_[i] = 0.0;
     }
   }
-  CombineMaps(normalised_, frame_weights_, context_.size(), &saliency_);
+  if (options_.saliency.combination == "product") {
+    MultiplyMaps(normalised_, frame_weights_, context_.size(), &saliency_);
+  } else {
+    CombineMaps(normalised_, frame_weights_, context_.size(), &saliency_);
+  }
   SmoothSaliency(options_.saliency, &saliency_);
   record->timings.Add("saliency", stage.ElapsedMs());
 

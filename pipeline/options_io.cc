@@ -53,6 +53,7 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Choice("normalisation", &o->saliency.normalisation, SaliencyOptions::Normalisations());
   v.Field("local_maxima_window", &o->saliency.local_maxima_window, Range::Closed(3, 1001));
   v.Field("blur", &o->saliency.blur, Range::Closed(0, 1));
+  v.Choice("combination", &o->saliency.combination, {"sum", "product"});
   v.EndSection([o] { return o->saliency.Check(); });
 
   v.BeginSection("select");

@@ -59,6 +59,9 @@ std::string SaliencyOptions::Check() const {
     return "local_maxima_window must be odd and at least 3";
   }
   if (!(blur >= 0.0 && blur <= 1.0)) return "blur must be in [0, 1]";
+  if (combination != "sum" && combination != "product") {
+    return "combination '" + combination + "' is not sum or product";
+  }
   return "";
 }
 
@@ -89,6 +92,28 @@ void CombineMaps(const std::vector<cv::Mat>& normalised, const std::vector<doubl
     if (weights[i] == 0.0) continue;
     cv::scaleAdd(normalised[i], static_cast<float>(weights[i] / total), *out, *out);
   }
+}
+
+void MultiplyMaps(const std::vector<cv::Mat>& normalised, const std::vector<double>& weights,
+                  cv::Size size, cv::Mat* out) {
+  ATTEND_CHECK(normalised.size() == weights.size()) << "one weight per map";
+  constexpr double kFloor = 0.01;  // so that a 0 somewhere is a strong veto, not -infinity
+  out->create(size, CV_32FC1);
+  out->setTo(0.f);
+  double total = 0.0;
+  for (const double weight : weights) total += weight;
+  if (!(total > 0.0)) return;
+  cv::Mat logs;
+  for (size_t i = 0; i < normalised.size(); ++i) {
+    if (weights[i] == 0.0) continue;
+    cv::log(normalised[i] + kFloor, logs);
+    cv::scaleAdd(logs, static_cast<float>(weights[i] / total), *out, *out);
+  }
+  cv::exp(*out, *out);
+  // From [kFloor, 1 + kFloor] to [0, 1].
+  *out = (*out - kFloor) / 1.0;
+  cv::max(*out, 0.0, *out);
+  cv::min(*out, 1.0, *out);
 }
 
 void SmoothSaliency(const SaliencyOptions& options, cv::Mat* map) {

@@ -24,6 +24,11 @@ struct SaliencyOptions {
   // hard edges, and people look near a salient thing, not exactly at it (issue 14); not in the
   // thesis.
   double blur = 0.0;
+  // How the normalised maps combine: "sum" (SPEC 2.3, the thesis: the weighted mean) or
+  // "product" (the weighted geometric mean, prod_i (n_i + 0.01)^(w_i / sum w), less its value
+  // where every map is 0: a map that is low somewhere, such as a centre bias, vetoes there
+  // rather than only adding elsewhere; not in the thesis, issue 14).
+  std::string combination = "sum";
 
   static const std::vector<std::string>& Normalisations();
   // "" when valid; otherwise names the field and the broken constraint.
@@ -37,6 +42,11 @@ void NormaliseMap(const cv::Mat& map, const SaliencyOptions& options, cv::Mat* o
 // 0, give a zero map of `size`.
 void CombineMaps(const std::vector<cv::Mat>& normalised, const std::vector<double>& weights,
                  cv::Size size, cv::Mat* out);
+
+// The weighted geometric mean of the maps as `combination` "product" defines it (CV_32FC1,
+// [0, 1]); no maps, or weights summing to 0, give a zero map of `size`.
+void MultiplyMaps(const std::vector<cv::Mat>& normalised, const std::vector<double>& weights,
+                  cv::Size size, cv::Mat* out);
 
 // Blurs `map` (CV_32FC1) in place as `options.blur` says (nothing when it is 0).
 void SmoothSaliency(const SaliencyOptions& options, cv::Mat* map);

@@ -102,5 +102,34 @@ TEST(Saliency, OptionsAreChecked) {
   EXPECT_NE(options.Check().find("odd"), std::string::npos);
 }
 
+TEST(Saliency, ProductIsTheWeightedGeometricMeanAndAZeroVetoes) {
+  cv::Mat out;
+  MultiplyMaps({Row({1.f, 0.25f, 1.f}), Row({1.f, 1.f, 0.f})}, {1.0, 1.0}, cv::Size(3, 1), &out);
+  EXPECT_NEAR(out.at<float>(0), 1.f, 1e-5);  // (1.01 x 1.01)^(1/2) - 0.01
+  EXPECT_NEAR(out.at<float>(1), std::sqrt(0.26f * 1.01f) - 0.01f, 1e-5);
+  // Where one map is 0 the product is near 0, the sum would be 0.5.
+  EXPECT_LT(out.at<float>(2), 0.1f);
+  CombineMaps({Row({1.f, 0.25f, 1.f}), Row({1.f, 1.f, 0.f})}, {1.0, 1.0}, cv::Size(3, 1), &out);
+  EXPECT_FLOAT_EQ(out.at<float>(2), 0.5f);
+}
+
+TEST(Saliency, BlurSpreadsAPeakAndKeepsItsHeight) {
+  cv::Mat map(40, 40, CV_32FC1, cv::Scalar(0.f));
+  map.at<float>(20, 20) = 0.8f;
+  SaliencyOptions options;
+  SmoothSaliency(options, &map);  // blur 0: unchanged
+  EXPECT_EQ(cv::countNonZero(map), 1);
+  options.blur = 0.05;  // sigma 2 px
+  SmoothSaliency(options, &map);
+  double high = 0.0;
+  cv::Point at;
+  cv::minMaxLoc(map, nullptr, &high, nullptr, &at);
+  EXPECT_NEAR(high, 0.8, 1e-5);
+  EXPECT_EQ(at, cv::Point(20, 20));
+  EXPECT_GT(map.at<float>(20, 22), 0.2f);  // exp(-1/2) x 0.8 two px away
+  options.combination = "mean";
+  EXPECT_NE(options.Check().find("combination"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace attend
