@@ -25,5 +25,6 @@ void AddSaliencyCommand(CLI::App& app, const std::string& command_line,
                         CommandAction* action);
 void AddEvalFixationsCommand(CLI::App& app, const std::string& command_line,
                              CommandAction* action);
+void AddFitWeightsCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
 
 }  // namespace attend

@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   attend::AddReportCommand(app, command_line, &action);
   attend::AddSaliencyCommand(app, command_line, &action);
   attend::AddEvalFixationsCommand(app, command_line, &action);
+  attend::AddFitWeightsCommand(app, command_line, &action);
 
   try {
     app.parse(argc, argv);

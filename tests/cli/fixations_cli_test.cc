@@ -144,5 +144,22 @@ TEST(EvalFixationsCli, AMapOfAnotherSizeIsResizedWithANote) {
   EXPECT_NE(r.err.find("resized"), std::string::npos) << r.err;
 }
 
+TEST(FitWeightsCli, WritesAConfigurationWithTheFittedWeightsThatRuns) {
+  testing::TempDir dir;
+  WriteDataset(dir);
+  dir.Write("two.yaml",
+            "features:\n  - {name: colour_contrast, weight: 1}\n  - {name: centre_bias, weight: 1}\n");
+  Result r = Attend(dir, {"fit-weights", "--dataset", "data", "--config", "two.yaml", "--train",
+                          "2", "--step", "0.5", "--out", "fitted.yaml"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("3 tried"), std::string::npos) << r.out;
+  const std::string fitted = ReadText(dir.File("fitted.yaml"));
+  EXPECT_NE(fitted.find("--skip 2"), std::string::npos) << fitted;
+  // The fitted file is a whole configuration: attend saliency runs with it.
+  r = Attend(dir, {"saliency", "data/stimuli", "--out", "maps", "--config", "fitted.yaml",
+                   "--quiet"});
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
 }  // namespace
 }  // namespace attend
