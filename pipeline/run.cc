@@ -140,6 +140,7 @@ RunSummary RunSequence(const RunRequest& request) {
   RunSummary summary;
   summary.dir = folder.dir();
   StageTimes totals;
+  nlohmann::ordered_json scanpath = nlohmann::ordered_json::array();
   const Stopwatch wall;
   auto finish = [&] {
     summary.wall_seconds = wall.ElapsedMs() / 1000.0;
@@ -147,6 +148,7 @@ RunSummary RunSequence(const RunRequest& request) {
     for (const auto& [stage, ms] : totals.stages()) {
       summary.mean_ms.Add(stage, summary.frames > 0 ? ms / summary.frames : 0.0);
     }
+    folder.WriteJson("scanpath.json", scanpath);
     folder.WriteSummary(SummaryJson(summary, info, request, started));
   };
 
@@ -175,7 +177,20 @@ RunSummary RunSequence(const RunRequest& request) {
       record.timings.Add("write", stage.ElapsedMs());
       // The pipeline and the overlay work at the working size; the record is written in the
       // pixels of the input frames (SPEC 3.3).
-      folder.AppendFrame(InputFromWorking(record, info.scale_x, info.scale_y, info.native_size));
+      const FrameRecord input = InputFromWorking(record, info.scale_x, info.scale_y, info.native_size);
+      folder.AppendFrame(input);
+      // The scanpath: each target's centre where it was first attended, in selection order.
+      for (const int id : input.new_ids) {
+        for (const TargetRecord& target : input.targets) {
+          if (target.id != id) continue;
+          const cv::Rect& b = target.bbox;
+          scanpath.push_back({{"frame", input.frame},
+                              {"id", id},
+                              {"x", b.x + b.width / 2.0},
+                              {"y", b.y + b.height / 2.0},
+                              {"bbox", {b.x, b.y, b.width, b.height}}});
+        }
+      }
 
       for (const auto& [name, ms] : record.timings.stages()) totals.Add(name, ms);
       ++summary.frames;

@@ -16,7 +16,8 @@ namespace attend {
 const std::vector<std::string>& RunFolder::OwnEntries() {
   static const std::vector<std::string> entries = {
       "config.yaml", "frames.jsonl", "summary.json", "overlay.avi", "saliency",
-      "inhibition",  "inhibited",    "features",     "overlay",     "regions"};
+      "inhibition",  "inhibited",    "features",     "overlay",     "regions",
+      "scanpath.json"};
   return entries;
 }
 
@@ -86,8 +87,13 @@ void RunFolder::AppendVideoFrame(const std::string& name, const cv::Mat& image, 
 }
 
 void RunFolder::WriteSummary(const nlohmann::ordered_json& summary) {
-  const fs::path path = fs::path(dir_) / "summary.json";
-  const fs::path temporary = fs::path(dir_) / "summary.json.tmp";
+  WriteJson("summary.json", summary);
+}
+
+void RunFolder::WriteJson(const std::string& name, const nlohmann::ordered_json& value) {
+  const nlohmann::ordered_json& summary = value;
+  const fs::path path = fs::path(dir_) / name;
+  const fs::path temporary = fs::path(dir_) / (name + ".tmp");
   {
     std::ofstream out(temporary);
     out << summary.dump(2) << "\n";

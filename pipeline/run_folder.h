@@ -40,6 +40,8 @@ class RunFolder {
   void AppendVideoFrame(const std::string& name, const cv::Mat& image, double fps);
   // Written to a temporary file and renamed, so summary.json is never half-written.
   void WriteSummary(const nlohmann::ordered_json& summary);
+  // DIR/<name> (a JSON file of the run's own, such as scanpath.json), written whole by a rename.
+  void WriteJson(const std::string& name, const nlohmann::ordered_json& value);
 
   // The entries a run writes below its folder (what --overwrite removes).
   static const std::vector<std::string>& OwnEntries();

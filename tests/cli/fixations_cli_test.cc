@@ -144,6 +144,32 @@ TEST(EvalFixationsCli, AMapOfAnotherSizeIsResizedWithANote) {
   EXPECT_NE(r.err.find("resized"), std::string::npos) << r.err;
 }
 
+TEST(RunCli, WritesTheScanpathInSelectionOrder) {
+  testing::TempDir dir;
+  // A short still sequence of one image: the object is attended in the first frame.
+  std::filesystem::create_directories(dir.File("seq/left"));
+  const cv::Rect object(250, 60, 60, 50);
+  for (int f = 0; f < 3; ++f) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "seq/left/%06d.png", f);
+    ASSERT_TRUE(cv::imwrite(dir.File(name), ObjectOnGrey({400, 300}, object, 9)));
+  }
+  const Result r = Attend(dir, {"run", "--sequence", "seq", "--out", "run", "--quiet", "--set",
+                                "features.disparity.enabled=false"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json scanpath = nlohmann::json::parse(ReadText(dir.File("run/scanpath.json")));
+  ASSERT_FALSE(scanpath.empty());
+  EXPECT_EQ(scanpath[0]["frame"], 0);
+  // In input pixels (400 x 300, not the 320 x 240 working size): on the object.
+  EXPECT_TRUE(object.contains({scanpath[0]["x"].get<int>(), scanpath[0]["y"].get<int>()}))
+      << scanpath.dump();
+  int previous = -1;
+  for (const nlohmann::json& step : scanpath) {
+    EXPECT_GE(step["frame"].get<int>(), previous);
+    previous = step["frame"].get<int>();
+  }
+}
+
 TEST(FitWeightsCli, WritesAConfigurationWithTheFittedWeightsThatRuns) {
   testing::TempDir dir;
   WriteDataset(dir);
