@@ -114,6 +114,7 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
     v.Field("bounded_min_overlap", &t.bip.bounded_min_overlap, Range::Closed(0.01, 1));
     v.Field("bound_growth", &t.bip.bound_growth, Range::Closed(0, 1));
     v.Field("size_rate", &t.bip.size_rate, Range::Closed(0, 1));
+    v.Field("centre_rate", &t.bip.centre_rate, Range::Closed(0, 1));
     v.Field("distinctive_weights", &t.bip.distinctive_weights);
     v.Field("distinct_rate", &t.bip.distinct_rate, Range::Closed(0, 1));
     v.Field("motion_sigma", &t.bip.motion_sigma, Range::Closed(0, 100));
@@ -144,6 +145,7 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
             bip_kinds, kind);
     v.Owned("bound_growth", bip, t.bip.bound_growth == d.bip.bound_growth, bip_kinds, kind);
     v.Owned("size_rate", bip, t.bip.size_rate == d.bip.size_rate, bip_kinds, kind);
+    v.Owned("centre_rate", bip, t.bip.centre_rate == d.bip.centre_rate, bip_kinds, kind);
     v.Owned("distinctive_weights", bip, t.bip.distinctive_weights == d.bip.distinctive_weights,
             bip_kinds, kind);
     v.Owned("distinct_rate", bip, t.bip.distinct_rate == d.bip.distinct_rate, bip_kinds, kind);

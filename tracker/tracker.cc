@@ -273,6 +273,7 @@ std::string TrackerOptions::Check() const {
   if (!(min_overlap > 0.f && min_overlap <= 1.f)) return "min_overlap must be in (0, 1]";
   if (!(bound_growth >= 0.f && bound_growth <= 1.f)) return "bound_growth must be in [0, 1]";
   if (!(size_rate >= 0.f && size_rate <= 1.f)) return "size_rate must be in [0, 1]";
+  if (!(centre_rate >= 0.f && centre_rate <= 1.f)) return "centre_rate must be in [0, 1]";
   if (!(distinct_rate >= 0.f && distinct_rate <= 1.f)) return "distinct_rate must be in [0, 1]";
   if (!(motion_sigma >= 0.f)) return "motion_sigma must be >= 0";
   if (!(bounded_min_overlap > 0.f && bounded_min_overlap <= 1.f)) {
@@ -892,9 +893,10 @@ struct MultiTracker::Impl {
     const double rate = options.size_rate;
     const double w = (1 - rate) * moved_smooth.width + rate * (x1 - x0);
     const double hgt = (1 - rate) * moved_smooth.height + rate * (y1 - y0);
-    const double cx = (1 - rate) * (moved_smooth.x + moved_smooth.width / 2.0) + rate * (x0 + x1) / 2.0;
+    const double crate = options.centre_rate;
+    const double cx = (1 - crate) * (moved_smooth.x + moved_smooth.width / 2.0) + crate * (x0 + x1) / 2.0;
     const double cy =
-        (1 - rate) * (moved_smooth.y + moved_smooth.height / 2.0) + rate * (y0 + y1) / 2.0;
+        (1 - crate) * (moved_smooth.y + moved_smooth.height / 2.0) + crate * (y0 + y1) / 2.0;
     *smooth = cv::Rect2d(cx - w / 2, cy - hgt / 2, std::max(1.0, w), std::max(1.0, hgt));
     cv::Rect box(static_cast<int>(std::lround(cx - w / 2)),
                  static_cast<int>(std::lround(cy - hgt / 2)),

@@ -48,6 +48,9 @@ struct TrackerOptions {
   // mask's box by this share a frame.
   float bound_growth = 0.05f;
   float size_rate = 0.1f;
+  // Bounded mode only: the box's centre follows the mask's box by this share a frame (its size
+  // by size_rate): where the target is changes faster than how large it is.
+  float centre_rate = 0.3f;
   // Bounded mode only: template weights are scaled by how distinctive their colour is of the
   // target against its surroundings, a table learnt at the start and blended in by this share
   // each frame the target is found; 0 keeps the first frame's table.
