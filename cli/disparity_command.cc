@@ -15,6 +15,7 @@
 #include <system_error>
 #include <vector>
 
+#include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "config/param_block.h"
 #include "io/pfm.h"
@@ -310,15 +311,10 @@ void AddDisparityCommand(CLI::App& app, const std::string&, CommandAction* actio
           },
           "POSITIVE"))
       ->needs(gt);
-  command
-      ->add_option("--set", args->sets,
-                   "Set an option, the value parsed as YAML: --set disparity.KEY=VALUE with KEY "
-                   "one of max_disparity, window, subpixel, left_right_check, lr_tolerance, "
-                   "smoothness (hard or penalty), jump_penalty (repeatable)")
-      ->type_name("KEY=VALUE")
-      ->expected(1)
-      ->allow_extra_args(false)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  AddSetOption(command, &args->sets,
+               "Set an option, the value parsed as YAML: --set disparity.KEY=VALUE with KEY "
+               "one of max_disparity, window, subpixel, left_right_check, lr_tolerance, "
+               "smoothness (hard or penalty), jump_penalty (repeatable)");
   command->callback([args, action, subpixel, lr_check] {
     const bool subpixel_given = subpixel->count() > 0;
     const bool lr_check_given = lr_check->count() > 0;

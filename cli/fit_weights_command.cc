@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "cli/home.h"
 #include "eval/fixation_data.h"
@@ -74,8 +75,7 @@ int FitWeightsCommand(const FitWeightsArguments& args) {
   if (names.size() > 8) throw ConfigError(config_path + ": fit-weights weighs at most 8 features");
 
   WeightFitOptions fit_options;
-  fit_options.product = options.saliency.combination == "product";
-  fit_options.blur = options.saliency.blur;
+  fit_options.saliency = options.saliency;
   fit_options.step = args.step;
   const WeightFit fit = FitWeights(samples, fit_options);
   for (FeatureSpec& spec : options.features) {
@@ -117,11 +117,7 @@ void AddFitWeightsCommand(CLI::App& app, const std::string& command_line, Comman
       "the configuration with those weights (docs/FIXATIONS.md)");
   cmd->add_option("--dataset", args->dataset, "Fixation dataset folder")->required();
   cmd->add_option("--config", args->config, "Configuration whose feature weights are fitted");
-  cmd->add_option("--set", args->sets, "Override a configuration key, the value parsed as YAML")
-      ->type_name("KEY=VALUE")
-      ->expected(1)
-      ->allow_extra_args(false)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  AddSetOption(cmd, &args->sets, "Override a configuration key, the value parsed as YAML");
   cmd->add_option("--train", args->train, "Images used for fitting: the first N by id")
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--step", args->step, "Grid step of the weights")->check(CLI::Range(0.01, 1.0));

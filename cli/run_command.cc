@@ -8,6 +8,7 @@
 #include <memory>
 #include <sstream>
 
+#include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "cli/home.h"
 #include "pipeline/options_io.h"
@@ -173,14 +174,9 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
   run->add_option("--out", args->out,
                   "Run folder (default: runs/<date>-<time>-<config>-<sequence>)");
   run->add_flag("--overwrite", args->overwrite, "Replace a previous run in a non-empty --out");
-  run->add_option("--set", args->sets,
-                  "Override a configuration key, the value parsed as YAML: --set select.max_new=3, "
-                  "--set 'output.dump=[overlay]', --set features.skin.weight=0.5")
-      ->type_name("KEY=VALUE")
-      // One value per --set: `--set a=1 b=2` is a mistake, not two overrides.
-      ->expected(1)
-      ->allow_extra_args(false)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  AddSetOption(run, &args->sets,
+               "Override a configuration key, the value parsed as YAML: --set select.max_new=3, "
+               "--set 'output.dump=[overlay]', --set features.skin.weight=0.5");
   run->add_option("--frames", args->frames, "Frame range FIRST:LAST, inclusive (10:50, 10:, :99)");
   run->add_flag("--quiet", args->quiet, "No progress line or report; errors only");
   args->command_line = command_line;

@@ -2,7 +2,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -10,6 +9,7 @@
 #include <system_error>
 #include <vector>
 
+#include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "cli/home.h"
 #include "io/pfm.h"
@@ -50,15 +50,7 @@ std::vector<std::string> ListImages(const std::vector<std::string>& inputs) {
     }
   }
   if (images.empty()) throw InputError("saliency: no image files in the given folders");
-  std::map<std::string, std::string> path_of_stem;
-  for (const std::string& image : images) {
-    const std::string stem = fs::path(image).stem().string();
-    const auto [it, inserted] = path_of_stem.emplace(stem, image);
-    if (!inserted) {
-      throw ConfigError("images " + it->second + " and " + image + " have the same stem '" + stem +
-                        "': their maps " + stem + ".pfm would overwrite each other");
-    }
-  }
+  OutputStems(images, "maps STEM.pfm");
   return images;
 }
 
@@ -160,11 +152,7 @@ void AddSaliencyCommand(CLI::App& app, const std::string& command_line, CommandA
   cmd->add_option("--out", args->out, "Output folder")->required();
   cmd->add_option("--config", args->config,
                   "Configuration YAML (default: configs/default.yaml of the attend home)");
-  cmd->add_option("--set", args->sets, "Override a configuration key, the value parsed as YAML")
-      ->type_name("KEY=VALUE")
-      ->expected(1)
-      ->allow_extra_args(false)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  AddSetOption(cmd, &args->sets, "Override a configuration key, the value parsed as YAML");
   cmd->add_flag("--features", args->features, "Also write every feature's normalised map");
   cmd->add_option("--scanpath", args->scanpath,
                   "Also write the first K attended regions of each image (scanpath.json)")

@@ -5,7 +5,6 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -14,6 +13,7 @@
 #include <system_error>
 #include <vector>
 
+#include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "cli/home.h"
 #include "pipeline/options_io.h"
@@ -39,23 +39,6 @@ struct SegmentArguments {
   bool metrics = false;
   bool quiet = false;
 };
-
-// The output stem of every image, in order. Two images with one stem would overwrite each
-// other's files.
-std::vector<std::string> OutputStems(const std::vector<std::string>& images) {
-  std::map<std::string, std::string> path_of_stem;
-  std::vector<std::string> stems;
-  for (const std::string& image : images) {
-    const std::string stem = fs::path(image).stem().string();
-    const auto [it, inserted] = path_of_stem.emplace(stem, image);
-    if (!inserted) {
-      throw ConfigError("images " + it->second + " and " + image + " have the same stem '" + stem +
-                        "': their outputs " + stem + ".*.png would overwrite each other");
-    }
-    stems.push_back(stem);
-  }
-  return stems;
-}
 
 cv::Mat ReadImage(const std::string& path) {
   std::error_code error;
@@ -105,7 +88,7 @@ std::string Fixed(double value, int digits) {
 int Segment(const SegmentArguments& args) {
   const std::string config_path = args.config.empty() ? DefaultConfigPath() : args.config;
   const SegmentationOptions options = LoadOptions(config_path, args.sets).segmentation;
-  const std::vector<std::string> stems = OutputStems(args.images);
+  const std::vector<std::string> stems = OutputStems(args.images, "outputs STEM.*.png");
 
   const fs::path out(args.out);
   std::error_code error;
@@ -203,15 +186,9 @@ void AddSegmentCommand(CLI::App& app, const std::string&, CommandAction* action)
   segment->add_option("--config", args->config,
                       "Configuration YAML; its segmentation block is used (default: "
                       "configs/default.yaml of the attend home)");
-  segment
-      ->add_option("--set", args->sets,
-                   "Override a configuration key, the value parsed as YAML: "
-                   "--set segmentation.t_max=30 (repeatable)")
-      ->type_name("KEY=VALUE")
-      // One value per --set, so that images may follow it.
-      ->expected(1)
-      ->allow_extra_args(false)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  AddSetOption(segment, &args->sets,
+               "Override a configuration key, the value parsed as YAML: "
+               "--set segmentation.t_max=30 (repeatable)");
   segment->add_flag("--metrics", args->metrics,
                     "Also compute F, Q and the shift variance (thesis 3.3.2; smaller is better)");
   segment->add_flag("--quiet", args->quiet, "No line per image; errors only");

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "config/param_block.h"
 #include "io/ground_truth.h"
@@ -646,16 +647,11 @@ void AddTrackCommand(CLI::App& app, const std::string&, CommandAction* action) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->required();
   command->add_option("--out", args->out, "Output folder, created if missing")->required();
-  command
-      ->add_option("--set", args->sets,
-                   "Set a tracker option, the value parsed as YAML: --set tracker.KEY=VALUE with "
-                   "KEY one of " +
-                       Join(TrackerKeys(), ", ") +
-                       " (configs/README.md, tracker/tracker.h; repeatable)")
-      ->type_name("KEY=VALUE")
-      ->expected(1)
-      ->allow_extra_args(false)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  AddSetOption(command, &args->sets,
+               "Set a tracker option, the value parsed as YAML: --set tracker.KEY=VALUE with "
+               "KEY one of " +
+                   Join(TrackerKeys(), ", ") +
+                   " (configs/README.md, tracker/tracker.h; repeatable)");
   command->add_option(
       "--frames", args->frames,
       "Frame range FIRST:LAST, inclusive (10:50, 10:, :99); targets start on FIRST");

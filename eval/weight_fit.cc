@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <functional>
-#include <opencv2/imgproc.hpp>
 
 #include "eval/fixation_metrics.h"
 #include "util/error.h"
@@ -11,28 +10,16 @@ namespace attend {
 
 namespace {
 
-// The combined map of `sample` under `weights`, as the saliency stage combines and blurs.
+// The combined map of `sample` under `weights`, by the saliency stage's own functions.
 void Combine(const FitSample& sample, const std::vector<double>& weights,
-             const WeightFitOptions& options, cv::Mat* out) {
-  constexpr double kFloor = 0.01;  // as MultiplyMaps (saliency/saliency.h)
+             const SaliencyOptions& saliency, cv::Mat* out) {
   const cv::Size size = sample.features[0].size();
-  out->create(size, CV_32FC1);
-  out->setTo(0.f);
-  cv::Mat term;
-  for (size_t i = 0; i < weights.size(); ++i) {
-    if (weights[i] == 0.0) continue;
-    if (options.product) {
-      cv::log(sample.features[i] + kFloor, term);
-      cv::scaleAdd(term, static_cast<float>(weights[i]), *out, *out);
-    } else {
-      cv::scaleAdd(sample.features[i], static_cast<float>(weights[i]), *out, *out);
-    }
+  if (saliency.combination == "product") {
+    MultiplyMaps(sample.features, weights, size, out);
+  } else {
+    CombineMaps(sample.features, weights, size, out);
   }
-  if (options.product) cv::exp(*out, *out);
-  if (options.blur > 0.0) {
-    const double sigma = options.blur * std::max(size.width, size.height);
-    cv::GaussianBlur(*out, *out, cv::Size(), sigma, sigma, cv::BORDER_REPLICATE);
-  }
+  SmoothSaliency(saliency, out);
 }
 
 // Every vector of `n` multiples of 1 / `units` summing to 1.
@@ -74,7 +61,7 @@ WeightFit FitWeights(const std::vector<FitSample>& samples, const WeightFitOptio
     int counted = 0;
     for (const FitSample& sample : samples) {
       if (sample.fixations.empty()) continue;
-      Combine(sample, weights, options, &combined);
+      Combine(sample, weights, options.saliency, &combined);
       sum += Nss(combined, sample.fixations);
       ++counted;
     }

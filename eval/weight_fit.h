@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "eval/fixation_data.h"
+#include "saliency/saliency.h"
 
 namespace attend {
 
@@ -17,8 +18,7 @@ struct FitSample {
 };
 
 struct WeightFitOptions {
-  bool product = false;  // combine as saliency.combination product (else the weighted mean)
-  double blur = 0.0;     // saliency.blur: share of the larger side
+  SaliencyOptions saliency;  // how the maps combine and blur (its combination and blur)
   double step = 0.1;     // grid step of the weights, in (0, 1]
 };
 

@@ -4,6 +4,7 @@
 
 #include "io/sequence.h"
 #include "pipeline/frame_pipeline.h"
+#include "pipeline/frame_record.h"
 
 namespace attend {
 
@@ -66,8 +67,9 @@ StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features,
   }
   // Attention on the still image: the same frame again, each showing selects new targets
   // where the inhibition leaves the saliency high.
-  const double sx = static_cast<double>(maps.image_size.width) / maps.working_size.width;
-  const double sy = static_cast<double>(maps.image_size.height) / maps.working_size.height;
+  // Working size over input size, as SequenceInfo's scale_x and scale_y.
+  const double sx = static_cast<double>(maps.working_size.width) / maps.image_size.width;
+  const double sy = static_cast<double>(maps.working_size.height) / maps.image_size.height;
   for (int shown = 0; static_cast<int>(maps.scanpath.size()) < scanpath_steps; ++shown) {
     if (shown > 0) {
       frame.index = shown;
@@ -78,10 +80,7 @@ StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features,
     for (const int id : record.new_ids) {
       for (const TargetRecord& target : record.targets) {
         if (target.id != id) continue;
-        const cv::Rect box(static_cast<int>(std::lround(target.bbox.x * sx)),
-                           static_cast<int>(std::lround(target.bbox.y * sy)),
-                           static_cast<int>(std::lround(target.bbox.width * sx)),
-                           static_cast<int>(std::lround(target.bbox.height * sy)));
+        const cv::Rect box = InputFromWorkingBox(target.bbox, sx, sy, maps.image_size);
         maps.scanpath_boxes.push_back(box);
         maps.scanpath.emplace_back(box.x + box.width / 2.0, box.y + box.height / 2.0);
       }

@@ -33,7 +33,7 @@ std::vector<FitSample> Samples() {
 TEST(FitWeights, PutsTheWeightOnTheFeatureThatPredictsTheFixations) {
   for (const bool product : {false, true}) {
     WeightFitOptions options;
-    options.product = product;
+    options.saliency.combination = product ? "product" : "sum";
     options.step = 0.25;
     const WeightFit fit = FitWeights(Samples(), options);
     ASSERT_EQ(fit.weights.size(), 2u);
