@@ -23,32 +23,30 @@ cv::Mat ToImageSize(const cv::Mat& map, cv::Size size) {
 
 StillSaliency::StillSaliency(const AttendOptions& options, const std::string& home,
                              std::vector<std::string>* dropped)
-    : options_(options), home_(home) {
-  const FeatureRegistry registry = LoadFeatureRegistry(options_.plugins);
+    : options_(options), home_(home), registry_(LoadFeatureRegistry(options_.plugins)) {
   FeatureSetup setup;
   setup.stereo = true;  // to ask each feature whether it needs stereo
   setup.home = home_;
   for (FeatureSpec& spec : options_.features) {
     if (!spec.enabled) continue;
-    if (registry.Create(spec, setup)->NeedsStereo()) {
+    if (registry_.Create(spec, setup)->NeedsStereo()) {
       spec.enabled = false;
       if (dropped != nullptr) dropped->push_back(spec.name);
     }
   }
   // Every other problem of the configuration shows here, before any image is read.
   setup.stereo = false;
-  FramePipeline check(options_, registry, setup);
+  FramePipeline check(options_, registry_, setup);
 }
 
 StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features,
                                  int scanpath_steps) const {
   CV_Assert(bgr.type() == CV_8UC3 && !bgr.empty());
   // A pipeline per image: nothing (motion background, targets, inhibition) carries over.
-  const FeatureRegistry registry = LoadFeatureRegistry(options_.plugins);
   FeatureSetup setup;
   setup.stereo = false;
   setup.home = home_;
-  FramePipeline pipeline(options_, registry, setup);
+  FramePipeline pipeline(options_, registry_, setup);
 
   StillMaps maps;
   maps.image_size = bgr.size();

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "features/feature_map.h"
 #include "pipeline/attend_options.h"
 
 namespace attend {
@@ -39,6 +40,7 @@ class StillSaliency {
  private:
   AttendOptions options_;
   std::string home_;
+  FeatureRegistry registry_;  // built-in features and plugins, loaded once
 };
 
 }  // namespace attend
