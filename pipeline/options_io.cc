@@ -89,6 +89,7 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.BeginSection("inhibition");
   v.Field("margin", &o->attention.inhibition.margin, Range::Closed(0, 1000));
   v.Field("keep_occluded", &o->attention.inhibition.keep_occluded);
+  v.Field("occluded_search", &o->attention.inhibition.occluded_search);
   v.EndSection([o] { return o->attention.Check(); });
 
   v.BeginSection("tracker");

@@ -135,8 +135,11 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
       target.state = "occluded";
       target.saliency = target.box.empty() ? 0.0 : cv::mean(saliency(target.box))[0];
       if (options_.inhibition.keep_occluded && !target.box.empty()) {
-        inhibition_(target.box).setTo(1.f);
-        covered_(target.box).setTo(255);
+        const cv::Rect area = options_.inhibition.occluded_search && !result.roi.empty()
+                                  ? (target.box | result.roi) & image
+                                  : target.box;
+        inhibition_(area).setTo(1.f);
+        covered_(area).setTo(255);
       }
     } else {
       target.state = "lost";

@@ -61,6 +61,9 @@ struct DropOptions {
 struct InhibitionOptions {
   int margin = 3;             // pixels of dilation around each tracked mask
   bool keep_occluded = true;  // occluded targets inhibit their last box
+  // ... and the area their tracker searched them in this frame (the box and its ROI border):
+  // an object that reappears there is the occluded target coming back, not a new one.
+  bool occluded_search = true;
 };
 
 struct AttentionOptions {

@@ -350,6 +350,40 @@ TEST(Attention, AShortOcclusionKeepsTheIdentityAndIsNotReselected) {
   }
 }
 
+// While a target is occluded, the area its tracker searches it in (its box and the ROI border
+// around it) is inhibited with inhibition.occluded_search: an object that comes out beside the
+// box is taken for the occluded target coming back, not attended as a new one. With the box
+// alone (false) the same object starts a new target in the frame it appears.
+TEST(Attention, AnOccludedTargetInhibitsTheAreaItIsSearchedIn) {
+  const cv::Rect box(60, 40, 30, 24);
+  const cv::Rect panel(59, 39, 32, 26);  // covers the box and a pixel around it
+  const cv::Rect beside(92, 42, 10, 16);  // 2 px right of the box, within the ROI border
+  const cv::Scalar red(40, 40, 210), blue(200, 90, 30), green(60, 180, 50);
+  for (const bool search : {true, false}) {
+    SCOPED_TRACE(search ? "occluded_search" : "box alone");
+    AttentionOptions options;
+    options.inhibition.occluded_search = search;
+    AttentionStage stage(options, ShippedSkinModel());
+    ASSERT_EQ(Step(&stage, Draw({{box, red}}, {box}, 0)).new_ids, std::vector<int>{1});
+    int started = 0;
+    for (int f = 1; f <= 5; ++f) {
+      std::vector<std::pair<cv::Rect, cv::Scalar>> drawn = {{box, red}, {panel, blue}};
+      std::vector<cv::Rect> salient;
+      if (f >= 2) drawn.push_back({beside, green}), salient.push_back(beside);
+      const AttentionFrame frame = Step(&stage, Draw(drawn, salient, f));
+      ASSERT_FALSE(frame.targets.empty()) << "frame " << f;
+      EXPECT_EQ(frame.targets[0].state, "occluded") << "frame " << f;
+      started += static_cast<int>(frame.new_ids.size());
+      const cv::Point centre(beside.x + beside.width / 2, beside.y + beside.height / 2);
+      // (Once started, the new target of the box-alone run inhibits its own mask.)
+      if (search || f == 2) {
+        EXPECT_EQ(stage.inhibition().at<float>(centre) > 0.f, search) << "frame " << f;
+      }
+    }
+    EXPECT_EQ(started, search ? 0 : 1);
+  }
+}
+
 TEST(Attention, ASkinObjectIsTrackedWithTheSkinSimilarity) {
   AttentionStage stage(AttentionOptions{}, ShippedSkinModel());
   const cv::Rect face(70, 30, 26, 34), box(20, 70, 30, 24);
