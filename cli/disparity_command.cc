@@ -18,6 +18,7 @@
 #include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "config/param_block.h"
+#include "io/image_file.h"
 #include "io/pfm.h"
 #include "stereo/disparity.h"
 #include "util/error.h"
@@ -69,7 +70,8 @@ DisparityOptions ResolveOptions(const DisparityArguments& args, bool subpixel_gi
   root.CheckNoUnknownKeys();
 
   DisparityOptions options;
-  options.max_disparity = block.GetInt("max_disparity", options.max_disparity, Range::AtLeast(1));
+  options.max_disparity = block.GetInt("max_disparity", options.max_disparity,
+                                       Range::Closed(1, DisparityOptions::kMaxDisparity));
   options.window = block.GetInt("window", options.window, Range::AtLeast(1));
   options.subpixel = block.GetBool("subpixel", options.subpixel);
   options.left_right_check = block.GetBool("left_right_check", options.left_right_check);
@@ -101,8 +103,17 @@ DisparityOptions ResolveOptions(const DisparityArguments& args, bool subpixel_gi
     only_one("--lr-check/--no-lr-check", "left_right_check");
     options.left_right_check = args.left_right_check;
   }
+  // A value out of range is named by where it was given: the flag, or the --set.
   const std::string error = options.Check();
-  if (!error.empty()) throw ConfigError("disparity options: " + error);
+  if (!error.empty()) {
+    if (args.max_disparity && error.rfind("max_disparity", 0) == 0) {
+      throw ConfigError("--max-disparity " + std::to_string(*args.max_disparity) + ": " + error);
+    }
+    if (args.window && error.rfind("window", 0) == 0) {
+      throw ConfigError("--window " + std::to_string(*args.window) + ": " + error);
+    }
+    throw ConfigError("disparity options: " + error);
+  }
   return options;
 }
 
@@ -111,16 +122,7 @@ DisparityOptions ResolveOptions(const DisparityArguments& args, bool subpixel_gi
 cv::Mat ReadStereoImage(const std::string& path) {
   std::error_code error;
   if (!fs::is_regular_file(path, error)) throw InputError(path + ": no such image file");
-  cv::Mat image;
-  try {
-    image = cv::imread(path, cv::IMREAD_ANYCOLOR);
-  } catch (const cv::Exception& e) {
-    throw InputError(path + ": cannot be decoded: " + e.err);
-  }
-  if (image.empty()) {
-    throw InputError(path + ": cannot read as an image (empty, corrupt or unsupported format)");
-  }
-  return image;
+  return ReadImageFile(path, cv::IMREAD_ANYCOLOR, path);
 }
 
 // Ground truth in pixels (CV_32FC1): a one-channel PFM, or a one-channel 8- or 16-bit image,
@@ -138,15 +140,7 @@ cv::Mat ReadGroundTruth(const std::string& path, double scale) {
   } else {
     std::error_code error;
     if (!fs::is_regular_file(path, error)) throw InputError(path + ": no such ground-truth file");
-    cv::Mat image;
-    try {
-      image = cv::imread(path, cv::IMREAD_UNCHANGED);
-    } catch (const cv::Exception& e) {
-      throw InputError(path + ": cannot be decoded: " + e.err);
-    }
-    if (image.empty()) {
-      throw InputError(path + ": cannot read as an image (empty, corrupt or unsupported format)");
-    }
+    const cv::Mat image = ReadImageFile(path, cv::IMREAD_UNCHANGED, path);
     if (image.channels() != 1 || (image.depth() != CV_8U && image.depth() != CV_16U)) {
       throw InputError(path + ": ground truth must be one channel of 8 or 16 bits, got " +
                        std::to_string(image.channels()) + " channel(s) of " +

@@ -77,9 +77,9 @@ nlohmann::ordered_json DisparityScores(const std::string& run, const std::string
     if (entry.path().extension() != ".pfm") continue;
     const fs::path gt_path = truth / entry.path().filename();
     if (!fs::exists(gt_path)) continue;
-    cv::Mat map = ReadPfm(entry.path().string());
+    cv::Mat map = ReadPfmOneChannel(entry.path().string(), "a disparity map");
     map *= static_cast<float>(max_disparity - 1);
-    const cv::Mat ground_truth = ReadPfm(gt_path.string());
+    const cv::Mat ground_truth = ReadPfmOneChannel(gt_path.string(), "disparity ground truth");
     if (map.size() != ground_truth.size()) {
       // Working and input sizes share the aspect ratio up to rounding (resize fit or native);
       // a stretched run does not, and its disparity is not comparable pixel for pixel.

@@ -18,6 +18,7 @@
 #include "eval/fixation_data.h"
 #include "eval/fixation_metrics.h"
 #include "eval/saliency_baselines.h"
+#include "io/image_file.h"
 #include "io/pfm.h"
 #include "util/error.h"
 
@@ -162,9 +163,14 @@ int EvalFixations(const EvalFixationsArguments& args) {
   };
   std::vector<std::vector<Fixation>> normalised(items.size());  // x / w, y / h
   std::vector<std::string> failed;
-  auto load = [&](const FixationItem& item, Loaded* loaded) {
-    const cv::Mat bgr = cv::imread(item.stimulus_path, cv::IMREAD_COLOR);
-    if (bgr.empty()) return false;
+  // Empty with the reason when the stimulus cannot be used.
+  auto load = [&](const FixationItem& item, Loaded* loaded) -> std::string {
+    cv::Mat bgr;
+    try {
+      bgr = ReadImageFile(item.stimulus_path, cv::IMREAD_COLOR, item.stimulus_path);
+    } catch (const InputError& e) {
+      return e.what();
+    }
     loaded->scale = ScoringScale(bgr.size(), args.max_side);
     loaded->stimulus = ToSize(bgr, cv::Size(static_cast<int>(std::lround(bgr.cols * loaded->scale)),
                                             static_cast<int>(std::lround(bgr.rows * loaded->scale))));
@@ -173,7 +179,7 @@ int EvalFixations(const EvalFixationsArguments& args) {
       f.y *= loaded->scale;
       loaded->fixations.push_back(f);
     }
-    return true;
+    return "";
   };
   // First pass: fixations only (cheap), for the shuffled negatives.
   for (size_t i = 0; i < items.size(); ++i) {
@@ -191,9 +197,9 @@ int EvalFixations(const EvalFixationsArguments& args) {
   for (size_t i = 0; i < items.size(); ++i) {
     const FixationItem& item = items[i];
     Loaded loaded;
-    if (!load(item, &loaded)) {
-      std::cerr << "attend: error: " << item.stimulus_path
-                << ": cannot read as an image (empty, corrupt or unsupported format)\n";
+    const std::string error = load(item, &loaded);
+    if (!error.empty()) {
+      std::cerr << "attend: error: " << error << "\n";
       failed.push_back(item.stimulus_path);
       continue;
     }
@@ -216,8 +222,7 @@ int EvalFixations(const EvalFixationsArguments& args) {
         const fs::path path = fs::path(method.folder) / (item.id + ".pfm");
         std::error_code error;
         if (!fs::exists(path, error)) throw InputError(path.string() + ": no saliency map for image " + item.id);
-        map = ReadPfm(path.string());
-        if (map.channels() != 1) throw InputError(path.string() + ": a saliency map must have one channel");
+        map = ReadPfmOneChannel(path.string(), "a saliency map");
         const cv::Size native(static_cast<int>(std::lround(size.width / loaded.scale)),
                               static_cast<int>(std::lround(size.height / loaded.scale)));
         if (map.size() != native && map.size() != size && !args.quiet) {

@@ -15,6 +15,7 @@
 #include "cli/home.h"
 #include "eval/fixation_data.h"
 #include "eval/weight_fit.h"
+#include "io/image_file.h"
 #include "pipeline/options_io.h"
 #include "pipeline/still_saliency.h"
 #include "util/error.h"
@@ -45,11 +46,7 @@ int FitWeightsCommand(const FitWeightsArguments& args) {
   std::vector<FitSample> samples;
   std::vector<std::string> names;
   for (const FixationItem& item : items) {
-    const cv::Mat bgr = cv::imread(item.stimulus_path, cv::IMREAD_COLOR);
-    if (bgr.empty()) {
-      throw InputError(item.stimulus_path +
-                       ": cannot read as an image (empty, corrupt or unsupported format)");
-    }
+    const cv::Mat bgr = ReadImageFile(item.stimulus_path, cv::IMREAD_COLOR, item.stimulus_path);
     const StillMaps maps = still.Compute(bgr, true, 0);
     names = maps.feature_names;
     const int side = std::max(bgr.cols, bgr.rows);

@@ -12,6 +12,7 @@
 #include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "cli/home.h"
+#include "io/image_file.h"
 #include "io/pfm.h"
 #include "io/sequence.h"
 #include "pipeline/options_io.h"
@@ -86,11 +87,12 @@ int Saliency(const SaliencyArguments& args) {
   std::vector<std::string> failed;
   for (const std::string& path : images) {
     const std::string stem = fs::path(path).stem().string();
-    const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
-    if (bgr.empty()) {
+    cv::Mat bgr;
+    try {
+      bgr = ReadImageFile(path, cv::IMREAD_COLOR, path);
+    } catch (const InputError& e) {
       // Named, and the other images are still processed; the exit status says it at the end.
-      std::cerr << "attend: error: " << path
-                << ": cannot read as an image (empty, corrupt or unsupported format)\n";
+      std::cerr << "attend: error: " << e.what() << "\n";
       failed.push_back(path);
       continue;
     }

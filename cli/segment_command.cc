@@ -16,6 +16,7 @@
 #include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "cli/home.h"
+#include "io/image_file.h"
 #include "pipeline/options_io.h"
 #include "pyramid/metrics.h"
 #include "pyramid/segmentation.h"
@@ -47,17 +48,7 @@ cv::Mat ReadImage(const std::string& path) {
   }
   // IMREAD_COLOR gives 8-bit BGR whatever the file holds: grey is replicated to three
   // channels and 16-bit samples are scaled to 8 bits.
-  cv::Mat bgr;
-  try {
-    bgr = cv::imread(path, cv::IMREAD_COLOR);
-  } catch (const cv::Exception& e) {
-    // OpenCV refuses images beyond its pixel limit, among others, by throwing.
-    throw InputError(path + ": cannot be decoded: " + e.err);
-  }
-  if (bgr.empty()) {
-    throw InputError(path + ": cannot read as an image (empty, corrupt or unsupported format)");
-  }
-  return bgr;
+  return ReadImageFile(path, cv::IMREAD_COLOR, path);
 }
 
 void WriteImage(const fs::path& path, const cv::Mat& image) {

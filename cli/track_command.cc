@@ -22,6 +22,7 @@
 #include "cli/commands.h"
 #include "config/param_block.h"
 #include "io/ground_truth.h"
+#include "io/image_file.h"
 #include "io/sequence.h"
 #include "pipeline/options_io.h"
 #include "pipeline/overlay.h"
@@ -248,13 +249,7 @@ class ImageFolderInput final : public TrackInput {
     const int index = next_++;
     const std::string path = files_[index].string();
     const std::string where = "frame " + std::to_string(index) + " (" + path + ")";
-    cv::Mat bgr;
-    try {
-      bgr = cv::imread(path, cv::IMREAD_COLOR);
-    } catch (const cv::Exception& e) {
-      throw InputError(where + ": cannot be decoded: " + e.what());
-    }
-    if (bgr.empty()) throw InputError(where + ": cannot be read or decoded as an image");
+    const cv::Mat bgr = ReadImageFile(path, cv::IMREAD_COLOR, where);
     if (size_.empty()) size_ = bgr.size();
     if (bgr.size() != size_) {
       throw InputError(where + ": size " + std::to_string(bgr.cols) + "x" +

@@ -71,21 +71,60 @@ std::string JoinPath(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
 }
 
-// Rejects duplicate keys anywhere in the tree; yaml-cpp would silently keep the first.
-void CheckDuplicateKeys(const YAML::Node& node, const std::string& source) {
+// Bounds on a configuration's tree. yaml-cpp resolves an alias to the anchored node itself,
+// so `a: &x [*x]` is a sequence that contains itself, and aliases of aliases ("billion laughs")
+// make a small file a tree of millions of values: every walk over the tree would recurse
+// without end or run for minutes. A configuration is a few hundred values deep at most.
+constexpr int kMaxDepth = 64;
+constexpr long kMaxValues = 100000;
+
+struct TreeWalk {
+  const std::string& source;
+  long values = 0;
+};
+
+std::string LineOf(const YAML::Node& node, const std::string& source) {
+  const YAML::Mark mark = node.Mark();
+  // An override's value is one line of its own: the override names it.
+  if (mark.is_null() || source.rfind("--set ", 0) == 0) return source;
+  return source + ":" + std::to_string(mark.line + 1);
+}
+
+// Rejects duplicate keys anywhere in the tree (yaml-cpp would silently keep the first), and
+// trees deeper than kMaxDepth (an alias inside the node it names) or of more than kMaxValues
+// values once aliases are expanded.
+void CheckTree(const YAML::Node& node, int depth, TreeWalk* walk) {
+  if (depth > kMaxDepth) {
+    throw ConfigError(LineOf(node, walk->source) + ": nested more than " +
+                      std::to_string(kMaxDepth) +
+                      " levels deep (an alias used inside the node it names?)");
+  }
+  if (++walk->values > kMaxValues) {
+    throw ConfigError(LineOf(node, walk->source) + ": more than " + std::to_string(kMaxValues) +
+                      " values once its aliases are expanded (aliases of aliases?)");
+  }
   if (node.IsMap()) {
     std::set<std::string> seen;
     for (auto it = node.begin(); it != node.end(); ++it) {
+      if (!it->first.IsScalar()) {
+        throw ConfigError(LineOf(it->first, walk->source) + ": a key must be a name, not " +
+                          (it->first.IsSequence() ? "a list" : "a map"));
+      }
       const std::string key = it->first.Scalar();
       if (!seen.insert(key).second) {
-        throw ConfigError(source + ":" + std::to_string(it->first.Mark().line + 1) +
+        throw ConfigError(walk->source + ":" + std::to_string(it->first.Mark().line + 1) +
                           ": duplicate key '" + key + "'");
       }
-      CheckDuplicateKeys(it->second, source);
+      CheckTree(it->second, depth + 1, walk);
     }
   } else if (node.IsSequence()) {
-    for (const YAML::Node& element : node) CheckDuplicateKeys(element, source);
+    for (const YAML::Node& element : node) CheckTree(element, depth + 1, walk);
   }
+}
+
+void CheckTree(const YAML::Node& node, const std::string& source) {
+  TreeWalk walk{source};
+  CheckTree(node, 0, &walk);
 }
 
 ParamBlock MakeRoot(const YAML::Node& root, const std::string& source) {
@@ -93,7 +132,7 @@ ParamBlock MakeRoot(const YAML::Node& root, const std::string& source) {
     throw ConfigError(source + ":" + std::to_string(root.Mark().line + 1) +
                       ": the top level must be a map of keys");
   }
-  CheckDuplicateKeys(root, source);
+  CheckTree(root, source);
   auto state = std::make_shared<ParamBlock::State>();
   state->document = std::make_shared<Document>();
   state->document->source = source;
@@ -153,6 +192,7 @@ void ParamBlock::Override(const std::string& assignment) {
     throw ConfigError("--set " + assignment + ": the value is not valid YAML: " + e.msg);
   }
   if (!value.IsDefined()) value = YAML::Node(YAML::NodeType::Null);
+  CheckTree(value, "--set " + assignment);
 
   const std::vector<std::string> parts = Split(key_path, '.');
   YAML::Node current;
@@ -226,6 +266,21 @@ std::string ParamBlock::Where(const std::string& key) const {
   for (const auto& [path, assignment] : state_->document->overrides) {
     if (full == path || full.rfind(path + ".", 0) == 0) return "--set " + assignment;
   }
+  // A check of a whole block may be about values that overrides set inside it: those come
+  // first, then where the block is written.
+  std::string set_inside;
+  if (key.empty()) {
+    for (const auto& [path, assignment] : state_->document->overrides) {
+      if (full.empty() || path.rfind(full + ".", 0) == 0) {
+        set_inside += (set_inside.empty() ? "--set " : ", --set ") + assignment;
+      }
+    }
+  }
+  const std::string written = WrittenAt(key);
+  return set_inside.empty() ? written : set_inside + " (" + written + ")";
+}
+
+std::string ParamBlock::WrittenAt(const std::string& key) const {
   YAML::Mark mark = state_->node.Mark();
   if (!key.empty() && state_->node.IsMap()) {
     for (auto it = state_->node.begin(); it != state_->node.end(); ++it) {

@@ -49,6 +49,7 @@ class ParamBlock {
   // Dotted path of a key in this block.
   std::string KeyPath(const std::string& key) const;
   // Where a key (or, with "", this block) was written: "FILE:LINE" or "--set KEY=VALUE".
+  // For a block, the overrides of keys inside it are named first.
   std::string Where(const std::string& key = "") const;
   // The file this block was read from.
   const std::string& source() const;
@@ -100,6 +101,9 @@ class ParamBlock {
   const std::shared_ptr<State>& state() const { return state_; }
 
  private:
+  // "FILE:LINE" of a key (or, with "", this block) in the file, without the overrides.
+  std::string WrittenAt(const std::string& key) const;
+
   std::shared_ptr<State> state_;
 };
 

@@ -1,18 +1,75 @@
 #include "features/plugin_loader.h"
 
 #include <dlfcn.h>
+#include <elf.h>
 
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <vector>
 
 #include "features/plugin_api.h"
 #include "util/error.h"
 
 namespace attend {
 
+namespace {
+
+// Why the file at `path` is not a whole 64-bit ELF shared object, or "" when it is. dlopen maps
+// the segments that the program headers name; a file cut short (an interrupted copy or build)
+// keeps headers that point past its end, and touching those pages raises SIGBUS inside the
+// dynamic loader, where no error can be caught. So every segment is checked to lie within the
+// file before the library is opened.
+std::string IncompleteElf(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return "cannot be read";
+  file.seekg(0, std::ios::end);
+  const auto size = static_cast<uint64_t>(file.tellg());
+  file.seekg(0);
+  Elf64_Ehdr header;
+  if (size < sizeof(header) || !file.read(reinterpret_cast<char*>(&header), sizeof(header))) {
+    return "is not a shared library (too short for an ELF header)";
+  }
+  if (std::memcmp(header.e_ident, ELFMAG, SELFMAG) != 0) return "is not an ELF shared library";
+  if (header.e_ident[EI_CLASS] != ELFCLASS64) return "is not a 64-bit ELF library";
+  if (header.e_type != ET_DYN) return "is an ELF file but not a shared library";
+  // Sizes as unsigned 64-bit sums of 16- and 32-bit fields cannot overflow.
+  const uint64_t table_end =
+      header.e_phoff + static_cast<uint64_t>(header.e_phnum) * header.e_phentsize;
+  if (header.e_phentsize != sizeof(Elf64_Phdr) || table_end > size) {
+    return "is cut short or damaged (its program headers lie past the end of the file)";
+  }
+  // The loader does not need the section headers, but a file whose headers lie past its end
+  // was cut short all the same: what else is missing cannot be told.
+  const uint64_t sections_end =
+      header.e_shoff + static_cast<uint64_t>(header.e_shnum) * header.e_shentsize;
+  if (header.e_shoff != 0 && sections_end > size) {
+    return "is cut short: it is " + std::to_string(size) +
+           " bytes, but its section headers end at byte " + std::to_string(sections_end);
+  }
+  std::vector<Elf64_Phdr> segments(header.e_phnum);
+  file.seekg(static_cast<std::streamoff>(header.e_phoff));
+  if (!file.read(reinterpret_cast<char*>(segments.data()),
+                 static_cast<std::streamsize>(segments.size() * sizeof(Elf64_Phdr)))) {
+    return "cannot be read";
+  }
+  for (const Elf64_Phdr& segment : segments) {
+    if (segment.p_offset > size || segment.p_filesz > size - segment.p_offset) {
+      return "is cut short: it is " + std::to_string(size) + " bytes, but a segment ends at byte " +
+             std::to_string(segment.p_offset + segment.p_filesz);
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
 void LoadFeaturePlugin(const std::string& path, const std::string& where,
                        FeatureRegistry* registry) {
   const std::string prefix = where + ": plugin " + path + ": ";
   if (!std::filesystem::is_regular_file(path)) throw ConfigError(prefix + "no such file");
+  const std::string incomplete = IncompleteElf(path);
+  if (!incomplete.empty()) throw ConfigError(prefix + incomplete);
   // A relative path without a slash would make dlopen search the library path instead.
   const std::string load_path = std::filesystem::absolute(path).string();
   void* library = dlopen(load_path.c_str(), RTLD_NOW | RTLD_LOCAL);

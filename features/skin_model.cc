@@ -19,6 +19,7 @@
 
 #include "colour/colour.h"
 #include "config/param_block.h"
+#include "io/image_file.h"
 #include "util/error.h"
 
 namespace attend {
@@ -120,19 +121,10 @@ double ThresholdBetween(double accepted, double rejected) {
   return accepted + 1e-6 * std::max(1.0, accepted);
 }
 
-cv::Mat ReadImageFile(const std::string& path, int flags, const char* what) {
+cv::Mat ReadTrainingImage(const std::string& path, int flags, const char* what) {
   std::error_code error;
   if (!fs::is_regular_file(path, error)) throw InputError(path + ": no such " + what + " file");
-  cv::Mat image;
-  try {
-    image = cv::imread(path, flags);
-  } catch (const cv::Exception& e) {
-    throw InputError(path + ": cannot be decoded: " + e.err);
-  }
-  if (image.empty()) {
-    throw InputError(path + ": cannot read as an image (empty, corrupt or unsupported format)");
-  }
-  return image;
+  return ReadImageFile(path, flags, path);
 }
 
 // One line of text for a message: at most 60 characters, unprintable bytes shown as '?'.
@@ -335,8 +327,8 @@ void ReadSkinImagePair(const std::string& image_path, const std::string& mask_pa
                        const SkinSampleSink& sink) {
   // IMREAD_COLOR gives 8-bit BGR whatever the file holds. The mask is read as grey at its own
   // depth, so that a 16-bit mask with small values is not scaled to zero.
-  const cv::Mat bgr = ReadImageFile(image_path, cv::IMREAD_COLOR, "image");
-  const cv::Mat mask = ReadImageFile(mask_path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH, "mask");
+  const cv::Mat bgr = ReadTrainingImage(image_path, cv::IMREAD_COLOR, "image");
+  const cv::Mat mask = ReadTrainingImage(mask_path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH, "mask");
   if (mask.size() != bgr.size()) {
     throw InputError(mask_path + ": the mask is " + std::to_string(mask.cols) + "x" +
                      std::to_string(mask.rows) + " but its image " + image_path + " is " +

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "util/error.h"
+#include "util/limits.h"
 #include "util/strings.h"
 
 namespace attend {
@@ -24,11 +25,17 @@ double ParseNumber(const std::string& text, const std::string& path, int line, c
                    "' is not a number: '" + text + "'");
 }
 
-int ParseInteger(const std::string& text, const std::string& path, int line, const char* field) {
+// An integer in [0, max] (checked before the conversion to int, which would overflow).
+int ParseInteger(const std::string& text, const std::string& path, int line, const char* field,
+                 int max) {
   const double value = ParseNumber(text, path, line, field);
   if (value != std::floor(value)) {
     throw InputError(path + ":" + std::to_string(line) + ": field '" + field +
                      "' is not an integer: '" + text + "'");
+  }
+  if (value < 0 || value > max) {
+    throw InputError(path + ":" + std::to_string(line) + ": " + field + " number out of range: '" +
+                     text + "' (must be in 0.." + std::to_string(max) + ")");
   }
   return static_cast<int>(value);
 }
@@ -60,8 +67,8 @@ std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
     }
     for (std::string& field : fields) field = Trim(field);
     GtObject object;
-    object.frame = ParseInteger(fields[0], path, line, "frame");
-    object.id = ParseInteger(fields[1], path, line, "id");
+    object.frame = ParseInteger(fields[0], path, line, "frame", kMaxFrameNumber);
+    object.id = ParseInteger(fields[1], path, line, "id", kMaxId);
     object.box.x = ParseNumber(fields[2], path, line, "x");
     object.box.y = ParseNumber(fields[3], path, line, "y");
     object.box.width = ParseNumber(fields[4], path, line, "w");
@@ -69,10 +76,10 @@ std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
     object.visible_fraction = ParseNumber(fields[6], path, line, "visible_fraction");
     if (!fields[7].empty()) object.disparity = ParseNumber(fields[7], path, line, "disparity");
     object.kind = fields[8];
-    if (object.frame < 0 || object.box.width < 0 || object.box.height < 0 ||
-        object.visible_fraction < 0 || object.visible_fraction > 1) {
+    if (object.box.width < 0 || object.box.height < 0 || object.visible_fraction < 0 ||
+        object.visible_fraction > 1) {
       throw InputError(path + ":" + std::to_string(line) +
-                       ": negative frame or size, or visible_fraction outside [0, 1]");
+                       ": negative size, or visible_fraction outside [0, 1]");
     }
     if (object.kind != "object" && object.kind != "skin") {
       throw InputError(path + ":" + std::to_string(line) + ": kind must be object or skin, got '" +

@@ -1,6 +1,8 @@
 #include "io/pfm.h"
 
 #include <bit>
+#include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -25,6 +27,14 @@ bool ReadToken(std::istream& in, std::string* token) {
   return !token->empty();
 }
 
+// Parses all of `text` as a number; false when any of it is left or it is not one.
+template <typename T>
+bool ParseWhole(const std::string& text, T* value) {
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, *value);
+  return error == std::errc() && stop == end;
+}
+
 uint32_t ByteSwap(uint32_t v) {
   return (v >> 24) | ((v >> 8) & 0xff00u) | ((v << 8) & 0xff0000u) | (v << 24);
 }
@@ -41,16 +51,16 @@ cv::Mat ReadPfm(const std::string& path) {
   if (!ReadToken(in, &width_text) || !ReadToken(in, &height_text) || !ReadToken(in, &scale_text)) {
     throw InputError(path + ": truncated PFM header");
   }
+  // Each field whole: "320abc" is not a width (std::stoi would read 320 and stop).
   int width = 0, height = 0;
   double scale = 0.0;
-  try {
-    width = std::stoi(width_text);
-    height = std::stoi(height_text);
-    scale = std::stod(scale_text);
-  } catch (const std::exception&) {
-    throw InputError(path + ": malformed PFM header (width, height, scale)");
+  if (!ParseWhole(width_text, &width) || !ParseWhole(height_text, &height) ||
+      !ParseWhole(scale_text, &scale)) {
+    throw InputError(path + ": malformed PFM header (width, height and scale must be numbers, got '" +
+                     width_text + "', '" + height_text + "', '" + scale_text + "')");
   }
-  if (width <= 0 || height <= 0 || width > (1 << 16) || height > (1 << 16) || scale == 0.0) {
+  if (width <= 0 || height <= 0 || width > (1 << 16) || height > (1 << 16) || scale == 0.0 ||
+      !std::isfinite(scale)) {
     throw InputError(path + ": invalid PFM size " + width_text + "x" + height_text + " or scale " +
                      scale_text);
   }
@@ -84,9 +94,18 @@ cv::Mat ReadPfm(const std::string& path) {
   return map;
 }
 
+cv::Mat ReadPfmOneChannel(const std::string& path, const std::string& what) {
+  cv::Mat map = ReadPfm(path);
+  if (map.channels() != 1) {
+    throw InputError(path + ": " + what + " must be a one-channel PFM (Pf), not a three-channel one (PF)");
+  }
+  return map;
+}
+
 void WritePfm(const std::string& path, const cv::Mat& map) {
   ATTEND_CHECK(map.depth() == CV_32F && (map.channels() == 1 || map.channels() == 3))
       << "WritePfm needs CV_32FC1 or CV_32FC3, got type " << map.type();
+  errno = 0;
   std::ofstream out(path, std::ios::binary);
   if (!out) throw OutputError(path + ": cannot write the PFM file");
   const bool little = std::endian::native == std::endian::little;
@@ -98,7 +117,13 @@ void WritePfm(const std::string& path, const cv::Mat& map) {
     out.write(reinterpret_cast<const char*>(map.ptr<float>(row)),
               static_cast<std::streamsize>(row_bytes));
   }
-  if (!out) throw OutputError(path + ": error while writing the PFM file");
+  out.close();
+  if (!out) {
+    const int error_number = errno;
+    throw OutputError(path + ": error while writing the PFM file" +
+                      (error_number != 0 ? ": " + std::string(std::strerror(error_number)) : "") +
+                      (error_number == ENOSPC ? " (the disk is full)" : ""));
+  }
 }
 
 }  // namespace attend

@@ -12,6 +12,10 @@ namespace attend {
 // Throws InputError naming the file on any problem.
 cv::Mat ReadPfm(const std::string& path);
 
+// ReadPfm for a map that must have one channel (a disparity, saliency or inhibition map);
+// `what` names it in the error for a three-channel file.
+cv::Mat ReadPfmOneChannel(const std::string& path, const std::string& what);
+
 // Writes a CV_32FC1 or CV_32FC3 matrix as little-endian PFM (bottom row first, as the format
 // requires). Throws InputError naming the file when it cannot be written.
 void WritePfm(const std::string& path, const cv::Mat& map);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "config/param_block.h"
+#include "io/image_file.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -468,16 +469,7 @@ std::vector<std::string> ListFrameFiles(const std::string& folder, const std::st
 cv::Mat ReadFrameFile(int index, const std::string& path) {
   // IMREAD_COLOR turns grey into three equal channels and 16-bit samples into 8-bit ones (the
   // high byte), so every later stage sees CV_8UC3.
-  cv::Mat image;
-  try {
-    image = cv::imread(path, cv::IMREAD_COLOR);
-  } catch (const cv::Exception& e) {
-    throw InputError(FrameWhere(index, path) + ": cannot be decoded: " + e.what());
-  }
-  if (image.empty()) {
-    throw InputError(FrameWhere(index, path) + ": cannot be read or decoded as an image");
-  }
-  return image;
+  return ReadImageFile(path, cv::IMREAD_COLOR, FrameWhere(index, path));
 }
 
 const std::vector<std::string>& SequenceOptions::ResizeModes() {

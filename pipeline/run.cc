@@ -205,10 +205,24 @@ RunSummary RunSequence(const RunRequest& request) {
     // Whatever stopped the loop, the frames done so far are kept and the summary says why.
     summary.interrupted = true;
     summary.error = e.what();
-    finish();
+    try {
+      finish();
+    } catch (const std::exception& summary_error) {
+      // The summary could not be written either (a full disk, most often): the message says
+      // what stopped the run, what is kept and what is missing.
+      throw OutputError(std::string(e.what()) + "; " + summary_error.what() + "; the run stopped after " +
+                        std::to_string(summary.frames) + " frames, all of them in " +
+                        summary.dir + "/frames.jsonl, and has no summary.json");
+    }
     throw;
   }
-  finish();
+  try {
+    finish();
+  } catch (const std::exception& summary_error) {
+    throw OutputError(std::string(summary_error.what()) + "; the run finished its " +
+                      std::to_string(summary.frames) + " frames, all of them in " + summary.dir +
+                      "/frames.jsonl, but has no summary.json");
+  }
   return summary;
 }
 

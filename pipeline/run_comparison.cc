@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "config/param_block_yaml.h"
 #include "io/ground_truth.h"
 #include "io/pfm.h"
 #include "pipeline/run_evaluation.h"
@@ -149,7 +150,7 @@ int VisibleTargets(const FrameRecord& record) {
 cv::Mat ReadSaliency(const std::string& run, int frame) {
   const std::string path = DumpPath(run, "saliency", frame, "pfm");
   if (!fs::exists(path)) return {};
-  return ReadPfm(path);
+  return ReadPfmOneChannel(path, "a saliency map");
 }
 
 nlohmann::ordered_json Number(double value) {
@@ -199,9 +200,15 @@ SaliencyMetrics CompareSaliency(const cv::Mat& p, const cv::Mat& q) {
   return {CorrelationCoefficient(p, q), Similarity(p, q), KlDivergence(p, q)};
 }
 
-FlatConfig FlattenConfigText(const std::string& yaml) {
+FlatConfig FlattenConfigText(const std::string& yaml, const std::string& source) {
+  // Read through ParamBlock, which bounds the tree (alias cycles, expansion) and rejects
+  // duplicate keys; a run's configuration is input data here, so its errors are input errors.
   FlatConfig flat;
-  Flatten(YAML::Load(yaml), "", &flat);
+  try {
+    Flatten(NodeOf(ParamBlock::Parse(yaml, source)), "", &flat);
+  } catch (const ConfigError& e) {
+    throw InputError(e.what());
+  }
   return flat;
 }
 
@@ -210,11 +217,7 @@ FlatConfig FlattenConfigFile(const std::string& path) {
   if (!in) throw InputError(path + ": cannot read the run's configuration");
   std::stringstream text;
   text << in.rdbuf();
-  try {
-    return FlattenConfigText(text.str());
-  } catch (const YAML::Exception& e) {
-    throw InputError(path + ":" + std::to_string(e.mark.line + 1) + ": not YAML (" + e.msg + ")");
-  }
+  return FlattenConfigText(text.str(), path);
 }
 
 std::vector<ConfigDifference> DiffConfigs(const FlatConfig& a, const FlatConfig& b) {

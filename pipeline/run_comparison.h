@@ -57,7 +57,7 @@ SaliencyMetrics CompareSaliency(const cv::Mat& p, const cv::Mat& q);
 using FlatConfig = std::map<std::string, std::string>;
 // Throws InputError naming the file when it cannot be read or parsed.
 FlatConfig FlattenConfigFile(const std::string& path);
-FlatConfig FlattenConfigText(const std::string& yaml);
+FlatConfig FlattenConfigText(const std::string& yaml, const std::string& source = "<config>");
 
 struct ConfigDifference {
   std::string key;

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "util/error.h"
+#include "util/limits.h"
 
 namespace attend {
 
@@ -16,6 +17,23 @@ double Iou(const cv::Rect2d& a, const cv::Rect2d& b) {
   const double inter = (a & b).area();
   const double uni = a.area() + b.area() - inter;
   return uni > 0.0 ? inter / uni : 0.0;
+}
+
+}  // namespace
+
+namespace {
+
+// `value` (named `name` in the error) as an integer in [min, max]; throws otherwise (the
+// reader below adds the file and line).
+int IntIn(const nlohmann::json& value, const std::string& name, long min, long max) {
+  if (!value.is_number_integer()) throw std::runtime_error("'" + name + "' is not an integer");
+  const auto number = value.get<int64_t>();
+  // An unsigned value above INT64_MAX reads as negative, and is refused as out of range too.
+  if (number < min || number > max || (value.is_number_unsigned() && number < 0)) {
+    throw std::runtime_error("'" + name + "' out of range: " + value.dump() + " (must be in " +
+                             std::to_string(min) + ".." + std::to_string(max) + ")");
+  }
+  return static_cast<int>(number);
 }
 
 }  // namespace
@@ -30,14 +48,19 @@ std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
     try {
       const nlohmann::json json = nlohmann::json::parse(line);
       FrameRecord record;
-      record.frame = json.at("frame").get<int>();
+      record.frame = IntIn(json.at("frame"), "frame", 0, kMaxFrameNumber);
       for (const nlohmann::json& t : json.at("targets")) {
         TargetRecord target;
-        target.id = t.at("id").get<int>();
-        const std::vector<int> box = t.at("bbox").get<std::vector<int>>();
-        if (box.size() != 4) throw std::runtime_error("bbox needs 4 numbers");
-        target.bbox = cv::Rect(box[0], box[1], box[2], box[3]);
-        target.area = t.at("area").get<int>();
+        target.id = IntIn(t.at("id"), "id", 0, kMaxId);
+        const nlohmann::json& box = t.at("bbox");
+        if (!box.is_array() || box.size() != 4) throw std::runtime_error("bbox needs 4 numbers");
+        // Bounded so that areas and corners cannot overflow int in the scorers.
+        const int x = IntIn(box[0], "bbox x", -kMaxBoxCoordinate, kMaxBoxCoordinate);
+        const int y = IntIn(box[1], "bbox y", -kMaxBoxCoordinate, kMaxBoxCoordinate);
+        const int w = IntIn(box[2], "bbox w", 0, kMaxBoxCoordinate);
+        const int h = IntIn(box[3], "bbox h", 0, kMaxBoxCoordinate);
+        target.bbox = cv::Rect(x, y, w, h);
+        target.area = IntIn(t.at("area"), "area", 0, 1L << 30);
         target.saliency = t.at("saliency").get<double>();
         target.state = t.at("state").get<std::string>();
         target.kind = t.at("kind").get<std::string>();

@@ -1,5 +1,7 @@
 #include "pipeline/run_folder.h"
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
@@ -44,10 +46,73 @@ void RunFolder::WriteConfig(const std::string& yaml) {
   if (!out) throw OutputError(path + ": cannot write");
 }
 
+namespace {
+
+// "<path>: <what>: <the system's reason>", naming a full disk as such.
+std::string WriteFailure(const std::string& path, const std::string& what, int error_number) {
+  std::string message = path + ": " + what;
+  if (error_number != 0) message += ": " + std::string(std::strerror(error_number));
+  if (error_number == ENOSPC) message += " (the disk is full)";
+  return message;
+}
+
+}  // namespace
+
 void RunFolder::AppendFrame(const FrameRecord& record) {
-  frames_ << FrameRecordToJson(record) << "\n";
+  errno = 0;
+  const std::string line = FrameRecordToJson(record) + "\n";
+  frames_.write(line.data(), static_cast<std::streamsize>(line.size()));
   frames_.flush();
-  if (!frames_) throw OutputError(dir_ + "/frames.jsonl: write failed (disk full?)");
+  if (!frames_) {
+    // Part of the line may have reached the file: cut it back to the records before it, so
+    // that every line of frames.jsonl stays a whole record.
+    const int error_number = errno;
+    frames_.close();
+    const std::string path = dir_ + "/frames.jsonl";
+    std::error_code ignored;
+    fs::resize_file(path, frames_bytes_, ignored);
+    throw OutputError(WriteFailure(path, "write failed", error_number));
+  }
+  frames_bytes_ += line.size();
+  for (const auto& [temporary, path] : pending_) {
+    std::error_code error;
+    fs::rename(temporary, path, error);
+    if (error) throw OutputError(path + ": cannot name the file: " + error.message());
+  }
+  pending_.clear();
+}
+
+void RunFolder::WritePending(const std::string& path,
+                             const std::function<bool(const std::string&)>& write) {
+  const fs::path target(path);
+  // The extension stays last: imwrite chooses the format by it.
+  const std::string temporary =
+      (target.parent_path() / (target.stem().string() + ".part" + target.extension().string()))
+          .string();
+  errno = 0;
+  bool written = false;
+  try {
+    written = write(temporary);
+  } catch (const OutputError& e) {
+    // Named by the file's own name, not the temporary one.
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    std::string message = e.what();
+    const size_t at = message.find(temporary);
+    if (at != std::string::npos) message.replace(at, temporary.size(), path);
+    throw OutputError(message);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw;
+  }
+  if (!written) {
+    const int error_number = errno;
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw OutputError(WriteFailure(path, "cannot write", error_number));
+  }
+  pending_.emplace_back(temporary, path);
 }
 
 void RunFolder::WriteImage(const std::string& kind, int frame, const cv::Mat& image) {
@@ -55,7 +120,8 @@ void RunFolder::WriteImage(const std::string& kind, int frame, const cv::Mat& im
   std::error_code error;
   fs::create_directories(folder, error);
   const std::string path = (folder / (FrameStem(frame) + ".png")).string();
-  if (error || !cv::imwrite(path, image)) throw OutputError(path + ": cannot write the image");
+  if (error) throw OutputError(folder.string() + ": cannot create the folder: " + error.message());
+  WritePending(path, [&](const std::string& file) { return cv::imwrite(file, image); });
 }
 
 void RunFolder::WriteMap(const std::string& kind, int frame, const cv::Mat& map,
@@ -64,12 +130,17 @@ void RunFolder::WriteMap(const std::string& kind, int frame, const cv::Mat& map,
   std::error_code error;
   fs::create_directories(folder, error);
   if (error) throw OutputError(folder.string() + ": cannot create the folder");
-  if (pfm) WritePfm((folder / (FrameStem(frame) + ".pfm")).string(), map);
+  if (pfm) {
+    WritePending((folder / (FrameStem(frame) + ".pfm")).string(), [&](const std::string& file) {
+      WritePfm(file, map);  // throws OutputError itself
+      return true;
+    });
+  }
   if (png) {
     cv::Mat image;
     preview.convertTo(image, CV_8U, 255.0);
-    const std::string path = (folder / (FrameStem(frame) + ".png")).string();
-    if (!cv::imwrite(path, image)) throw OutputError(path + ": cannot write the image");
+    WritePending((folder / (FrameStem(frame) + ".png")).string(),
+                 [&](const std::string& file) { return cv::imwrite(file, image); });
   }
 }
 
@@ -94,12 +165,20 @@ void RunFolder::WriteJson(const std::string& name, const nlohmann::ordered_json&
   const nlohmann::ordered_json& summary = value;
   const fs::path path = fs::path(dir_) / name;
   const fs::path temporary = fs::path(dir_) / (name + ".tmp");
-  {
-    std::ofstream out(temporary);
-    out << summary.dump(2) << "\n";
-    if (!out) throw OutputError(temporary.string() + ": cannot write");
+  errno = 0;
+  std::ofstream out(temporary);
+  out << summary.dump(2) << "\n";
+  out.close();
+  if (!out) {
+    // No half-written file is left behind under either name.
+    const int error_number = errno;
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw OutputError(WriteFailure(path.string(), "cannot write", error_number));
   }
-  fs::rename(temporary, path);
+  std::error_code error;
+  fs::rename(temporary, path, error);
+  if (error) throw OutputError(path.string() + ": cannot write: " + error.message());
 }
 
 }  // namespace attend

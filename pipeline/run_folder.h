@@ -2,11 +2,15 @@
 // stops early (Ctrl-C, a bad frame) keeps every frame it finished.
 #pragma once
 
+#include <cstdint>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "pipeline/frame_record.h"
 
@@ -28,8 +32,11 @@ class RunFolder {
   const std::string& dir() const { return dir_; }
 
   void WriteConfig(const std::string& yaml);
+  // Appends the record and flushes it; then the frame's images and maps written since the
+  // last record (WriteImage, WriteMap) get their names. A run stopped in between (SIGKILL)
+  // leaves no image or map under a frame's name without that frame's record.
   void AppendFrame(const FrameRecord& record);
-  // RUN/<kind>/NNNNNN.png
+  // RUN/<kind>/NNNNNN.png (named by the next AppendFrame)
   void WriteImage(const std::string& kind, int frame, const cv::Mat& image);
   // RUN/<kind>/NNNNNN.pfm (the map itself, `pfm`) and RUN/<kind>/NNNNNN.png (an 8-bit preview:
   // `preview`, a map in [0, 1], times 255, with `png`). `kind` may hold a slash
@@ -49,8 +56,14 @@ class RunFolder {
  private:
   std::string dir_;
   std::ofstream frames_;
+  uintmax_t frames_bytes_ = 0;  // the size of frames.jsonl up to its last whole record
   std::unique_ptr<cv::VideoWriter> video_;
   std::string video_path_;
+  // Files written under a temporary name, with the names they take at the next AppendFrame.
+  std::vector<std::pair<std::string, std::string>> pending_;
+  // Writes through `write` to a temporary name in the folder of `path`, renamed by the next
+  // AppendFrame.
+  void WritePending(const std::string& path, const std::function<bool(const std::string&)>& write);
 };
 
 }  // namespace attend

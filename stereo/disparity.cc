@@ -255,7 +255,9 @@ class CostRows {
 }  // namespace
 
 std::string DisparityOptions::Check() const {
-  if (max_disparity < 1) return "max_disparity must be at least 1";
+  if (max_disparity < 1 || max_disparity > kMaxDisparity) {
+    return "max_disparity must be in 1.." + std::to_string(kMaxDisparity);
+  }
   if (window < 1 || window > 31 || window % 2 == 0) return "window must be odd, 1..31";
   if (lr_tolerance < 0) return "lr_tolerance must be >= 0";
   if (smoothness != "hard" && smoothness != "penalty") {

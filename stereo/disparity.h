@@ -21,6 +21,9 @@
 namespace attend {
 
 struct DisparityOptions {
+  // The largest D: the cost volume's back-pointers take width x height x D / 4 bytes
+  // (640 x 480 x 1024 / 4 = 79 MB).
+  static constexpr int kMaxDisparity = 1024;
   // D: disparities 0..D-1 are searched. Must be below the image width.
   int max_disparity = 32;
   // Side of the square ZNCC window, odd. 7 is the best of 5..13 on the synthetic scenes, and

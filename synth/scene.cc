@@ -8,6 +8,7 @@
 
 #include "config/param_block.h"
 #include "util/error.h"
+#include "util/limits.h"
 
 namespace attend {
 
@@ -29,6 +30,9 @@ namespace {
 
 constexpr int kMinImageSide = 16;
 constexpr int kMaxImageSide = 8192;
+// The renderer keeps several float planes per object and image: about 50 bytes a pixel at
+// 8 objects. 4K UHD (3840 x 2160) is the largest image it renders, in about 0.5 GB.
+constexpr long kMaxImagePixels = 3840L * 2160L;
 constexpr double kMaxNoiseSigma = 100.0;
 constexpr double kMaxGain = 10.0;
 constexpr int kMinLobes = 2;
@@ -186,7 +190,14 @@ Scene ReadScene(const ParamBlock& root) {
   if (scene.name.empty()) root.Fail("name", "must not be empty");
   scene.width = root.GetInt("width", scene.width, Range::Closed(kMinImageSide, kMaxImageSide));
   scene.height = root.GetInt("height", scene.height, Range::Closed(kMinImageSide, kMaxImageSide));
-  scene.frames = root.GetInt("frames", scene.frames, Range::AtLeast(1));
+  if (static_cast<long>(scene.width) * scene.height > kMaxImagePixels) {
+    root.Fail("height", "the image of " + std::to_string(scene.width) + " x " +
+                            std::to_string(scene.height) + " pixels is larger than the " +
+                            "renderer's limit of " + std::to_string(kMaxImagePixels) +
+                            " pixels (3840 x 2160; docs/LIMITS.md)");
+  }
+  scene.frames =
+      root.GetInt("frames", scene.frames, Range::Closed(1, kMaxFrameNumber + 1));
   scene.fps = root.GetDouble("fps", scene.fps, Positive());
   scene.seed = static_cast<std::uint64_t>(root.GetInt("seed", 1, Range::AtLeast(0)));
 
@@ -258,6 +269,10 @@ std::string Scene::Check() const {
       height > kMaxImageSide) {
     return "width and height must be in [16, 8192]";
   }
+  if (static_cast<long>(width) * height > kMaxImagePixels) {
+    return "width x height must be at most 3840 x 2160 pixels";
+  }
+  if (frames > kMaxFrameNumber + 1) return "frames must be at most 1000001";
   if (frames < 1) return "frames must be >= 1";
   if (!IsPositive(fps)) return "fps must be in (0, 1e6]";
   if (!IsPositive(focal_px)) return "camera.focal_px must be in (0, 1e6]";

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "util/error.h"
+#include "util/limits.h"
 #include "util/strings.h"
 
 namespace attend {
@@ -43,9 +44,13 @@ double ParseNumber(const std::string& text, const std::string& path, int line, c
 
 int ParseInteger(const std::string& text, const std::string& path, int line, const char* field) {
   const double value = ParseNumber(text, path, line, field);
-  if (value != std::floor(value) || std::fabs(value) > std::numeric_limits<int>::max()) {
+  if (value != std::floor(value)) {
     throw InputError(Where(path, line) + ": field '" + field + "' is not an integer: '" + text +
                      "'");
+  }
+  // Checked before the conversion to int, which would overflow.
+  if (std::fabs(value) > std::numeric_limits<int>::max()) {
+    throw InputError(Where(path, line) + ": " + field + " number out of range: '" + text + "'");
   }
   return static_cast<int>(value);
 }
@@ -102,8 +107,13 @@ std::vector<TrackRow> ReadTracksCsv(const std::string& path) {
     row.box.width = ParseNumber(fields[4], path, line, "w");
     row.box.height = ParseNumber(fields[5], path, line, "h");
     row.state = fields[6];
-    if (row.frame < 0 || row.id < 0) {
-      throw InputError(Where(path, line) + ": frame and id must be >= 0");
+    if (row.frame < 0 || row.frame > kMaxFrameNumber) {
+      throw InputError(Where(path, line) + ": frame number out of range: '" + fields[0] +
+                       "' (must be in 0.." + std::to_string(kMaxFrameNumber) + ")");
+    }
+    if (row.id < 0 || row.id > kMaxId) {
+      throw InputError(Where(path, line) + ": id out of range: '" + fields[1] + "' (must be in 0.." +
+                       std::to_string(kMaxId) + ")");
     }
     if (row.box.width < 0.0 || row.box.height < 0.0) {
       throw InputError(Where(path, line) + ": w and h must be >= 0");

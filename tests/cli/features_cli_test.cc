@@ -160,7 +160,10 @@ TEST(FeaturesCli, PluginErrorsExitTwoNamingTheFile) {
       {ABI_MISMATCH_PLUGIN, "ABI version 99"},
       {NO_ENTRY_PLUGIN, "no 'attend_plugin' entry point"},
       {NAME_CLASH_PLUGIN, "registers feature 'skin', which built-in already registered"},
-      {dir.Write("not_a_library.so", "text"), "cannot be loaded"},
+      {dir.Write("not_a_library.so", "text"), "is not a shared library"},
+      // A whole ELF file that the dynamic loader still refuses (a position-independent
+      // executable, ET_DYN like a library).
+      {"/bin/true", "cannot be loaded"},
   };
   for (const Case& c : cases) {
     const Result r = Attend(

@@ -456,7 +456,7 @@ TEST(SkinImagePair, ErrorsNameTheFile) {
   EXPECT_TRUE(Contains(e, "absent.png: no such image file")) << e;
   e = InputErrorOf(
       [&] { ReadSkinImagePair(dir.File("image.png"), dir.File("broken.png"), &samples); });
-  EXPECT_TRUE(Contains(e, "broken.png: cannot read as an image")) << e;
+  EXPECT_TRUE(Contains(e, "broken.png: cannot be read or decoded as an image")) << e;
 }
 
 TEST(SkinSplit, IsDeterministicAndHoldsOutTheFraction) {

@@ -82,7 +82,9 @@ TEST(GroundTruth, MalformedRowsAreBadInputNamingFileAndLine) {
       {"0,1,1,2,3,4,0.5,8\n", ":3: expected 9 fields"},
       {"0,1,one,2,3,4,0.5,8,object\n", ":3: field 'x' is not a number: 'one'"},
       {"1.5,1,1,2,3,4,0.5,8,object\n", ":3: field 'frame' is not an integer"},
-      {"0,1,1,2,3,4,1.5,8,object\n", ":3: negative frame or size, or visible_fraction"},
+      {"-1,1,1,2,3,4,0.5,8,object\n", ":3: frame number out of range: '-1' (must be in 0..1000000)"},
+      {"1000001,1,1,2,3,4,0.5,8,object\n", ":3: frame number out of range"},
+      {"0,1,1,2,3,4,1.5,8,object\n", ":3: negative size, or visible_fraction"},
       {"0,1,1,2,3,4,0.5,8,person\n", ":3: kind must be object or skin, got 'person'"},
   };
   for (const Case& c : cases) {

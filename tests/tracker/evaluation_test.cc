@@ -173,7 +173,7 @@ TEST(TracksCsv, MalformedRowsNameFileAndLine) {
       {header + "0,1,2,x,4,5,found\n", "t.csv:2: field 'y' is not a number: 'x'"},
       {header + "0.5,1,2,3,4,5,found\n", "t.csv:2: field 'frame' is not an integer"},
       {header + "0,1,2,3,-4,5,found\n", "t.csv:2: w and h must be >= 0"},
-      {header + "-1,1,2,3,4,5,found\n", "t.csv:2: frame and id must be >= 0"},
+      {header + "-1,1,2,3,4,5,found\n", "t.csv:2: frame number out of range: '-1' (must be in 0..1000000)"},
       {header + "0,1,2,3,4,5,hidden\n", "t.csv:2: state must be found, occluded or lost"},
       {"0,1,2,3,4,5,found\n", "t.csv:1: expected the header"},
       {"", "t.csv: empty"},
