@@ -61,14 +61,15 @@ while kill -0 "$pid" 2> /dev/null; do
   rss=$(awk '/^VmRSS:/ {printf "%.1f", $2 / 1024}' "$status" 2> /dev/null || echo "")
   threads=$(awk '/^Threads:/ {print $2}' "$status" 2> /dev/null || echo "")
   files=$(ls "/proc/$pid/fd" 2> /dev/null | wc -l)
-  done_frames=$(wc -l < "$out/run/frames.jsonl" 2> /dev/null || echo 0)
+  done_frames=0
+  [ -f "$out/run/frames.jsonl" ] && done_frames=$(wc -l < "$out/run/frames.jsonl")
   [ -n "$rss" ] && echo "$(( $(date +%s) - start )),$done_frames,$rss,$threads,$files" >> "$out/samples.csv"
   sleep "$every"
 done
 wait "$pid" || { echo "soak.sh: attend run failed:" >&2; tail -3 "$out/run.log" >&2; exit 1; }
 
-python3 - "$out/samples.csv" "$out/run.log" <<'PY'
-import csv, sys
+python3 - "$out/samples.csv" "$out/run/summary.json" <<'PY'
+import csv, json, sys
 rows = [r for r in csv.DictReader(open(sys.argv[1]))]
 if not rows:
     sys.exit("soak.sh: no samples (the run ended within the first interval)")
@@ -79,7 +80,8 @@ first = [m for s, m in zip(t, rss) if 60 <= s < 120] or rss[: max(1, len(rss) //
 last = [m for s, m in zip(t, rss) if s >= end - 60]
 threads = [int(r["threads"]) for r in rows]
 files = [int(r["open_files"]) for r in rows]
-print(open(sys.argv[2]).read().strip().splitlines()[0])
+summary = json.load(open(sys.argv[2]))
+print(f"{summary['frames']} frames in {summary['wall_seconds']:.0f} s ({summary['fps']:.1f} frames/s)")
 print(f"samples {len(rows)} over {end} s")
 print(f"RSS MB: second minute mean {sum(first)/len(first):.1f}, last minute mean {sum(last)/len(last):.1f}, max {max(rss):.1f}, min {min(rss):.1f}")
 print(f"threads {min(threads)}..{max(threads)}, open files {min(files)}..{max(files)}")
