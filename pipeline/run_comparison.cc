@@ -414,8 +414,11 @@ RunComparison CompareRuns(const RunData& a, const RunData& b) {
   // Timings: the stages of A in order, then those only in B.
   for (const auto& [stage, ms] : a.mean_timings_ms) comparison.timings.push_back({stage, ms, {}});
   for (const auto& [stage, ms] : b.mean_timings_ms) {
-    const auto found = std::find_if(comparison.timings.begin(), comparison.timings.end(),
-                                    [&](const StageTiming& t) { return t.stage == stage; });
+    // The binding is captured through a reference of its own: clang before 16 cannot capture
+    // a structured binding (C++20 P1091R3), and the fuzz build uses clang 14.
+    const auto found =
+        std::find_if(comparison.timings.begin(), comparison.timings.end(),
+                     [&stage = stage](const StageTiming& t) { return t.stage == stage; });
     if (found != comparison.timings.end()) {
       found->b = ms;
     } else {

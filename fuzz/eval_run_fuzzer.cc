@@ -1,0 +1,50 @@
+// The run folder read by `attend eval RUN --gt GT`: the input is one file of a temporary run
+// folder (run_folder_support.h: its first byte picks frames.jsonl, summary.json or config.yaml),
+// the others and the ground truth stay valid, and the command runs as the program runs it
+// (its CLI11 declaration and action from cli/, the JSON report sent nowhere).
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "fuzz/cli_support.h"
+#include "fuzz/fuzz_support.h"
+#include "fuzz/run_folder_support.h"
+
+namespace {
+
+struct Fixture {
+  std::string run = attend::fuzz::ScratchPath("run");
+  std::string sequence = attend::fuzz::ScratchPath("seq");
+  attend::fuzz::RunFiles valid = attend::fuzz::ValidRunFiles(sequence);
+};
+
+const Fixture& GetFixture() {
+  static const Fixture fixture = [] {
+    Fixture f;
+    attend::fuzz::WriteGroundTruth(f.sequence);
+    attend::fuzz::WriteRunFolder(f.run, f.valid);
+    return f;
+  }();
+  return fixture;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  attend::fuzz::Initialize();
+  GetFixture();
+  attend::fuzz::SilenceStandardOutput();
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using namespace attend;
+  const Fixture& fixture = GetFixture();
+  fuzz::RunFiles files = fixture.valid;
+  fuzz::ReplaceRunFile(data, size, &files);
+  fuzz::WriteRunFiles(fixture.run, files);
+  fuzz::ExpectOnlyDocumentedErrors([&] {
+    fuzz::RunCommand(AddEvalCommand, {"eval", fixture.run, "--gt", fixture.sequence + "/gt"});
+  });
+  return 0;
+}
