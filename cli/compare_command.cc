@@ -85,7 +85,7 @@ int Compare(const CompareArguments& args, const std::string& command_line) {
       {"report", "report.html"},
       {"chart_js", chart_js.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(chart_js)}};
   const fs::path out(args.out);
-  WriteText(out / "summary.json", summary.dump(2) + "\n");
+  WriteText(out / "summary.json", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   WriteText(out / "report.html", ReportHtml(input));
   for (const RunComparison& c : input.comparisons) {
     for (const std::string& note : c.notes) {

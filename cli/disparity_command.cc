@@ -245,7 +245,7 @@ int Disparity(const DisparityArguments& args, bool subpixel_given, bool lr_check
     report["bad1"] = rates.bad1;
     report["bad2"] = rates.bad2;
   }
-  std::cout << report.dump(2) << std::endl;
+  std::cout << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;
   return 0;
 }
 

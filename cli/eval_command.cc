@@ -52,7 +52,7 @@ void CheckRecordsInInputPixels(const fs::path& run) {
   if (sequence["native_size"] != sequence["size"]) {
     throw InputError(path.string() + ": this run was written before attend recorded boxes in " +
                      "input pixels; its boxes are in working pixels (" +
-                     sequence["size"].dump() + ", input " + sequence["native_size"].dump() +
+                     sequence["size"].dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + ", input " + sequence["native_size"].dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) +
                      "), so it cannot be scored against the ground truth: run it again");
   }
 }
@@ -147,7 +147,7 @@ int Eval(const EvalArguments& args) {
                                    {"per_object", per_object}};
   const nlohmann::ordered_json disparity = DisparityScores(args.run, gt, options);
   if (!disparity.is_null()) report["disparity"] = disparity;
-  std::cout << report.dump() << "\n";
+  std::cout << report.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   return 0;
 }
 

@@ -296,7 +296,7 @@ int EvalFixations(const EvalFixationsArguments& args) {
                                    {"methods", means}};
     const fs::path json_path = out / "fixations.json";
     std::ofstream file(json_path);
-    file << report.dump(2) << "\n";
+    file << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     if (!file) throw InputError(json_path.string() + ": cannot be written");
   }
   std::cout << table;

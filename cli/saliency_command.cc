@@ -126,7 +126,7 @@ int Saliency(const SaliencyArguments& args) {
   auto write_json = [&](const std::string& name, const nlohmann::json& value) {
     const fs::path file_path = out / name;
     std::ofstream file(file_path);
-    file << value.dump(2) << "\n";
+    file << value.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     if (!file) throw InputError(file_path.string() + ": cannot be written");
   };
   write_json("saliency.json", summary);

@@ -153,7 +153,7 @@ int Segment(const SegmentArguments& args) {
                                    {"link_across_kinds", options.bip.link_across_kinds}}}};
   const fs::path report_path = out / "segment.json";
   std::ofstream file(report_path);
-  file << report.dump(2) << "\n";
+  file << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   file.close();
   if (!file) throw OutputError(report_path.string() + ": cannot write");
   return 0;

@@ -172,7 +172,7 @@ int SkinTrain(const SkinTrainArguments& args, const std::string& command_line) {
       {"train", Rates(training)},
       {"holdout", Rates(held_out)},
       {"milliseconds", {{"read", read_ms}, {"total", watch.ElapsedMs()}}}};
-  std::cout << report.dump(2) << std::endl;
+  std::cout << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;
   return 0;
 }
 

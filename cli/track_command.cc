@@ -465,9 +465,9 @@ int Track(const TrackArguments& args) {
   // The same summary beside tracks.csv, so that the folder says which kind tracked.
   const std::string summary_path = (out / "track.json").string();
   std::ofstream summary_file(summary_path);
-  summary_file << summary.dump(2) << "\n";
+  summary_file << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   if (!summary_file) throw OutputError(summary_path + ": cannot write the summary");
-  std::cout << summary.dump() << std::endl;
+  std::cout << summary.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;
   return 0;
 }
 
@@ -607,7 +607,7 @@ int EvalTracking(const EvalTrackingArguments& args) {
                                  {"gt_format", truth.format},
                                  {"gt_id", truth.id ? nlohmann::json(*truth.id) : nullptr},
                                  {"targets", targets}};
-  std::cout << report.dump(2) << std::endl;
+  std::cout << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;
   return 0;
 }
 

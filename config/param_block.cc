@@ -167,6 +167,14 @@ ParamBlock ParamBlock::LoadFile(const std::string& path) {
 }
 
 ParamBlock ParamBlock::Parse(const std::string& text, const std::string& source) {
+  // YAML is UTF-8; yaml-cpp would replace the bad bytes, and a path read here would name
+  // another file when written back to a run's config.yaml.
+  const size_t bad = InvalidUtf8At(text);
+  if (bad != std::string::npos) {
+    const long line = std::count(text.begin(), text.begin() + static_cast<long>(bad), '\n') + 1;
+    throw ConfigError(source + ":" + std::to_string(line) + ": not valid UTF-8 (byte " +
+                      std::to_string(bad) + "); YAML files must be UTF-8");
+  }
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -182,6 +190,9 @@ void ParamBlock::Override(const std::string& assignment) {
   const size_t equals = assignment.find('=');
   if (equals == std::string::npos || equals == 0) {
     throw ConfigError("--set " + assignment + ": expected KEY.PATH=VALUE");
+  }
+  if (InvalidUtf8At(assignment) != std::string::npos) {
+    throw ConfigError("--set " + assignment + ": not valid UTF-8");
   }
   const std::string key_path = assignment.substr(0, equals);
   const std::string value_text = assignment.substr(equals + 1);

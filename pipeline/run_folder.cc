@@ -167,7 +167,7 @@ void RunFolder::WriteJson(const std::string& name, const nlohmann::ordered_json&
   const fs::path temporary = fs::path(dir_) / (name + ".tmp");
   errno = 0;
   std::ofstream out(temporary);
-  out << summary.dump(2) << "\n";
+  out << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   out.close();
   if (!out) {
     // No half-written file is left behind under either name.

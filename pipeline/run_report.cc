@@ -338,7 +338,7 @@ std::string Charts(const ReportInput& input) {
       "<figcaption>Targets new or tracked per frame</figcaption></figure>"
       "</div></section>\n";
   html += "<script>\n" + ScriptSafe(input.chart_js) + "\n</script>\n";
-  html += "<script>\nconst DATA = " + ScriptSafe(ChartData(input).dump()) + ";\n";
+  html += "<script>\nconst DATA = " + ScriptSafe(ChartData(input).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)) + ";\n";
   html += R"JS(
 Chart.defaults.animation = false;
 Chart.defaults.responsive = false;

@@ -63,4 +63,35 @@ std::string Join(const std::vector<std::string>& parts, std::string_view separat
   return joined;
 }
 
+size_t InvalidUtf8At(std::string_view text) {
+  size_t i = 0;
+  const auto byte = [&](size_t k) { return static_cast<unsigned char>(text[k]); };
+  while (i < text.size()) {
+    const unsigned char c = byte(i);
+    size_t length = 0;
+    unsigned min = 0;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if (c >= 0xC2 && c <= 0xDF) {
+      length = 2, min = 0x80;
+    } else if (c >= 0xE0 && c <= 0xEF) {
+      length = 3, min = 0x800;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+      length = 4, min = 0x10000;
+    } else {
+      return i;
+    }
+    if (i + length > text.size()) return i;
+    unsigned code = c & (0xFF >> (length + 1));
+    for (size_t k = 1; k < length; ++k) {
+      if ((byte(i + k) & 0xC0) != 0x80) return i;
+      code = (code << 6) | (byte(i + k) & 0x3F);
+    }
+    if (code < min || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return i;
+    i += length;
+  }
+  return std::string_view::npos;
+}
+
 }  // namespace attend

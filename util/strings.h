@@ -20,6 +20,10 @@ std::string DidYouMean(std::string_view word, const std::vector<std::string>& ca
 // Splits on a separator; empty fields are kept.
 std::vector<std::string> Split(std::string_view text, char separator);
 
+// The byte offset of the first byte of `text` that is not part of valid UTF-8 (RFC 3629: no
+// overlong forms, no surrogates, nothing above U+10FFFF), or npos when all of it is valid.
+size_t InvalidUtf8At(std::string_view text);
+
 // Joins with a separator.
 std::string Join(const std::vector<std::string>& parts, std::string_view separator);
 
