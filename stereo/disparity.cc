@@ -296,12 +296,13 @@ struct DisparityEstimator::Buffers {
 };
 
 DisparityEstimator::DisparityEstimator(DisparityOptions options)
-    : options_(options), buffers_(new Buffers) {
+    : options_(options), buffers_(std::make_unique<Buffers>()) {
   const std::string error = options_.Check();
   if (!error.empty()) throw ConfigError("disparity: " + error);
 }
 
-DisparityEstimator::~DisparityEstimator() { delete buffers_; }
+// Defined here, where Buffers is complete, as unique_ptr's deleter needs.
+DisparityEstimator::~DisparityEstimator() = default;
 
 size_t DisparityEstimator::buffer_bytes() const {
   const Buffers& b = *buffers_;

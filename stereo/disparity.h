@@ -14,6 +14,7 @@
 // Rectified pairs are assumed: a left pixel (x, y) matches the right pixel (x - d, y).
 #pragma once
 
+#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -78,7 +79,8 @@ class DisparityEstimator {
   void Estimate(const cv::Mat& left, const cv::Mat& right, cv::Mat* disparity);
 
   DisparityOptions options_;
-  Buffers* buffers_;
+  // Owned through unique_ptr so that it is freed when the constructor throws on bad options.
+  std::unique_ptr<Buffers> buffers_;
   double milliseconds_ = 0.0;
 };
 

@@ -47,6 +47,12 @@ Result Wait(const TempDir& dir, pid_t pid) {
   result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   result.out = ReadText(dir.File("stdout"));
   result.err = ReadText(dir.File("stderr"));
+  // In a sanitizer build (scripts/sanitize.sh) a report ends the program with status 1, which
+  // a test that expects `attend` to fail could take for that failure; so the report fails it.
+  for (const char* marker :
+       {"ERROR: AddressSanitizer", "ERROR: LeakSanitizer", ": runtime error: "}) {
+    EXPECT_FALSE(Contains(result.err, marker)) << "sanitizer report:\n" << result.err;
+  }
   return result;
 }
 

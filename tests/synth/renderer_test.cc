@@ -200,7 +200,11 @@ TEST(SceneRenderer, ApproachingObjectGrows) {
   const SceneRenderer renderer(scene);
   double previous_width = 0.0;
   for (int frame = 0; frame <= 9; ++frame) {
-    const GtObject* gt = FindGt(renderer.Render(frame), 1);
+    // The frame is kept: FindGt points into its objects, which a temporary would free at the
+    // end of this statement.
+    const RenderedFrame rendered = renderer.Render(frame);
+    const GtObject* gt = FindGt(rendered, 1);
+    ASSERT_NE(gt, nullptr) << frame;
     const double depth = 4.0 - frame / 3.0;
     EXPECT_GE(gt->box.width, previous_width) << frame;
     EXPECT_NEAR(gt->box.width, 8.0 * 4.0 / depth, 1.0) << frame;  // f * size / Z
