@@ -12,6 +12,7 @@
 #include "pipeline/run_report.h"
 #include "util/error.h"
 #include "util/output_folder.h"
+#include "util/json_text.h"
 
 namespace attend {
 
@@ -85,7 +86,7 @@ int Compare(const CompareArguments& args, const std::string& command_line) {
       {"report", "report.html"},
       {"chart_js", chart_js.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(chart_js)}};
   const fs::path out(args.out);
-  WriteText(out / "summary.json", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  WriteText(out / "summary.json", JsonText(summary, 2) + "\n");
   WriteText(out / "report.html", ReportHtml(input));
   for (const RunComparison& c : input.comparisons) {
     for (const std::string& note : c.notes) {

@@ -22,6 +22,7 @@
 #include "io/pfm.h"
 #include "stereo/disparity.h"
 #include "util/error.h"
+#include "util/json_text.h"
 
 namespace attend {
 
@@ -245,7 +246,7 @@ int Disparity(const DisparityArguments& args, bool subpixel_given, bool lr_check
     report["bad1"] = rates.bad1;
     report["bad2"] = rates.bad2;
   }
-  std::cout << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;
+  std::cout << JsonText(report, 2) << std::endl;
   return 0;
 }
 

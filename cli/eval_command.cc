@@ -13,6 +13,7 @@
 #include "pipeline/run_evaluation.h"
 #include "stereo/disparity.h"
 #include "util/error.h"
+#include "util/json_text.h"
 
 namespace attend {
 
@@ -52,7 +53,7 @@ void CheckRecordsInInputPixels(const fs::path& run) {
   if (sequence["native_size"] != sequence["size"]) {
     throw InputError(path.string() + ": this run was written before attend recorded boxes in " +
                      "input pixels; its boxes are in working pixels (" +
-                     sequence["size"].dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + ", input " + sequence["native_size"].dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) +
+                     JsonText(sequence["size"]) + ", input " + JsonText(sequence["native_size"]) +
                      "), so it cannot be scored against the ground truth: run it again");
   }
 }
@@ -147,7 +148,7 @@ int Eval(const EvalArguments& args) {
                                    {"per_object", per_object}};
   const nlohmann::ordered_json disparity = DisparityScores(args.run, gt, options);
   if (!disparity.is_null()) report["disparity"] = disparity;
-  std::cout << report.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+  std::cout << JsonText(report) << "\n";
   return 0;
 }
 

@@ -21,6 +21,7 @@
 #include "io/image_file.h"
 #include "io/pfm.h"
 #include "util/error.h"
+#include "util/json_text.h"
 
 namespace attend {
 
@@ -296,7 +297,7 @@ int EvalFixations(const EvalFixationsArguments& args) {
                                    {"methods", means}};
     const fs::path json_path = out / "fixations.json";
     std::ofstream file(json_path);
-    file << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+    file << JsonText(report, 2) << "\n";
     if (!file) throw InputError(json_path.string() + ": cannot be written");
   }
   std::cout << table;

@@ -18,6 +18,7 @@
 #include "pipeline/options_io.h"
 #include "pipeline/still_saliency.h"
 #include "util/error.h"
+#include "util/json_text.h"
 
 namespace attend {
 
@@ -126,7 +127,7 @@ int Saliency(const SaliencyArguments& args) {
   auto write_json = [&](const std::string& name, const nlohmann::json& value) {
     const fs::path file_path = out / name;
     std::ofstream file(file_path);
-    file << value.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+    file << JsonText(value, 2) << "\n";
     if (!file) throw InputError(file_path.string() + ": cannot be written");
   };
   write_json("saliency.json", summary);

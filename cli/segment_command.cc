@@ -21,6 +21,7 @@
 #include "pyramid/metrics.h"
 #include "pyramid/segmentation.h"
 #include "util/error.h"
+#include "util/json_text.h"
 
 namespace attend {
 
@@ -153,7 +154,7 @@ int Segment(const SegmentArguments& args) {
                                    {"link_across_kinds", options.bip.link_across_kinds}}}};
   const fs::path report_path = out / "segment.json";
   std::ofstream file(report_path);
-  file << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+  file << JsonText(report, 2) << "\n";
   file.close();
   if (!file) throw OutputError(report_path.string() + ": cannot write");
   return 0;

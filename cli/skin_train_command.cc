@@ -18,6 +18,7 @@
 #include "util/error.h"
 #include "util/strings.h"
 #include "util/timer.h"
+#include "util/json_text.h"
 
 namespace attend {
 
@@ -172,7 +173,7 @@ int SkinTrain(const SkinTrainArguments& args, const std::string& command_line) {
       {"train", Rates(training)},
       {"holdout", Rates(held_out)},
       {"milliseconds", {{"read", read_ms}, {"total", watch.ElapsedMs()}}}};
-  std::cout << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;
+  std::cout << JsonText(report, 2) << std::endl;
   return 0;
 }
 

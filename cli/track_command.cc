@@ -31,6 +31,7 @@
 #include "util/error.h"
 #include "util/output_folder.h"
 #include "util/strings.h"
+#include "util/json_text.h"
 
 namespace attend {
 
@@ -465,9 +466,9 @@ int Track(const TrackArguments& args) {
   // The same summary beside tracks.csv, so that the folder says which kind tracked.
   const std::string summary_path = (out / "track.json").string();
   std::ofstream summary_file(summary_path);
-  summary_file << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+  summary_file << JsonText(summary, 2) << "\n";
   if (!summary_file) throw OutputError(summary_path + ": cannot write the summary");
-  std::cout << summary.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;
+  std::cout << JsonText(summary) << std::endl;
   return 0;
 }
 
@@ -607,7 +608,7 @@ int EvalTracking(const EvalTrackingArguments& args) {
                                  {"gt_format", truth.format},
                                  {"gt_id", truth.id ? nlohmann::json(*truth.id) : nullptr},
                                  {"targets", targets}};
-  std::cout << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;
+  std::cout << JsonText(report, 2) << std::endl;
   return 0;
 }
 

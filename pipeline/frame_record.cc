@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "util/error.h"
+#include "util/json_text.h"
 
 namespace attend {
 
@@ -77,7 +78,7 @@ std::string FrameRecordToJson(const FrameRecord& record) {
                                  {"new", record.new_ids}};
   if (record.inhibited_fraction >= 0.0) line["inhibited_fraction"] = record.inhibited_fraction;
   line["timings_ms"] = timings;
-  return line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  return JsonText(line);
 }
 
 }  // namespace attend

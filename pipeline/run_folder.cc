@@ -10,6 +10,7 @@
 #include "io/pfm.h"
 #include "util/error.h"
 #include "util/output_folder.h"
+#include "util/json_text.h"
 
 namespace fs = std::filesystem;
 
@@ -167,7 +168,7 @@ void RunFolder::WriteJson(const std::string& name, const nlohmann::ordered_json&
   const fs::path temporary = fs::path(dir_) / (name + ".tmp");
   errno = 0;
   std::ofstream out(temporary);
-  out << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+  out << JsonText(summary, 2) << "\n";
   out.close();
   if (!out) {
     // No half-written file is left behind under either name.

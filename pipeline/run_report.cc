@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "io/pfm.h"
+#include "util/json_text.h"
 
 namespace attend {
 
@@ -338,7 +339,7 @@ std::string Charts(const ReportInput& input) {
       "<figcaption>Targets new or tracked per frame</figcaption></figure>"
       "</div></section>\n";
   html += "<script>\n" + ScriptSafe(input.chart_js) + "\n</script>\n";
-  html += "<script>\nconst DATA = " + ScriptSafe(ChartData(input).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)) + ";\n";
+  html += "<script>\nconst DATA = " + ScriptSafe(JsonText(ChartData(input))) + ";\n";
   html += R"JS(
 Chart.defaults.animation = false;
 Chart.defaults.responsive = false;

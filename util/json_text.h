@@ -1,0 +1,16 @@
+// JSON text that is always valid UTF-8. nlohmann-json throws type_error 316 on a string that is
+// not UTF-8 (a path or a configuration value from outside); attend writes such bytes as U+FFFD
+// instead, so that a record or report is never lost to one bad byte.
+#pragma once
+
+#include <string>
+
+namespace attend {
+
+// `value.dump(indent)` with invalid UTF-8 replaced; -1: one line.
+template <typename Json>
+std::string JsonText(const Json& value, int indent = -1) {
+  return value.dump(indent, ' ', false, Json::error_handler_t::replace);
+}
+
+}  // namespace attend
