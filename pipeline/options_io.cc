@@ -65,6 +65,9 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("max_inhibited_fraction", &o->attention.select.max_inhibited_fraction,
           Range::Closed(0.001, 1));
   v.Field("saliency_t_max", &o->attention.select.saliency_t_max, Range::Closed(0.001, 1000));
+  v.Choice("seed", &o->attention.select.seed, SelectOptions::Seeds());
+  v.Field("seed_share", &o->attention.select.seed_share, Range::Closed(0.01, 1));
+  v.Field("seed_level", &o->attention.select.seed_level, Range::Closed(0.01, 1));
   v.Field("skin_fraction", &o->attention.skin_fraction, Range::Closed(0, 1));
   v.Field("skin_model", &o->attention.skin_model);
   v.Field("skin_check", &o->attention.skin_check);

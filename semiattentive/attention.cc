@@ -17,6 +17,11 @@ struct AttentionStage::Active {
   int low_frames = 0;  // consecutive frames below drop.min_saliency
 };
 
+const std::vector<std::string>& SelectOptions::Seeds() {
+  static const std::vector<std::string> seeds = {"region", "object"};
+  return seeds;
+}
+
 std::string AttentionOptions::Check() const {
   if (!(select.min_saliency >= 0.f && select.min_saliency <= 1.f)) {
     return "select.min_saliency must be in [0, 1]";
@@ -28,6 +33,16 @@ std::string AttentionOptions::Check() const {
     return "select.max_area_fraction must be in (0, 1]";
   }
   if (!(select.saliency_t_max > 0.f)) return "select.saliency_t_max must be > 0";
+  if (std::find(SelectOptions::Seeds().begin(), SelectOptions::Seeds().end(), select.seed) ==
+      SelectOptions::Seeds().end()) {
+    return "select.seed must be region or object";
+  }
+  if (!(select.seed_share > 0.f && select.seed_share <= 1.f)) {
+    return "select.seed_share must be in (0, 1]";
+  }
+  if (!(select.seed_level > 0.f && select.seed_level <= 1.f)) {
+    return "select.seed_level must be in (0, 1]";
+  }
   if (!(select.max_inhibited_fraction > 0.f && select.max_inhibited_fraction <= 1.f)) {
     return "select.max_inhibited_fraction must be in (0, 1]";
   }
@@ -173,6 +188,8 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
     const int count = bip.LabelRoots(&labels);
     std::vector<double> sum(count, 0.0);
     std::vector<int> area(count, 0);
+    std::vector<cv::Point> peak(count);  // each region's most salient pixel
+    std::vector<float> peak_value(count, -1.f);
     for (int y = 0; y < labels.rows; ++y) {
       const int* label = labels.ptr<int>(y);
       const float* s = inhibited_.ptr<float>(y);
@@ -180,6 +197,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         if (label[x] < 0) continue;
         sum[label[x]] += s[x];
         ++area[label[x]];
+        if (s[x] > peak_value[label[x]]) peak_value[label[x]] = s[x], peak[label[x]] = {x, y};
       }
     }
     std::vector<std::pair<double, int>> ranked;  // (mean * area, region)
@@ -218,6 +236,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
       // nothing (each new region counts with its own area).
       double inhibited_area = inhibited_pixels;
       const double max_inhibited = options_.select.max_inhibited_fraction * bgr.total();
+      const bool object_seed = options_.select.seed == "object";
       int started = 0;
       for (size_t k = 0; k < ranked.size(); ++k) {
         if (started >= std::min(options_.select.max_new, free_slots)) break;
@@ -226,21 +245,74 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
           if (pixels > best_count) best = region, best_count = pixels;
         }
         if (best < 0 || taken[best] || segmentation.regions[best].area > max_area) continue;
-        if (inhibited_area + segmentation.regions[best].area > max_inhibited) continue;
-        inhibited_area += segmentation.regions[best].area;
-        taken[best] = 1;
-        const cv::Mat mask = colour == best;
+        // The seed: the best region alone, or with the regions mostly inside the candidate.
+        std::vector<int> members = {best};
+        double seed_area = segmentation.regions[best].area;
+        if (object_seed) {
+          // The proto-object: the connected pixels around the candidate's most salient one
+          // whose inhibited saliency is at least seed_level times the candidate's mean.
+          const int r = ranked[k].second;
+          const float level =
+              static_cast<float>(options_.select.seed_level * sum[r] / std::max(1, area[r]));
+          fill_mask_.create(inhibited_.rows + 2, inhibited_.cols + 2, CV_8UC1);
+          fill_mask_.setTo(0);
+          cv::Rect filled;
+          const float from = std::min(level, peak_value[r]);
+          cv::floodFill(inhibited_, fill_mask_, peak[r], cv::Scalar(), &filled,
+                        cv::Scalar(peak_value[r] - from), cv::Scalar(1e6),
+                        4 | cv::FLOODFILL_FIXED_RANGE | cv::FLOODFILL_MASK_ONLY | (255 << 8));
+          std::map<int, int> inside;  // colour region -> its pixels in the proto-object
+          for (int y = filled.y; y < filled.y + filled.height; ++y) {
+            const int* region = colour.ptr<int>(y);
+            const uchar* in = fill_mask_.ptr<uchar>(y + 1) + 1;
+            for (int x = filled.x; x < filled.x + filled.width; ++x) {
+              if (in[x] && region[x] >= 0) ++inside[region[x]];
+            }
+          }
+          for (const auto& [region, pixels] : inside) {
+            const int region_area = segmentation.regions[region].area;
+            if (region == best || taken[region] || region_area > max_area ||
+                pixels < options_.select.seed_share * region_area) {
+              continue;
+            }
+            members.push_back(region);
+            seed_area += region_area;
+          }
+          if (seed_area > max_area) members.resize(1), seed_area = segmentation.regions[best].area;
+        }
+        if (inhibited_area + seed_area > max_inhibited) continue;
+        const cv::Mat region_mask = colour == best;
         const double skin_share =
-            static_cast<double>(cv::countNonZero(skin_ & mask)) / segmentation.regions[best].area;
+            static_cast<double>(cv::countNonZero(skin_ & region_mask)) /
+            segmentation.regions[best].area;
         // A mostly-skin region is a skin target only when it is confident, skin-shaped skin
         // (features/skin.h, JudgeSkinRegion), unless skin_check is off (the thesis's rule).
-        const bool skin =
-            skin_share >= options_.skin_fraction &&
-            (!options_.skin_check ||
-             JudgeSkinRegion(mask, skin_distance_, skin_model_.threshold, options_.skin_region)
-                 .skin);
-        const int id = tracker_->StartFromRegion(
-            bgr, colour, best, skin ? TrackSimilarity::kSkin : TrackSimilarity::kColour, skin_);
+        // A skin target is its skin region alone, whatever the seed.
+        const bool skin = skin_share >= options_.skin_fraction &&
+                          (!options_.skin_check ||
+                           JudgeSkinRegion(region_mask, skin_distance_, skin_model_.threshold,
+                                           options_.skin_region)
+                               .skin);
+        if (skin) members.resize(1), seed_area = segmentation.regions[best].area;
+        inhibited_area += seed_area;
+        for (const int region : members) taken[region] = 1;
+        int id = -1;
+        if (members.size() == 1) {
+          id = tracker_->StartFromRegion(
+              bgr, colour, best, skin ? TrackSimilarity::kSkin : TrackSimilarity::kColour, skin_);
+        } else {
+          member_.assign(segmentation.regions.size(), 0);
+          for (const int region : members) member_[region] = 1;
+          seed_mask_.create(colour.size(), CV_8UC1);
+          for (int y = 0; y < colour.rows; ++y) {
+            const int* region = colour.ptr<int>(y);
+            uchar* out = seed_mask_.ptr<uchar>(y);
+            for (int x = 0; x < colour.cols; ++x) {
+              out[x] = region[x] >= 0 && member_[region[x]] ? 255 : 0;
+            }
+          }
+          id = tracker_->StartFromMask(bgr, seed_mask_, TrackSimilarity::kColour, skin_);
+        }
         if (id < 0) continue;
         active_.push_back({id, skin, 0});
         ++attended_;

@@ -51,6 +51,16 @@ struct SelectOptions {
   float max_inhibited_fraction = 0.3f;
   // T_max of the BIP that segments the saliency map, in saliency units times 255.
   float saliency_t_max = 40.f;
+  // What a candidate starts as: "region", the colour region it overlaps most (thesis 5.1.2),
+  // or "object", that region together with every colour region of which at least
+  // `seed_share` lies inside the candidate's salient region (an object of several colours,
+  // such as a person's coat, trousers and head). The object's area is bounded as a region's.
+  std::string seed = "region";
+  float seed_share = 0.5f;
+  // object: the candidate's salient region is the connected area around its most salient
+  // pixel where the inhibited saliency is at least this times the candidate's mean.
+  float seed_level = 0.5f;
+  static const std::vector<std::string>& Seeds();
 };
 
 struct DropOptions {
@@ -138,6 +148,9 @@ class AttentionStage {
   cv::Mat skin_, inhibition_, inhibited_;
   cv::Mat skin_distance_;  // squared distance to the skin model per pixel (SkinDistanceMap)
   cv::Mat covered_;  // pixels of the active targets (masks, or boxes while occluded)
+  cv::Mat seed_mask_;            // an object seed's pixels
+  cv::Mat fill_mask_;            // the flood fill of an object seed's salient region
+  std::vector<uint8_t> member_;  // per colour region: in the object seed
   BipBuilder saliency_builder_;
   int attended_ = 0;
   double track_ms_ = 0.0;

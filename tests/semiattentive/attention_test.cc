@@ -449,5 +449,52 @@ TEST(Attention, NoNewTargetStartsPastTheInhibitedFraction) {
   }
 }
 
+// An object of two colours (a red top on a blue bottom, as a coat on trousers), salient as a
+// whole, next to a green object that is not salient. The thesis's seed is the one colour
+// region under the candidate; the object seed is both halves, and not the green neighbour.
+TEST(Attention, AnObjectSeedTakesEveryColourRegionOfTheSalientObject) {
+  const cv::Rect top(50, 30, 30, 24), bottom(50, 54, 30, 30), beside(80, 40, 24, 40);
+  const cv::Scalar red(40, 40, 210), blue(200, 70, 40), green(60, 180, 50);
+  const Drawn d = Draw({{top, red}, {bottom, blue}, {beside, green}}, {top | bottom}, 0);
+  for (const std::string seed : {"region", "object"}) {
+    AttentionOptions options;
+    options.select.seed = seed;
+    options.select.max_new = 1;
+    AttentionStage stage(options, ShippedSkinModel());
+    const AttentionFrame frame = Step(&stage, d);
+    ASSERT_EQ(frame.new_ids.size(), 1u) << seed;
+    const cv::Rect box = frame.targets[0].box;
+    const double iou_top = static_cast<double>((box & top).area()) / (box | top).area();
+    const double iou_bottom = static_cast<double>((box & bottom).area()) / (box | bottom).area();
+    const double iou_whole =
+        static_cast<double>((box & (top | bottom)).area()) / (box | top | bottom).area();
+    if (seed == "region") {
+      EXPECT_GT(std::max(iou_top, iou_bottom), 0.9) << "box " << box;
+      EXPECT_LT(iou_whole, 0.6) << "box " << box;
+    } else {
+      EXPECT_GT(iou_whole, 0.9) << "box " << box;
+      EXPECT_EQ((box & beside).area(), 0) << "box " << box;
+    }
+  }
+}
+
+// The object seed is bounded as a region is: when the salient area's colour regions together
+// pass select.max_area_fraction, the target is the one region under the candidate.
+TEST(Attention, AnObjectSeedLargerThanTheAreaBoundFallsBackToItsRegion) {
+  const cv::Rect top(30, 20, 60, 40), bottom(30, 60, 60, 40);
+  const cv::Scalar red(40, 40, 210), blue(200, 70, 40);
+  const Drawn d = Draw({{top, red}, {bottom, blue}}, {top | bottom}, 0);
+  AttentionOptions options;
+  options.select.seed = "object";
+  options.select.max_area_fraction = 0.2f;  // 3840 px: each half fits, both (4800) do not
+  options.select.max_inhibited_fraction = 1.f;
+  options.select.max_new = 1;
+  AttentionStage stage(options, ShippedSkinModel());
+  const AttentionFrame frame = Step(&stage, d);
+  ASSERT_EQ(frame.new_ids.size(), 1u);
+  EXPECT_LE(frame.targets[0].area, 0.2 * 160 * 120);
+  EXPECT_LE(frame.targets[0].box.height, 44) << frame.targets[0].box;
+}
+
 }  // namespace
 }  // namespace attend
