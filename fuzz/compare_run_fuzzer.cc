@@ -10,6 +10,7 @@
 #include "fuzz/run_folder_support.h"
 #include "pipeline/run_comparison.h"
 #include "pipeline/run_report.h"
+#include "util/json_text.h"
 
 namespace {
 
@@ -51,10 +52,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const RunData b = LoadRun(fixture.run_b);
     const RunComparison forward = CompareRuns(fixture.a, b);
     const RunComparison backward = CompareRuns(b, fixture.a);
-    ComparisonToJson(forward).dump();
-    ComparisonToJson(backward).dump();
-    TargetsToJson(SummariseTargets(b.frames)).dump();
-    AttentionToJson(b.attention).dump();
+    JsonText(ComparisonToJson(forward));
+    JsonText(ComparisonToJson(backward));
+    JsonText(TargetsToJson(SummariseTargets(b.frames)));
+    JsonText(AttentionToJson(b.attention));
     ReportInput report;
     report.runs = {fixture.a, b};
     report.comparisons = {forward};

@@ -11,6 +11,7 @@
 #include "fuzz/run_folder_support.h"
 #include "pipeline/run_comparison.h"
 #include "pipeline/run_evaluation.h"
+#include "util/json_text.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   attend::fuzz::Initialize();
@@ -25,8 +26,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fuzz::ExpectOnlyDocumentedErrors([&] {
     const std::vector<FrameRecord> frames = ReadFrameRecords(input);
     const AttentionScores scores = EvaluateAttention(frames, truth);
-    AttentionToJson(scores).dump();
-    TargetsToJson(SummariseTargets(frames)).dump();
+    JsonText(AttentionToJson(scores));
+    JsonText(TargetsToJson(SummariseTargets(frames)));
   });
   return 0;
 }
