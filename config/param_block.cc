@@ -175,6 +175,13 @@ ParamBlock ParamBlock::Parse(const std::string& text, const std::string& source)
     throw ConfigError(source + ":" + std::to_string(line) + ": not valid UTF-8 (byte " +
                       std::to_string(bad) + "); YAML files must be UTF-8");
   }
+  const size_t control = NonPrintableAt(text);
+  if (control != std::string::npos) {
+    const long line =
+        std::count(text.begin(), text.begin() + static_cast<long>(control), '\n') + 1;
+    throw ConfigError(source + ":" + std::to_string(line) + ": a control character (byte " +
+                      std::to_string(control) + ") that YAML does not allow");
+  }
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -193,6 +200,9 @@ void ParamBlock::Override(const std::string& assignment) {
   }
   if (InvalidUtf8At(assignment) != std::string::npos) {
     throw ConfigError("--set " + assignment + ": not valid UTF-8");
+  }
+  if (NonPrintableAt(assignment) != std::string::npos) {
+    throw ConfigError("--set: a control character that YAML does not allow");
   }
   const std::string key_path = assignment.substr(0, equals);
   const std::string value_text = assignment.substr(equals + 1);

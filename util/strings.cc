@@ -94,4 +94,17 @@ size_t InvalidUtf8At(std::string_view text) {
   return std::string_view::npos;
 }
 
+size_t NonPrintableAt(std::string_view text) {
+  for (size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F) return i;
+    // U+0080..U+009F are C2 80..C2 9F in UTF-8; U+0085 (NEL) is allowed.
+    if (c == 0xC2 && i + 1 < text.size()) {
+      const auto next = static_cast<unsigned char>(text[i + 1]);
+      if (next >= 0x80 && next <= 0x9F && next != 0x85) return i;
+    }
+  }
+  return std::string_view::npos;
+}
+
 }  // namespace attend

@@ -24,6 +24,12 @@ std::vector<std::string> Split(std::string_view text, char separator);
 // overlong forms, no surrogates, nothing above U+10FFFF), or npos when all of it is valid.
 size_t InvalidUtf8At(std::string_view text);
 
+// The byte offset of the first character of valid UTF-8 `text` that YAML does not allow in a
+// stream (YAML 1.2, 5.1: the C0 controls but tab, line feed and carriage return; DEL; the C1
+// controls but NEL, U+0085), or npos when there is none. A NUL in a key, for one, is read by
+// yaml-cpp but not written back as the same bytes.
+size_t NonPrintableAt(std::string_view text);
+
 // Joins with a separator.
 std::string Join(const std::vector<std::string>& parts, std::string_view separator);
 

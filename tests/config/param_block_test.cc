@@ -68,6 +68,24 @@ TEST(ParamBlock, SyntaxErrorDuplicateKeyAndMissingFile) {
   EXPECT_NE(message.find("list.yaml:1: the top level must be a map"), std::string::npos) << message;
 }
 
+TEST(ParamBlock, TextThatIsNotUtf8OrHoldsAControlCharacterIsRefusedWithItsLine) {
+  std::string message = ConfigErrorOf([] { ParamBlock::Parse("a: 1\nb: \xE9t\xE9\n", "x.yaml"); });
+  EXPECT_NE(message.find("x.yaml:2: not valid UTF-8 (byte 8)"), std::string::npos) << message;
+  message = ConfigErrorOf(
+      [] { ParamBlock::Parse(std::string("a: 1\nb: 2\n{c: 1, d\0_e: 2}\n", 26), "n.yaml"); });
+  EXPECT_NE(message.find("n.yaml:3: a control character (byte 18)"), std::string::npos)
+      << message;
+  message = ConfigErrorOf([] { ParamBlock::Parse("a: \x1b[31m\n", "esc.yaml"); });
+  EXPECT_NE(message.find("esc.yaml:1: a control character (byte 3)"), std::string::npos)
+      << message;
+  // Tabs, line ends and characters beyond ASCII are text.
+  const ParamBlock block = ParamBlock::Parse("a: \"\tx\"\r\nb: caf\xC3\xA9\n", "ok.yaml");
+  EXPECT_EQ(block.GetString("b", ""), "caf\xC3\xA9");
+  ParamBlock root = ParamBlock::Parse("a: 1\n", "ok.yaml");
+  message = ConfigErrorOf([&] { root.Override(std::string("a=\x07", 3)); });
+  EXPECT_NE(message.find("--set: a control character"), std::string::npos) << message;
+}
+
 TEST(ParamBlock, LoadFileReportsTheFilePath) {
   testing::TempDir dir;
   const std::string path = dir.Write("c.yaml", "k: 1\nq: nope\n");
