@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <charconv>
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -177,8 +177,7 @@ ParamBlock ParamBlock::Parse(const std::string& text, const std::string& source)
   }
   const size_t control = NonPrintableAt(text);
   if (control != std::string::npos) {
-    const long line =
-        std::count(text.begin(), text.begin() + static_cast<long>(control), '\n') + 1;
+    const long line = std::count(text.begin(), text.begin() + static_cast<long>(control), '\n') + 1;
     throw ConfigError(source + ":" + std::to_string(line) + ": a control character (byte " +
                       std::to_string(control) + ") that YAML does not allow");
   }

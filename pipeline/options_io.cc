@@ -87,6 +87,7 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.BeginSection("drop");
   v.Field("min_saliency", &o->attention.drop.min_saliency, Range::Closed(0, 1));
   v.Field("frames", &o->attention.drop.frames, Range::Closed(1, 1e6));
+  v.Field("max_shared", &o->attention.drop.max_shared, Range::Closed(0, 1));
   v.EndSection([o] { return o->attention.Check(); });
 
   v.BeginSection("inhibition");

@@ -50,6 +50,9 @@ std::string AttentionOptions::Check() const {
     return "drop.min_saliency must be in [0, 1]";
   }
   if (drop.frames < 1) return "drop.frames must be >= 1";
+  if (!(drop.max_shared >= 0.f && drop.max_shared <= 1.f)) {
+    return "drop.max_shared must be in [0, 1]";
+  }
   if (inhibition.margin < 0) return "inhibition.margin must be >= 0";
   if (!(skin_fraction >= 0.f && skin_fraction <= 1.f)) return "skin_fraction must be in [0, 1]";
   const std::string skin_error = skin_region.Check();
@@ -86,7 +89,7 @@ double MeanOver(const cv::Mat& map, const cv::Mat& mask) {
 }  // namespace
 
 std::string AttentionStage::ReleaseReason(const AttendedTarget& target, int low_frames,
-                                          const cv::Rect& image) const {
+                                          double shared, const cv::Rect& image) const {
   if (target.area > options_.select.max_area_fraction * image.area()) return "too_large";
   if (target.box.width >= kSpansImageFraction * image.width &&
       target.box.height >= kSpansImageFraction * image.height) {
@@ -94,6 +97,7 @@ std::string AttentionStage::ReleaseReason(const AttendedTarget& target, int low_
   }
   if (target.box.area() < options_.select.min_area) return "too_small";
   if (low_frames >= options_.drop.frames) return "low_saliency";
+  if (shared > options_.drop.max_shared) return "duplicate";
   return "";
 }
 
@@ -114,6 +118,13 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
   const cv::Mat kernel =
       cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * margin + 1, 2 * margin + 1));
   std::vector<int> removed;
+  // The pixels of the targets found and kept so far this frame, in id order: a younger
+  // target most of whose mask an older one already holds is a duplicate (drop.max_shared).
+  const bool duplicates = options_.drop.max_shared < 1.f;
+  if (duplicates) {
+    held_.create(bgr.size(), CV_8UC1);
+    held_.setTo(0);
+  }
   for (const TrackResult& result : results_) {
     auto active = std::find_if(active_.begin(), active_.end(),
                                [&](const Active& a) { return a.id == result.id; });
@@ -122,8 +133,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
     target.id = result.id;
     target.box = result.box & image;
     target.skin = active->skin;
-    const cv::Mat mask =
-        result.state == TrackState::kFound ? tracker_->Mask(result.id) : cv::Mat();
+    const cv::Mat mask = result.state == TrackState::kFound ? tracker_->Mask(result.id) : cv::Mat();
     if (result.state == TrackState::kFound && !mask.empty()) {
       target.state = "tracked";
       target.area = result.area;
@@ -131,7 +141,10 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
       active->low_frames =
           target.saliency < options_.drop.min_saliency ? active->low_frames + 1 : 0;
       // Released targets inhibit nothing, from the frame they are released in.
-      target.reason = ReleaseReason(target, active->low_frames, image);
+      const double shared = duplicates && result.area > 0
+                                ? static_cast<double>(cv::countNonZero(held_ & mask)) / result.area
+                                : 0.0;
+      target.reason = ReleaseReason(target, active->low_frames, shared, image);
       if (!target.reason.empty()) {
         target.state = "released";
         removed.push_back(result.id);
@@ -145,6 +158,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         cv::dilate(mask(around), grown, kernel);
         inhibition_(around).setTo(1.f, grown);
         covered_.setTo(255, mask);
+        if (duplicates) held_.setTo(255, mask);
       }
     } else if (result.state == TrackState::kOccluded) {
       target.state = "occluded";
@@ -282,17 +296,16 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         }
         if (inhibited_area + seed_area > max_inhibited) continue;
         const cv::Mat region_mask = colour == best;
-        const double skin_share =
-            static_cast<double>(cv::countNonZero(skin_ & region_mask)) /
-            segmentation.regions[best].area;
+        const double skin_share = static_cast<double>(cv::countNonZero(skin_ & region_mask)) /
+                                  segmentation.regions[best].area;
         // A mostly-skin region is a skin target only when it is confident, skin-shaped skin
         // (features/skin.h, JudgeSkinRegion), unless skin_check is off (the thesis's rule).
         // A skin target is its skin region alone, whatever the seed.
-        const bool skin = skin_share >= options_.skin_fraction &&
-                          (!options_.skin_check ||
-                           JudgeSkinRegion(region_mask, skin_distance_, skin_model_.threshold,
-                                           options_.skin_region)
-                               .skin);
+        const bool skin =
+            skin_share >= options_.skin_fraction &&
+            (!options_.skin_check || JudgeSkinRegion(region_mask, skin_distance_,
+                                                     skin_model_.threshold, options_.skin_region)
+                                         .skin);
         if (skin) members.resize(1), seed_area = segmentation.regions[best].area;
         inhibited_area += seed_area;
         for (const int region : members) taken[region] = 1;

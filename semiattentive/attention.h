@@ -18,9 +18,10 @@
 // target is released, and inhibits nothing from that frame on, when its mask covers more than
 // select.max_area_fraction of the image ("too_large"), when its box spans the image: at least
 // 0.9 of its width and 0.9 of its height ("spans_image"), when its box holds fewer than
-// select.min_area pixels ("too_small"), or when its own uninhibited saliency
+// select.min_area pixels ("too_small"), when its own uninhibited saliency
 // (mean over its mask) stays below drop.min_saliency for drop.frames frames in a row
-// ("low_saliency"); the first rule that holds is the reason recorded.
+// ("low_saliency"), or when more than drop.max_shared of its mask is held by older targets
+// found and kept this frame ("duplicate"); the first rule that holds is the reason recorded.
 #pragma once
 
 #include <memory>
@@ -40,10 +41,10 @@ namespace attend {
 constexpr double kSpansImageFraction = 0.9;
 
 struct SelectOptions {
-  float min_saliency = 0.2f;   // mean inhibited saliency of a candidate region, 0..1
-  int min_area = 120;          // pixels, at the working size
-  int max_new = 2;             // targets started in one frame
-  int max_targets = 12;        // targets active at once
+  float min_saliency = 0.2f;  // mean inhibited saliency of a candidate region, 0..1
+  int min_area = 120;         // pixels, at the working size
+  int max_new = 2;            // targets started in one frame
+  int max_targets = 12;       // targets active at once
   // A colour region larger than this share of the image is background, never a target.
   float max_area_fraction = 0.2f;
   // No new target starts while the inhibition (with the new region) would cover more than
@@ -66,6 +67,10 @@ struct SelectOptions {
 struct DropOptions {
   float min_saliency = 0.1f;  // a target below this, uninhibited, for `frames` is released
   int frames = 15;
+  // A found target more than this share of whose mask older found targets (kept this frame)
+  // already hold is a duplicate and is released ("duplicate"): a tracker that slid onto
+  // another target's object. 1: never (the thesis's stage).
+  float max_shared = 0.5f;
 };
 
 struct InhibitionOptions {
@@ -100,8 +105,8 @@ struct AttendedTarget {
   int area = 0;
   double saliency = 0.0;  // mean uninhibited saliency over its mask (or its box when hidden)
   std::string state;      // new, tracked, occluded, lost, released
-  // Why a released target was released: "too_large", "spans_image", "too_small" or
-  // "low_saliency" (empty in every other state).
+  // Why a released target was released: "too_large", "spans_image", "too_small",
+  // "low_saliency" or "duplicate" (empty in every other state).
   std::string reason;
   bool skin = false;
 };
@@ -137,7 +142,7 @@ class AttentionStage {
   struct Active;
   // Why a found target is released this frame ("" when it is not): SPEC 2.4's drop rule and
   // the size rules above.
-  std::string ReleaseReason(const AttendedTarget& target, int low_frames,
+  std::string ReleaseReason(const AttendedTarget& target, int low_frames, double shared,
                             const cv::Rect& image) const;
 
   AttentionOptions options_;
@@ -146,8 +151,9 @@ class AttentionStage {
   std::vector<Active> active_;
   std::vector<TrackResult> results_;
   cv::Mat skin_, inhibition_, inhibited_;
-  cv::Mat skin_distance_;  // squared distance to the skin model per pixel (SkinDistanceMap)
-  cv::Mat covered_;  // pixels of the active targets (masks, or boxes while occluded)
+  cv::Mat skin_distance_;        // squared distance to the skin model per pixel (SkinDistanceMap)
+  cv::Mat covered_;              // pixels of the active targets (masks, or boxes while occluded)
+  cv::Mat held_;                 // the masks of the targets found and kept so far in this frame
   cv::Mat seed_mask_;            // an object seed's pixels
   cv::Mat fill_mask_;            // the flood fill of an object seed's salient region
   std::vector<uint8_t> member_;  // per colour region: in the object seed

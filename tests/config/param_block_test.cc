@@ -73,11 +73,9 @@ TEST(ParamBlock, TextThatIsNotUtf8OrHoldsAControlCharacterIsRefusedWithItsLine) 
   EXPECT_NE(message.find("x.yaml:2: not valid UTF-8 (byte 8)"), std::string::npos) << message;
   message = ConfigErrorOf(
       [] { ParamBlock::Parse(std::string("a: 1\nb: 2\n{c: 1, d\0_e: 2}\n", 26), "n.yaml"); });
-  EXPECT_NE(message.find("n.yaml:3: a control character (byte 18)"), std::string::npos)
-      << message;
+  EXPECT_NE(message.find("n.yaml:3: a control character (byte 18)"), std::string::npos) << message;
   message = ConfigErrorOf([] { ParamBlock::Parse("a: \x1b[31m\n", "esc.yaml"); });
-  EXPECT_NE(message.find("esc.yaml:1: a control character (byte 3)"), std::string::npos)
-      << message;
+  EXPECT_NE(message.find("esc.yaml:1: a control character (byte 3)"), std::string::npos) << message;
   // Tabs, line ends and characters beyond ASCII are text.
   const ParamBlock block = ParamBlock::Parse("a: \"\tx\"\r\nb: caf\xC3\xA9\n", "ok.yaml");
   EXPECT_EQ(block.GetString("b", ""), "caf\xC3\xA9");

@@ -251,7 +251,8 @@ TEST(Attention, ATargetWhoseBoxShrinksUnderTheMinimumAreaIsReleased) {
     const AttendedTarget& target = frame.targets[0];
     ASSERT_EQ(target.id, 1) << "frame " << f;
     const bool small = target.box.area() < 1000;
-    EXPECT_EQ(target.state, small ? "released" : "tracked") << "frame " << f << ", box " << target.box;
+    EXPECT_EQ(target.state, small ? "released" : "tracked")
+        << "frame " << f << ", box " << target.box;
     EXPECT_EQ(target.reason, small ? "too_small" : "") << "frame " << f;
     released = small;
   }
@@ -356,7 +357,7 @@ TEST(Attention, AShortOcclusionKeepsTheIdentityAndIsNotReselected) {
 // alone (false) the same object starts a new target in the frame it appears.
 TEST(Attention, AnOccludedTargetInhibitsTheAreaItIsSearchedIn) {
   const cv::Rect box(60, 40, 30, 24);
-  const cv::Rect panel(59, 39, 32, 26);  // covers the box and a pixel around it
+  const cv::Rect panel(59, 39, 32, 26);   // covers the box and a pixel around it
   const cv::Rect beside(92, 42, 10, 16);  // 2 px right of the box, within the ROI border
   const cv::Scalar red(40, 40, 210), blue(200, 90, 30), green(60, 180, 50);
   for (const bool search : {true, false}) {
@@ -398,7 +399,6 @@ TEST(Attention, ASkinObjectIsTrackedWithTheSkinSimilarity) {
   for (const AttendedTarget& target : frame.targets) EXPECT_EQ(target.state, "tracked");
 }
 
-
 // A skin-coloured strip 6 times as long as it is high (a wall's edge, a plank), salient: by
 // colour it is skin, by shape it is not a face or a hand. With select.skin_check (the default)
 // it starts a colour target; with the thesis's rule, the share alone, a skin target.
@@ -428,7 +428,6 @@ TEST(Attention, TheRecordsGiveTheInhibitedShareOfTheImage) {
     EXPECT_LT(run.records[f].inhibited_fraction, 0.5) << "frame " << f;
   }
 }
-
 
 // Two salient boxes of 720 px each in a 160 x 120 image (3.75 % each): with
 // select.max_inhibited_fraction at 6 % (1152 px) only the first starts, as the second would
@@ -494,6 +493,43 @@ TEST(Attention, AnObjectSeedLargerThanTheAreaBoundFallsBackToItsRegion) {
   ASSERT_EQ(frame.new_ids.size(), 1u);
   EXPECT_LE(frame.targets[0].area, 0.2 * 160 * 120);
   EXPECT_LE(frame.targets[0].box.height, 44) << frame.targets[0].box;
+}
+
+// Two targets on two red squares; one square slides onto the other and stays there, so both
+// trackers end on the same pixels. With the duplicate rule the younger target is released as
+// "duplicate" and the older one keeps the object; with drop.max_shared 1 (the thesis's stage)
+// both stay on it.
+TEST(Attention, ATargetOnAnotherTargetsPixelsIsReleasedAsADuplicate) {
+  const cv::Scalar red(40, 40, 210);
+  for (const float max_shared : {0.5f, 1.f}) {
+    AttentionOptions options;
+    options.drop.max_shared = max_shared;
+    AttentionStage stage(options, ShippedSkinModel());
+    const cv::Rect still(30, 40, 24, 24);
+    std::vector<std::string> reasons;
+    int active_at_end = 0;
+    for (int f = 0; f <= 30; ++f) {
+      const cv::Rect moving(std::max(30, 110 - 4 * f), 40, 24, 24);
+      const AttentionFrame frame =
+          Step(&stage, Draw({{still, red}, {moving, red}}, {still, moving}, f));
+      if (f == 0) {
+        ASSERT_EQ(frame.new_ids.size(), 2u);
+      }
+      active_at_end = 0;
+      for (const AttendedTarget& target : frame.targets) {
+        if (!target.reason.empty()) reasons.push_back(target.reason);
+        if (target.state == "tracked" || target.state == "occluded") ++active_at_end;
+      }
+    }
+    if (max_shared < 1.f) {
+      EXPECT_EQ(reasons, std::vector<std::string>{"duplicate"});
+      EXPECT_EQ(active_at_end, 1);
+    } else {
+      EXPECT_TRUE(reasons.empty()) << reasons.front();
+      EXPECT_EQ(active_at_end, 2);
+    }
+    EXPECT_EQ(stage.targets_attended(), 2) << "max_shared " << max_shared;
+  }
 }
 
 }  // namespace

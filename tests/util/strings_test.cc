@@ -32,7 +32,7 @@ TEST(Strings, NonPrintableAtFindsWhatYamlDoesNotAllow) {
   EXPECT_EQ(NonPrintableAt("plain text\twith tab\r\n"), std::string_view::npos);
   EXPECT_EQ(NonPrintableAt(std::string_view("ab\0c", 4)), 2u);
   EXPECT_EQ(NonPrintableAt("a\x7f"), 1u);
-  EXPECT_EQ(NonPrintableAt("x\xC2\x9F"), 1u);                    // U+009F, a C1 control
+  EXPECT_EQ(NonPrintableAt("x\xC2\x9F"), 1u);                               // U+009F, a C1 control
   EXPECT_EQ(NonPrintableAt("x\xC2\x85 \xC2\xA0"), std::string_view::npos);  // NEL, NBSP
 }
 
