@@ -140,11 +140,11 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
       target.saliency = MeanOver(saliency, mask);
       active->low_frames =
           target.saliency < options_.drop.min_saliency ? active->low_frames + 1 : 0;
-      // Released targets inhibit nothing, from the frame they are released in.
       const double shared = duplicates && result.area > 0
                                 ? static_cast<double>(cv::countNonZero(held_ & mask)) / result.area
                                 : 0.0;
       target.reason = ReleaseReason(target, active->low_frames, shared, image);
+      // Released targets inhibit nothing, from the frame they are released in.
       if (!target.reason.empty()) {
         target.state = "released";
         removed.push_back(result.id);
