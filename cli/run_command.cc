@@ -48,31 +48,6 @@ struct RunArguments {
   std::string command_line;
 };
 
-// "FIRST:LAST", either side may be empty; LAST is inclusive.
-void ParseFrameRange(const std::string& text, SequenceOptions* sequence) {
-  const size_t colon = text.find(':');
-  auto parse = [&](const std::string& part, int* value) {
-    if (part.empty()) return;
-    try {
-      size_t used = 0;
-      *value = std::stoi(part, &used);
-      if (used != part.size() || *value < 0) throw std::invalid_argument(part);
-    } catch (const std::exception&) {
-      throw ConfigError("--frames " + text + ": expected FIRST:LAST with non-negative integers");
-    }
-  };
-  if (colon == std::string::npos) {
-    throw ConfigError("--frames " + text + ": expected FIRST:LAST (for example 10:50 or 10:)");
-  }
-  parse(text.substr(0, colon), &sequence->first_frame);
-  parse(text.substr(colon + 1), &sequence->last_frame);
-  if (sequence->last_frame >= 0 && sequence->last_frame < sequence->first_frame) {
-    throw ConfigError("--frames " + text + ": the range ends (" +
-                      std::to_string(sequence->last_frame) + ") before it starts (" +
-                      std::to_string(sequence->first_frame) + ")");
-  }
-}
-
 void PrintProgress(const RunProgress& progress) {
   // Ten updates a second are enough to read; more would slow a fast run down.
   static Stopwatch since_last;
@@ -107,7 +82,12 @@ int Run(const RunArguments& args) {
     sequence.video = args.video;
     sequence.images = args.images;
   }
-  if (!args.frames.empty()) ParseFrameRange(args.frames, &sequence);
+  if (!args.frames.empty()) {
+    const FrameRange range =
+        ParseFrameRange(args.frames, {sequence.first_frame, sequence.last_frame});
+    sequence.first_frame = range.first;
+    sequence.last_frame = range.last;
+  }
   if (sequence.SourceCount() == 0) sequence.folder = EnsureBundledSequence(args.quiet);
   // The effective configuration names the source absolutely, so RUN/config.yaml repeats the
   // run from any folder.

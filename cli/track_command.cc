@@ -1,6 +1,6 @@
 // attend track: a tracker of the kind tracker.kind (tracker/target_tracker.h: the BIP template
-// tracker, KCF or CSRT) over a sequence, started from boxes on its first frame; attend eval-tracking: the OTB one-pass scores of its tracks.csv (SPEC 3.2,
-// 4; docs/TRACKING.md).
+// tracker, KCF or CSRT) over a sequence, started from boxes on its first frame; attend
+// eval-tracking: the OTB one-pass scores of its tracks.csv (SPEC 3.2, 4; docs/TRACKING.md).
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -29,9 +29,9 @@
 #include "tracker/evaluation.h"
 #include "tracker/target_tracker.h"
 #include "util/error.h"
+#include "util/json_text.h"
 #include "util/output_folder.h"
 #include "util/strings.h"
-#include "util/json_text.h"
 
 namespace attend {
 
@@ -55,37 +55,6 @@ const std::vector<std::string>& TrackerKeys() {
     return result;
   }();
   return keys;
-}
-
-// A frame range FIRST:LAST, inclusive; either side may be empty (LAST -1: to the end).
-struct FrameRange {
-  int first = 0;
-  int last = -1;
-};
-
-FrameRange ParseFrameRange(const std::string& text) {
-  FrameRange range;
-  const size_t colon = text.find(':');
-  if (colon == std::string::npos) {
-    throw ConfigError("--frames " + text + ": expected FIRST:LAST (for example 10:50 or 10:)");
-  }
-  auto parse = [&](const std::string& part, int* value) {
-    if (part.empty()) return;
-    try {
-      size_t used = 0;
-      *value = std::stoi(part, &used);
-      if (used != part.size() || *value < 0) throw std::invalid_argument(part);
-    } catch (const std::exception&) {
-      throw ConfigError("--frames " + text + ": expected FIRST:LAST with non-negative integers");
-    }
-  };
-  parse(text.substr(0, colon), &range.first);
-  parse(text.substr(colon + 1), &range.last);
-  if (range.last >= 0 && range.last < range.first) {
-    throw ConfigError("--frames " + text + ": the range ends (" + std::to_string(range.last) +
-                      ") before it starts (" + std::to_string(range.first) + ")");
-  }
-  return range;
 }
 
 std::string BoxText(const cv::Rect& box) {
@@ -388,9 +357,8 @@ int Track(const TrackArguments& args) {
     throw ConfigError(what(i) + ": the box " +
                       ((boxes[i] & image).empty() ? std::string("lies outside")
                                                   : std::string("does not lie inside")) +
-                      " the " + std::to_string(image.width) + "x" +
-                      std::to_string(image.height) + " frame (x in 0.." +
-                      std::to_string(image.width) + " - w, y in 0.." +
+                      " the " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                      " frame (x in 0.." + std::to_string(image.width) + " - w, y in 0.." +
                       std::to_string(image.height) + " - h)");
   }
   for (size_t i = 0; i < boxes.size(); ++i) {
@@ -405,13 +373,13 @@ int Track(const TrackArguments& args) {
   }
 
   const fs::path out(args.out);
-  PrepareOutputFolder(
-      args.out, args.overwrite,
-      {"track output", {"tracks.csv", "track.json", "masks", "overlay"},
-       [](const std::string& folder) {
-         std::error_code error;
-         return fs::is_regular_file(fs::path(folder) / "tracks.csv", error);
-       }});
+  PrepareOutputFolder(args.out, args.overwrite,
+                      {"track output",
+                       {"tracks.csv", "track.json", "masks", "overlay"},
+                       [](const std::string& folder) {
+                         std::error_code error;
+                         return fs::is_regular_file(fs::path(folder) / "tracks.csv", error);
+                       }});
   const std::string tracks_path = (out / "tracks.csv").string();
 
   std::vector<TrackRow> rows;
@@ -619,7 +587,8 @@ void AddTrackCommand(CLI::App& app, const std::string&, CommandAction* action) {
   CLI::App* command = app.add_subcommand(
       "track",
       "Track objects with the tracker of kind tracker.kind: bip, the BIP template tracker "
-      "(thesis chapter 4, the default), or OpenCV's kcf or csrt (docs/TRACKING.md). Targets start on the first frame of the range, one per --init box (ids 1, 2, ... in "
+      "(thesis chapter 4, the default), or OpenCV's kcf or csrt (docs/TRACKING.md). Targets start "
+      "on the first frame of the range, one per --init box (ids 1, 2, ... in "
       "order), and are tracked over the following frames at the source's native size. Writes "
       "OUT/tracks.csv (frame,id,x,y,w,h,state; one row per target per frame, the box the last "
       "known one when the state is occluded or lost) and OUT/track.json, a summary (the tracker "

@@ -45,9 +45,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace attend;
   const Fixture& fixture = GetFixture();
-  fuzz::RunFiles files = fixture.valid;
-  fuzz::ReplaceRunFile(data, size, &files);
-  fuzz::WriteRunFiles(fixture.run_b, files);
+  fuzz::WriteFuzzedRunFiles(data, size, fixture.valid, fixture.run_b);
   fuzz::ExpectOnlyDocumentedErrors([&] {
     const RunData b = LoadRun(fixture.run_b);
     const RunComparison forward = CompareRuns(fixture.a, b);

@@ -40,9 +40,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace attend;
   const Fixture& fixture = GetFixture();
-  fuzz::RunFiles files = fixture.valid;
-  fuzz::ReplaceRunFile(data, size, &files);
-  fuzz::WriteRunFiles(fixture.run, files);
+  fuzz::WriteFuzzedRunFiles(data, size, fixture.valid, fixture.run);
   fuzz::ExpectOnlyDocumentedErrors([&] {
     fuzz::RunCommand(AddEvalCommand, {"eval", fixture.run, "--gt", fixture.sequence + "/gt"});
   });

@@ -53,6 +53,12 @@ std::string ScratchPath(const std::string& name) {
   return (fs::path(ScratchDir()) / name).string();
 }
 
+std::string ScratchFile(const std::string& name, const std::string& bytes) {
+  const std::string path = ScratchPath(name);
+  WriteFile(path, bytes);
+  return path;
+}
+
 void WriteFile(const std::string& path, const std::string& bytes) {
   std::error_code error;
   fs::create_directories(fs::path(path).parent_path(), error);

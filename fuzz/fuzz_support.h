@@ -23,6 +23,8 @@ std::string ScratchPath(const std::string& name);
 // Replaces `path` with the bytes, creating the folders above it. A file that cannot be written
 // is a problem of the machine, not a finding: it stops the process with a message.
 void WriteFile(const std::string& path, const std::string& bytes);
+// Writes a fixed file `name` with `bytes` in the scratch folder and returns its path.
+std::string ScratchFile(const std::string& name, const std::string& bytes);
 std::string ReadFile(const std::string& path);
 
 inline std::string ToString(const uint8_t* data, size_t size) {

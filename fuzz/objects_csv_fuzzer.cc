@@ -28,23 +28,17 @@ bool Same(const attend::GtObject& a, const attend::GtObject& b) {
          (!a.disparity || Same(*a.disparity, *b.disparity)) && a.kind == b.kind;
 }
 
-const std::string& TracksPath() {
-  static const std::string path = [] {
-    const std::string file = attend::fuzz::ScratchPath("tracks.csv");
-    attend::fuzz::WriteFile(file,
-                            "frame,id,x,y,w,h,state\n0,1,4,4,10,8,found\n1,1,5,4,10,8,found\n"
-                            "2,1,6,4,10,8,occluded\n");
-    return file;
-  }();
-  return path;
-}
+// A fixed tracks.csv of target 1 over three frames, written at initialisation.
+std::string tracks_path;
 
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   attend::fuzz::Initialize();
   attend::fuzz::SilenceStandardOutput();
-  TracksPath();
+  tracks_path = attend::fuzz::ScratchFile(
+      "tracks.csv",
+      "frame,id,x,y,w,h,state\n0,1,4,4,10,8,found\n1,1,5,4,10,8,found\n2,1,6,4,10,8,occluded\n");
   return 0;
 }
 
@@ -66,7 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     EvaluateAttention(frames, objects);
     fuzz::RunCommand(AddEvalTrackingCommand,
-                     {"eval-tracking", TracksPath(), "--gt", input, "--gt-id", "1"});
+                     {"eval-tracking", tracks_path, "--gt", input, "--gt-id", "1"});
   });
   return 0;
 }

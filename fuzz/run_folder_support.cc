@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-TargetRecord Target(int id, cv::Rect box, const std::string& state, const std::string& kind) {
+TargetRecord Target(int id, cv::Rect box, TargetState state, const std::string& kind) {
   TargetRecord target;
   target.id = id;
   target.bbox = box;
@@ -51,11 +51,11 @@ std::vector<FrameRecord> ValidFrames() {
   for (int i = 0; i < 3; ++i) {
     FrameRecord& record = frames[i];
     record.frame = i;
-    const std::string state = i == 0 ? "new" : "tracked";
+    const TargetState state = i == 0 ? TargetState::kNew : TargetState::kTracked;
     record.targets.push_back(Target(1, cv::Rect(4 + i, 4, 10, 8), state, "object"));
     if (i >= 1) {
-      record.targets.push_back(
-          Target(2, cv::Rect(18, 10, 9, 9), i == 1 ? "new" : "occluded", "skin"));
+      record.targets.push_back(Target(2, cv::Rect(18, 10, 9, 9),
+                                      i == 1 ? TargetState::kNew : TargetState::kOccluded, "skin"));
     }
     if (i == 0) record.new_ids = {1};
     if (i == 1) record.new_ids = {2};
@@ -182,6 +182,13 @@ std::string ReplaceRunFile(const uint8_t* data, size_t size, RunFiles* files) {
       files->config_yaml = content;
       return "config.yaml";
   }
+}
+
+void WriteFuzzedRunFiles(const uint8_t* data, size_t size, const RunFiles& valid,
+                         const std::string& dir) {
+  RunFiles files = valid;
+  ReplaceRunFile(data, size, &files);
+  WriteRunFiles(dir, files);
 }
 
 }  // namespace attend::fuzz

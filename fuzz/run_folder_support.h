@@ -44,5 +44,8 @@ void WriteRunFiles(const std::string& dir, const RunFiles& files);
 // 's' summary.json, 'c' config.yaml, any other byte by its value modulo 3 in that order; the
 // rest of the input is the file's content. Returns the file's name.
 std::string ReplaceRunFile(const uint8_t* data, size_t size, RunFiles* files);
+// The three files of `valid` in `dir`, with the input put into one of them (ReplaceRunFile).
+void WriteFuzzedRunFiles(const uint8_t* data, size_t size, const RunFiles& valid,
+                         const std::string& dir);
 
 }  // namespace attend::fuzz

@@ -13,23 +13,17 @@
 
 namespace {
 
-const std::string& GroundTruthPath() {
-  static const std::string path = [] {
-    const std::string file = attend::fuzz::ScratchPath("groundtruth_rect.txt");
-    attend::fuzz::WriteFile(file,
-                            "41,61,30,24\n42,61,30,24\n43,62,30,24\n0,0,0,0\n"
-                            "45,63,31,24\n101,11,12,12\n");
-    return file;
-  }();
-  return path;
-}
+// A fixed OTB box list of six frames, written at initialisation.
+std::string ground_truth_path;
 
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   attend::fuzz::Initialize();
   attend::fuzz::SilenceStandardOutput();
-  GroundTruthPath();
+  ground_truth_path = attend::fuzz::ScratchFile(
+      "groundtruth_rect.txt",
+      "41,61,30,24\n42,61,30,24\n43,62,30,24\n0,0,0,0\n45,63,31,24\n101,11,12,12\n");
   return 0;
 }
 
@@ -50,7 +44,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         fuzz::Fail("tracks.csv row " + std::to_string(i) + " changes in a round trip");
       }
     }
-    fuzz::RunCommand(AddEvalTrackingCommand, {"eval-tracking", input, "--gt", GroundTruthPath()});
+    fuzz::RunCommand(AddEvalTrackingCommand, {"eval-tracking", input, "--gt", ground_truth_path});
   });
   return 0;
 }

@@ -39,8 +39,8 @@ cv::Rect InputFromWorkingBox(const cv::Rect& box_in_working, double scale_x, dou
   cv::Rect box;
   InputFromWorkingSpan(box_in_working.x, box_in_working.width, scale_x, input_size.width, &box.x,
                        &box.width);
-  InputFromWorkingSpan(box_in_working.y, box_in_working.height, scale_y, input_size.height,
-                       &box.y, &box.height);
+  InputFromWorkingSpan(box_in_working.y, box_in_working.height, scale_y, input_size.height, &box.y,
+                       &box.height);
   return box;
 }
 
@@ -57,6 +57,12 @@ FrameRecord InputFromWorking(const FrameRecord& record_in_working, double scale_
   return record;
 }
 
+int VisibleTargets(const FrameRecord& record) {
+  int n = 0;
+  for (const TargetRecord& t : record.targets) n += Visible(t.state);
+  return n;
+}
+
 std::string FrameRecordToJson(const FrameRecord& record) {
   nlohmann::ordered_json targets = nlohmann::ordered_json::array();
   for (const TargetRecord& t : record.targets) {
@@ -64,18 +70,17 @@ std::string FrameRecordToJson(const FrameRecord& record) {
                                      {"bbox", {t.bbox.x, t.bbox.y, t.bbox.width, t.bbox.height}},
                                      {"area", t.area},
                                      {"saliency", t.saliency},
-                                     {"state", t.state},
+                                     {"state", TargetStateName(t.state)},
                                      {"kind", t.kind},
                                      {"similarity", t.similarity},
                                      {"tracker", t.tracker}};
-    if (!t.reason.empty()) target["reason"] = t.reason;
+    if (t.reason != ReleaseReason::kNone) target["reason"] = ReleaseReasonName(t.reason);
     targets.push_back(target);
   }
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
   for (const auto& [stage, ms] : record.timings.stages()) timings[stage] = ms;
-  nlohmann::ordered_json line = {{"frame", record.frame},
-                                 {"targets", targets},
-                                 {"new", record.new_ids}};
+  nlohmann::ordered_json line = {
+      {"frame", record.frame}, {"targets", targets}, {"new", record.new_ids}};
   if (record.inhibited_fraction >= 0.0) line["inhibited_fraction"] = record.inhibited_fraction;
   line["timings_ms"] = timings;
   return JsonText(line);

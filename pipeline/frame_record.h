@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "semiattentive/target_state.h"
 #include "util/timer.h"
 
 namespace attend {
@@ -14,15 +15,15 @@ namespace attend {
 struct TargetRecord {
   int id = 0;
   cv::Rect bbox;
-  int area = 0;                    // pixels of its mask
-  double saliency = 0.0;           // mean uninhibited saliency over its mask
-  std::string state = "new";       // new, tracked, occluded, lost, released
-  std::string kind = "object";     // object or skin
+  int area = 0;           // pixels of its mask
+  double saliency = 0.0;  // mean uninhibited saliency over its mask
+  TargetState state = TargetState::kNew;
+  std::string kind = "object";  // object or skin
   // The tracker's similarity policy: hsv or skin (tracker kind bip); appearance for the kinds
   // that learn their own model (kcf, csrt).
   std::string similarity = "hsv";
   std::string tracker = "bip";  // the tracker kind that follows it: bip, kcf or csrt
-  std::string reason;           // why it was released (state released only; else empty)
+  ReleaseReason reason = ReleaseReason::kNone;  // why it was released (state released only)
 };
 
 struct FrameRecord {
@@ -45,6 +46,9 @@ cv::Rect InputFromWorkingBox(const cv::Rect& box_in_working, double scale_x, dou
 // divided by scale_x * scale_y and rounded (at least 1 for a non-empty mask).
 FrameRecord InputFromWorking(const FrameRecord& record_in_working, double scale_x, double scale_y,
                              cv::Size input_size);
+
+// The targets seen in the frame (Visible: new or tracked).
+int VisibleTargets(const FrameRecord& record);
 
 // One line of frames.jsonl (no trailing newline).
 std::string FrameRecordToJson(const FrameRecord& record);

@@ -22,14 +22,14 @@ cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record) {
   const double font_scale = std::max(0.35, left.cols / 900.0);
   for (const TargetRecord& target : record.targets) {
     const cv::Scalar colour = TargetColour(target.id);
-    const bool visible = target.state == "new" || target.state == "tracked";
-    const int thickness = target.state == "new" ? 3 : (visible ? 2 : 1);
+    const bool visible = Visible(target.state);
+    const int thickness = target.state == TargetState::kNew ? 3 : (visible ? 2 : 1);
     cv::rectangle(overlay, target.bbox, colour, thickness, visible ? cv::LINE_8 : cv::LINE_4);
     // Ids count up in the order objects were attended, so the label is the focus order.
     std::string label = std::to_string(target.id);
     label.insert(0, 1, '#');
     if (target.kind == "skin") label += " skin";
-    if (!visible) label.append(" (").append(target.state).append(")");
+    if (!visible) label.append(" (").append(TargetStateName(target.state)).append(")");
     const cv::Point anchor(target.bbox.x, std::max(10, target.bbox.y - 3));
     cv::putText(overlay, label, anchor, cv::FONT_HERSHEY_SIMPLEX, font_scale, cv::Scalar(0, 0, 0),
                 3, cv::LINE_AA);

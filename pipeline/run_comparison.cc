@@ -109,9 +109,7 @@ void Flatten(const YAML::Node& node, const std::string& prefix, FlatConfig* flat
 
 // Per-frame greedy one-to-one matching of the visible targets of two frames by IoU.
 std::vector<std::pair<int, int>> MatchFrame(const FrameRecord& a, const FrameRecord& b) {
-  const auto visible = [](const TargetRecord& t) {
-    return t.state == "new" || t.state == "tracked";
-  };
+  const auto visible = [](const TargetRecord& t) { return Visible(t.state); };
   struct Pair {
     double iou;
     int id_a, id_b;
@@ -138,12 +136,6 @@ std::vector<std::pair<int, int>> MatchFrame(const FrameRecord& a, const FrameRec
     matched.emplace_back(pair.id_a, pair.id_b);
   }
   return matched;
-}
-
-int VisibleTargets(const FrameRecord& record) {
-  int n = 0;
-  for (const TargetRecord& t : record.targets) n += t.state == "new" || t.state == "tracked";
-  return n;
 }
 
 // The run's saliency map of `frame`: the PFM dump, empty when there is none.

@@ -62,7 +62,10 @@ std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
         target.bbox = cv::Rect(x, y, w, h);
         target.area = IntIn(t.at("area"), "area", 0, 1L << 30);
         target.saliency = t.at("saliency").get<double>();
-        target.state = t.at("state").get<std::string>();
+        const std::string state = t.at("state").get<std::string>();
+        if (!TargetStateFromName(state, &target.state)) {
+          throw std::runtime_error("unknown state '" + state + "'");
+        }
         target.kind = t.at("kind").get<std::string>();
         target.similarity = t.at("similarity").get<std::string>();
         record.targets.push_back(target);
@@ -110,7 +113,7 @@ AttentionScores EvaluateAttention(const std::vector<FrameRecord>& frames,
     // The targets still active (tracked or occluded) this frame, and the objects they were on.
     std::set<int> active_objects;
     for (const TargetRecord& target : record.targets) {
-      if (target.state == "tracked" || target.state == "occluded") {
+      if (target.state == TargetState::kTracked || target.state == TargetState::kOccluded) {
         const auto on = object_of_target.find(target.id);
         if (on != object_of_target.end()) active_objects.insert(on->second);
       }
@@ -123,7 +126,7 @@ AttentionScores EvaluateAttention(const std::vector<FrameRecord>& frames,
     };
     std::vector<Pair> pairs;
     for (const TargetRecord& target : record.targets) {
-      if (target.state != "new" && target.state != "tracked") continue;
+      if (!Visible(target.state)) continue;
       for (const GtObject* object : visible) {
         const double iou = Iou(cv::Rect2d(target.bbox), object->box);
         if (iou >= options.match_iou) pairs.push_back({iou, &target, object});
@@ -150,7 +153,7 @@ AttentionScores EvaluateAttention(const std::vector<FrameRecord>& frames,
     // A new target whose best-overlapping object another active target was already on is a
     // revisit, whether or not it won the object in the matching.
     for (const TargetRecord& target : record.targets) {
-      if (target.state != "new") continue;
+      if (target.state != TargetState::kNew) continue;
       const GtObject* best = nullptr;
       double best_iou = options.match_iou;
       for (const GtObject* object : visible) {

@@ -117,12 +117,6 @@ std::string ImageCell(const std::string& url, const std::string& caption) {
          "</td>";
 }
 
-int VisibleTargets(const FrameRecord& record) {
-  int n = 0;
-  for (const TargetRecord& t : record.targets) n += t.state == "new" || t.state == "tracked";
-  return n;
-}
-
 std::string Notes(const ReportInput& input) {
   std::string html;
   std::vector<std::string> notes;

@@ -88,17 +88,19 @@ double MeanOver(const cv::Mat& map, const cv::Mat& mask) {
 
 }  // namespace
 
-std::string AttentionStage::ReleaseReason(const AttendedTarget& target, int low_frames,
+ReleaseReason AttentionStage::WhyReleased(const AttendedTarget& target, int low_frames,
                                           double shared, const cv::Rect& image) const {
-  if (target.area > options_.select.max_area_fraction * image.area()) return "too_large";
+  if (target.area > options_.select.max_area_fraction * image.area()) {
+    return ReleaseReason::kTooLarge;
+  }
   if (target.box.width >= kSpansImageFraction * image.width &&
       target.box.height >= kSpansImageFraction * image.height) {
-    return "spans_image";
+    return ReleaseReason::kSpansImage;
   }
-  if (target.box.area() < options_.select.min_area) return "too_small";
-  if (low_frames >= options_.drop.frames) return "low_saliency";
-  if (shared > options_.drop.max_shared) return "duplicate";
-  return "";
+  if (target.box.area() < options_.select.min_area) return ReleaseReason::kTooSmall;
+  if (low_frames >= options_.drop.frames) return ReleaseReason::kLowSaliency;
+  if (shared > options_.drop.max_shared) return ReleaseReason::kDuplicate;
+  return ReleaseReason::kNone;
 }
 
 void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
@@ -135,7 +137,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
     target.skin = active->skin;
     const cv::Mat mask = result.state == TrackState::kFound ? tracker_->Mask(result.id) : cv::Mat();
     if (result.state == TrackState::kFound && !mask.empty()) {
-      target.state = "tracked";
+      target.state = TargetState::kTracked;
       target.area = result.area;
       target.saliency = MeanOver(saliency, mask);
       active->low_frames =
@@ -143,10 +145,10 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
       const double shared = duplicates && result.area > 0
                                 ? static_cast<double>(cv::countNonZero(held_ & mask)) / result.area
                                 : 0.0;
-      target.reason = ReleaseReason(target, active->low_frames, shared, image);
+      target.reason = WhyReleased(target, active->low_frames, shared, image);
       // Released targets inhibit nothing, from the frame they are released in.
-      if (!target.reason.empty()) {
-        target.state = "released";
+      if (target.reason != ReleaseReason::kNone) {
+        target.state = TargetState::kReleased;
         removed.push_back(result.id);
       } else {
         // Inhibit the mask, dilated, within its box plus the margin.
@@ -161,7 +163,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         if (duplicates) held_.setTo(255, mask);
       }
     } else if (result.state == TrackState::kOccluded) {
-      target.state = "occluded";
+      target.state = TargetState::kOccluded;
       target.saliency = target.box.empty() ? 0.0 : cv::mean(saliency(target.box))[0];
       if (options_.inhibition.keep_occluded && !target.box.empty()) {
         const cv::Rect area = options_.inhibition.occluded_search && !result.roi.empty()
@@ -171,7 +173,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         covered_(area).setTo(255);
       }
     } else {
-      target.state = "lost";
+      target.state = TargetState::kLost;
       removed.push_back(result.id);
     }
     frame->targets.push_back(target);
@@ -336,7 +338,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         target.box = cv::boundingRect(own);
         target.area = cv::countNonZero(own);
         target.saliency = MeanOver(saliency, own);
-        target.state = "new";
+        target.state = TargetState::kNew;
         target.skin = skin;
         frame->targets.push_back(target);
         frame->new_ids.push_back(id);

@@ -32,6 +32,7 @@
 #include "features/skin.h"
 #include "features/skin_model.h"
 #include "pyramid/segmentation.h"
+#include "semiattentive/target_state.h"
 #include "tracker/target_tracker.h"
 
 namespace attend {
@@ -104,10 +105,9 @@ struct AttendedTarget {
   cv::Rect box;
   int area = 0;
   double saliency = 0.0;  // mean uninhibited saliency over its mask (or its box when hidden)
-  std::string state;      // new, tracked, occluded, lost, released
-  // Why a released target was released: "too_large", "spans_image", "too_small",
-  // "low_saliency" or "duplicate" (empty in every other state).
-  std::string reason;
+  TargetState state = TargetState::kNew;
+  // Why a released target was released (kNone in every other state).
+  ReleaseReason reason = ReleaseReason::kNone;
   bool skin = false;
 };
 
@@ -140,9 +140,9 @@ class AttentionStage {
 
  private:
   struct Active;
-  // Why a found target is released this frame ("" when it is not): SPEC 2.4's drop rule and
-  // the size rules above.
-  std::string ReleaseReason(const AttendedTarget& target, int low_frames, double shared,
+  // Why a found target is released this frame (kNone when it is not): SPEC 2.4's drop rule
+  // and the size rules above.
+  ReleaseReason WhyReleased(const AttendedTarget& target, int low_frames, double shared,
                             const cv::Rect& image) const;
 
   AttentionOptions options_;

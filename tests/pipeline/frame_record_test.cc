@@ -16,7 +16,7 @@ TEST(InputFromWorking, HalfSizeDoublesBoxesAndQuadruplesAreas) {
   target.bbox = {10, 20, 30, 40};
   target.area = 1000;
   target.saliency = 0.5;
-  target.state = "tracked";
+  target.state = TargetState::kTracked;
   record.targets = {target};
   record.new_ids = {3};
   const FrameRecord input = InputFromWorking(record, 0.5, 0.5, {640, 480});
@@ -25,7 +25,7 @@ TEST(InputFromWorking, HalfSizeDoublesBoxesAndQuadruplesAreas) {
   EXPECT_EQ(input.targets[0].bbox, cv::Rect(20, 40, 60, 80));
   EXPECT_EQ(input.targets[0].area, 4000);
   EXPECT_EQ(input.targets[0].saliency, 0.5);
-  EXPECT_EQ(input.targets[0].state, "tracked");
+  EXPECT_EQ(input.targets[0].state, TargetState::kTracked);
   EXPECT_EQ(input.new_ids, std::vector<int>{3});
 }
 
@@ -35,8 +35,7 @@ TEST(InputFromWorking, EdgesRoundPerAxisAndStayInTheFrame) {
   const double sx = 320.0 / 752.0, sy = 204.0 / 480.0;
   EXPECT_EQ(InputFromWorkingBox({3, 5, 10, 7}, sx, sy, {752, 480}), cv::Rect(7, 12, 24, 16));
   // The last working column ends at the input's last column.
-  EXPECT_EQ(InputFromWorkingBox({319, 203, 1, 1}, sx, sy, {752, 480}),
-            cv::Rect(750, 478, 2, 2));
+  EXPECT_EQ(InputFromWorkingBox({319, 203, 1, 1}, sx, sy, {752, 480}), cv::Rect(750, 478, 2, 2));
   // Stretch: different factors per axis (640x480 in 320x320).
   EXPECT_EQ(InputFromWorkingBox({10, 30, 20, 30}, 0.5, 320.0 / 480.0, {640, 480}),
             cv::Rect(20, 45, 40, 45));

@@ -115,7 +115,7 @@ TEST(ConfigDiff, UnreadableConfigIsAnInputError) {
   }
 }
 
-TargetRecord Target(int id, cv::Rect box, const std::string& state) {
+TargetRecord Target(int id, cv::Rect box, TargetState state) {
   TargetRecord t;
   t.id = id;
   t.bbox = box;
@@ -137,10 +137,12 @@ void WriteRun(const fs::path& dir, int frames, const std::string& config, cv::Re
   for (int f = 0; f < frames; ++f) {
     FrameRecord record;
     record.frame = f;
-    record.targets.push_back(Target(1, {10, 10, 20, 20}, f == 0 ? "new" : "tracked"));
+    record.targets.push_back(
+        Target(1, {10, 10, 20, 20}, f == 0 ? TargetState::kNew : TargetState::kTracked));
     if (f == 0) record.new_ids.push_back(1);
     if (f >= 1) {
-      record.targets.push_back(Target(2, second_box, f == 1 ? "new" : "tracked"));
+      record.targets.push_back(
+          Target(2, second_box, f == 1 ? TargetState::kNew : TargetState::kTracked));
       if (f == 1) record.new_ids.push_back(2);
     }
     record.timings.Add("read", 1.0 + f);

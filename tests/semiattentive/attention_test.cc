@@ -106,7 +106,7 @@ TEST(Attention, EveryTrackerKindRunsTheLoopAndTheRecordsSayWhichTracked) {
         EXPECT_EQ(target.similarity, kind == TrackerKind::kBip ? "hsv" : "appearance");
         EXPECT_NE(FrameRecordToJson(record).find("\"tracker\":\"" + name + "\""),
                   std::string::npos);
-        if (target.state == "tracked") ++tracked;
+        if (target.state == TargetState::kTracked) ++tracked;
       }
     }
     EXPECT_GE(targets, 20);
@@ -147,7 +147,7 @@ TEST(Attention, AMovingObjectKeepsItsIdentityAndItsInhibition) {
   for (size_t f = 0; f < run.records.size(); ++f) {
     for (const TargetRecord& target : run.records[f].targets) {
       EXPECT_EQ(target.id, 1) << "frame " << f;
-      if (target.state != "tracked") continue;
+      if (target.state != TargetState::kTracked) continue;
       ++tracked;
       // The inhibited saliency inside the target's box is near zero: inhibition moves with it.
       EXPECT_LT(cv::mean(run.inhibited[f](target.bbox))[0], 0.02) << "frame " << f;
@@ -222,8 +222,10 @@ TEST(Attention, ATargetWhoseSaliencyDropsIsReleased) {
   for (int f = 1; f <= 4; ++f) {
     frame = Step(&stage, Draw({{box, red}}, {}, f));
     ASSERT_EQ(frame.targets.size(), 1u) << "frame " << f;
-    EXPECT_EQ(frame.targets[0].state, f < 4 ? "tracked" : "released") << "frame " << f;
-    EXPECT_EQ(frame.targets[0].reason, f < 4 ? "" : "low_saliency") << "frame " << f;
+    EXPECT_EQ(frame.targets[0].state, f < 4 ? TargetState::kTracked : TargetState::kReleased)
+        << "frame " << f;
+    EXPECT_EQ(frame.targets[0].reason, f < 4 ? ReleaseReason::kNone : ReleaseReason::kLowSaliency)
+        << "frame " << f;
   }
   // Released: it inhibits nothing in the frame it is released in, nor after.
   EXPECT_EQ(cv::countNonZero(stage.inhibition()), 0);
@@ -251,9 +253,10 @@ TEST(Attention, ATargetWhoseBoxShrinksUnderTheMinimumAreaIsReleased) {
     const AttendedTarget& target = frame.targets[0];
     ASSERT_EQ(target.id, 1) << "frame " << f;
     const bool small = target.box.area() < 1000;
-    EXPECT_EQ(target.state, small ? "released" : "tracked")
+    EXPECT_EQ(target.state, small ? TargetState::kReleased : TargetState::kTracked)
         << "frame " << f << ", box " << target.box;
-    EXPECT_EQ(target.reason, small ? "too_small" : "") << "frame " << f;
+    EXPECT_EQ(target.reason, small ? ReleaseReason::kTooSmall : ReleaseReason::kNone)
+        << "frame " << f;
     released = small;
   }
   EXPECT_TRUE(released) << "the box never fell under select.min_area";
@@ -279,12 +282,12 @@ TEST(Attention, ATargetWhoseMaskGrowsPastTheAreaFractionIsReleased) {
     const AttendedTarget& target = frame.targets[0];
     ASSERT_EQ(target.id, 1) << "frame " << f;
     if (target.area > 0.2 * 160 * 120) {
-      EXPECT_EQ(target.state, "released") << "frame " << f << ", area " << target.area;
-      EXPECT_EQ(target.reason, "too_large") << "frame " << f;
+      EXPECT_EQ(target.state, TargetState::kReleased) << "frame " << f << ", area " << target.area;
+      EXPECT_EQ(target.reason, ReleaseReason::kTooLarge) << "frame " << f;
       EXPECT_EQ(cv::countNonZero(stage.inhibition()), 0) << "frame " << f;
       released = true;
     } else {
-      EXPECT_EQ(target.state, "tracked") << "frame " << f << ", area " << target.area;
+      EXPECT_EQ(target.state, TargetState::kTracked) << "frame " << f << ", area " << target.area;
       EXPECT_GT(cv::countNonZero(stage.inhibition()), target.area * 0.9) << "frame " << f;
     }
   }
@@ -317,8 +320,10 @@ TEST(Attention, ATargetWhoseBoxSpansTheImageIsReleased) {
     SCOPED_TRACE("box " + std::to_string(target.box.width) + "x" +
                  std::to_string(target.box.height));
     const bool spans = target.box.width >= 144 && target.box.height >= 108;
-    EXPECT_EQ(target.state, spans ? "released" : "tracked") << "frame " << f;
-    EXPECT_EQ(target.reason, spans ? "spans_image" : "") << "frame " << f;
+    EXPECT_EQ(target.state, spans ? TargetState::kReleased : TargetState::kTracked)
+        << "frame " << f;
+    EXPECT_EQ(target.reason, spans ? ReleaseReason::kSpansImage : ReleaseReason::kNone)
+        << "frame " << f;
     released = spans;
   }
   ASSERT_TRUE(released) << "the target's box never spanned the image";
@@ -343,10 +348,10 @@ TEST(Attention, AShortOcclusionKeepsTheIdentityAndIsNotReselected) {
     EXPECT_EQ(frame.targets[0].id, 1) << "frame " << f;
     EXPECT_TRUE(frame.new_ids.empty()) << "frame " << f;
     if (hidden) {
-      EXPECT_EQ(frame.targets[0].state, "occluded") << "frame " << f;
+      EXPECT_EQ(frame.targets[0].state, TargetState::kOccluded) << "frame " << f;
     }
     if (f >= 10) {
-      EXPECT_EQ(frame.targets[0].state, "tracked") << "frame " << f;
+      EXPECT_EQ(frame.targets[0].state, TargetState::kTracked) << "frame " << f;
     }
   }
 }
@@ -373,7 +378,7 @@ TEST(Attention, AnOccludedTargetInhibitsTheAreaItIsSearchedIn) {
       if (f >= 2) drawn.push_back({beside, green}), salient.push_back(beside);
       const AttentionFrame frame = Step(&stage, Draw(drawn, salient, f));
       ASSERT_FALSE(frame.targets.empty()) << "frame " << f;
-      EXPECT_EQ(frame.targets[0].state, "occluded") << "frame " << f;
+      EXPECT_EQ(frame.targets[0].state, TargetState::kOccluded) << "frame " << f;
       started += static_cast<int>(frame.new_ids.size());
       const cv::Point centre(beside.x + beside.width / 2, beside.y + beside.height / 2);
       // (Once started, the new target of the box-alone run inhibits its own mask.)
@@ -396,7 +401,7 @@ TEST(Attention, ASkinObjectIsTrackedWithTheSkinSimilarity) {
     EXPECT_EQ(target.skin, on_face) << target.id;
   }
   frame = Step(&stage, Draw({{face + cv::Point(3, 1), skin}, {box, green}}, {}, 1));
-  for (const AttendedTarget& target : frame.targets) EXPECT_EQ(target.state, "tracked");
+  for (const AttendedTarget& target : frame.targets) EXPECT_EQ(target.state, TargetState::kTracked);
 }
 
 // A skin-coloured strip 6 times as long as it is high (a wall's edge, a plank), salient: by
@@ -506,7 +511,7 @@ TEST(Attention, ATargetOnAnotherTargetsPixelsIsReleasedAsADuplicate) {
     options.drop.max_shared = max_shared;
     AttentionStage stage(options, ShippedSkinModel());
     const cv::Rect still(30, 40, 24, 24);
-    std::vector<std::string> reasons;
+    std::vector<ReleaseReason> reasons;
     int active_at_end = 0;
     for (int f = 0; f <= 30; ++f) {
       const cv::Rect moving(std::max(30, 110 - 4 * f), 40, 24, 24);
@@ -517,12 +522,13 @@ TEST(Attention, ATargetOnAnotherTargetsPixelsIsReleasedAsADuplicate) {
       }
       active_at_end = 0;
       for (const AttendedTarget& target : frame.targets) {
-        if (!target.reason.empty()) reasons.push_back(target.reason);
-        if (target.state == "tracked" || target.state == "occluded") ++active_at_end;
+        if (target.reason != ReleaseReason::kNone) reasons.push_back(target.reason);
+        if (target.state == TargetState::kTracked || target.state == TargetState::kOccluded)
+          ++active_at_end;
       }
     }
     if (max_shared < 1.f) {
-      EXPECT_EQ(reasons, std::vector<std::string>{"duplicate"});
+      EXPECT_EQ(reasons, std::vector<ReleaseReason>{ReleaseReason::kDuplicate});
       EXPECT_EQ(active_at_end, 1);
     } else {
       EXPECT_TRUE(reasons.empty()) << reasons.front();
