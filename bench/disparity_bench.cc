@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "bench/bench_common.h"
+#include "eval/disparity_scores.h"
 #include "stereo/disparity.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"

@@ -1,6 +1,6 @@
 // Benchmark (SPEC 5): the BIP template tracker (tracker/tracker.h) in both modes against OpenCV's
 // CSRT, KCF and CamShift on the same sequences, in the same run, on one thread, with the OTB
-// one-pass scores of tracker/evaluation.h; and the cost of tracking 1, 3 and 8 targets at once
+// one-pass scores of eval/tracking_scores.h; and the cost of tracking 1, 3 and 8 targets at once
 // (thesis table 4.3). Prints a markdown report; docs/TRACKING.md holds one with its command.
 //
 //   tracking_bench [--data DIR] [--home DIR] [--repeat N] [--markdown FILE] [--sequences LIST]
@@ -59,7 +59,8 @@
 #include "bench/bench_common.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
-#include "tracker/evaluation.h"
+#include "eval/tracking_scores.h"
+#include "io/tracking_files.h"
 #include "tracker/target_tracker.h"
 #include "tracker/tracker.h"
 #include "util/timer.h"

@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "cli/commands.h"
-#include "pipeline/run_comparison.h"
-#include "pipeline/run_report.h"
+#include "eval/run_comparison.h"
+#include "eval/run_report.h"
 #include "util/error.h"
 #include "util/output_folder.h"
 #include "util/json_text.h"

@@ -18,6 +18,7 @@
 #include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "config/param_block.h"
+#include "eval/disparity_scores.h"
 #include "io/image_file.h"
 #include "io/pfm.h"
 #include "stereo/disparity.h"

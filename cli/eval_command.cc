@@ -2,15 +2,16 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <opencv2/imgproc.hpp>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "cli/commands.h"
+#include "eval/disparity_scores.h"
+#include "eval/run_evaluation.h"
 #include "io/ground_truth.h"
 #include "io/pfm.h"
 #include "pipeline/options_io.h"
-#include "pipeline/run_evaluation.h"
 #include "stereo/disparity.h"
 #include "util/error.h"
 #include "util/json_text.h"
@@ -87,11 +88,10 @@ nlohmann::ordered_json DisparityScores(const std::string& run, const std::string
       const double ratio_x = static_cast<double>(ground_truth.cols) / map.cols;
       const double ratio_y = static_cast<double>(ground_truth.rows) / map.rows;
       if (std::abs(ratio_x - ratio_y) > 0.02 * ratio_x) {
-        throw InputError(gt_path.string() + ": ground truth of " +
-                         std::to_string(ground_truth.cols) + "x" +
-                         std::to_string(ground_truth.rows) + " for a map of " +
-                         std::to_string(map.cols) + "x" + std::to_string(map.rows) +
-                         " (another aspect ratio)");
+        throw InputError(
+            gt_path.string() + ": ground truth of " + std::to_string(ground_truth.cols) + "x" +
+            std::to_string(ground_truth.rows) + " for a map of " + std::to_string(map.cols) + "x" +
+            std::to_string(map.rows) + " (another aspect ratio)");
       }
       cv::Mat resized;
       cv::resize(map, resized, ground_truth.size(), 0, 0, cv::INTER_NEAREST);

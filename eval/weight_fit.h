@@ -13,13 +13,13 @@
 namespace attend {
 
 struct FitSample {
-  std::vector<cv::Mat> features;   // each feature's normalised map, CV_32FC1, one size
+  std::vector<cv::Mat> features;    // each feature's normalised map, CV_32FC1, one size
   std::vector<Fixation> fixations;  // in those maps' pixels
 };
 
 struct WeightFitOptions {
   SaliencyOptions saliency;  // how the maps combine and blur (its combination and blur)
-  double step = 0.1;     // grid step of the weights, in (0, 1]
+  double step = 0.1;         // grid step of the weights, in (0, 1]
 };
 
 struct WeightFit {

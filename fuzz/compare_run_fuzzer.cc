@@ -8,8 +8,8 @@
 
 #include "fuzz/fuzz_support.h"
 #include "fuzz/run_folder_support.h"
-#include "pipeline/run_comparison.h"
-#include "pipeline/run_report.h"
+#include "eval/run_comparison.h"
+#include "eval/run_report.h"
 #include "util/json_text.h"
 
 namespace {

@@ -9,8 +9,8 @@
 
 #include "fuzz/fuzz_support.h"
 #include "fuzz/run_folder_support.h"
-#include "pipeline/run_comparison.h"
-#include "pipeline/run_evaluation.h"
+#include "eval/run_comparison.h"
+#include "eval/run_evaluation.h"
 #include "util/json_text.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {

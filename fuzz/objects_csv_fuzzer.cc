@@ -13,7 +13,7 @@
 #include "fuzz/fuzz_support.h"
 #include "fuzz/run_folder_support.h"
 #include "io/ground_truth.h"
-#include "pipeline/run_evaluation.h"
+#include "eval/run_evaluation.h"
 
 namespace {
 

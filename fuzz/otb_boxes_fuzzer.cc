@@ -8,7 +8,8 @@
 #include <vector>
 
 #include "fuzz/fuzz_support.h"
-#include "tracker/evaluation.h"
+#include "eval/tracking_scores.h"
+#include "io/tracking_files.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   attend::fuzz::Initialize();

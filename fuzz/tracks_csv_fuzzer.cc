@@ -9,7 +9,7 @@
 
 #include "fuzz/cli_support.h"
 #include "fuzz/fuzz_support.h"
-#include "tracker/evaluation.h"
+#include "io/tracking_files.h"
 
 namespace {
 

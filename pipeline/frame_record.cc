@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "util/error.h"
 #include "util/json_text.h"
+#include "util/limits.h"
 
 namespace attend {
 
@@ -84,6 +87,68 @@ std::string FrameRecordToJson(const FrameRecord& record) {
   if (record.inhibited_fraction >= 0.0) line["inhibited_fraction"] = record.inhibited_fraction;
   line["timings_ms"] = timings;
   return JsonText(line);
+}
+
+namespace {
+
+// `value` (named `name` in the error) as an integer in [min, max]; throws otherwise (the
+// reader below adds the file and line).
+int IntIn(const nlohmann::json& value, const std::string& name, long min, long max) {
+  if (!value.is_number_integer()) throw std::runtime_error("'" + name + "' is not an integer");
+  const auto number = value.get<int64_t>();
+  // An unsigned value above INT64_MAX reads as negative, and is refused as out of range too.
+  if (number < min || number > max || (value.is_number_unsigned() && number < 0)) {
+    throw std::runtime_error("'" + name + "' out of range: " + value.dump() + " (must be in " +
+                             std::to_string(min) + ".." + std::to_string(max) + ")");
+  }
+  return static_cast<int>(number);
+}
+
+}  // namespace
+
+std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot read (is this a run folder?)");
+  std::vector<FrameRecord> frames;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    try {
+      const nlohmann::json json = nlohmann::json::parse(line);
+      FrameRecord record;
+      record.frame = IntIn(json.at("frame"), "frame", 0, kMaxFrameNumber);
+      for (const nlohmann::json& t : json.at("targets")) {
+        TargetRecord target;
+        target.id = IntIn(t.at("id"), "id", 0, kMaxId);
+        const nlohmann::json& box = t.at("bbox");
+        if (!box.is_array() || box.size() != 4) throw std::runtime_error("bbox needs 4 numbers");
+        // Bounded so that areas and corners cannot overflow int in the scorers.
+        const int x = IntIn(box[0], "bbox x", -kMaxBoxCoordinate, kMaxBoxCoordinate);
+        const int y = IntIn(box[1], "bbox y", -kMaxBoxCoordinate, kMaxBoxCoordinate);
+        const int w = IntIn(box[2], "bbox w", 0, kMaxBoxCoordinate);
+        const int h = IntIn(box[3], "bbox h", 0, kMaxBoxCoordinate);
+        target.bbox = cv::Rect(x, y, w, h);
+        target.area = IntIn(t.at("area"), "area", 0, 1L << 30);
+        target.saliency = t.at("saliency").get<double>();
+        const std::string state = t.at("state").get<std::string>();
+        if (!TargetStateFromName(state, &target.state)) {
+          throw std::runtime_error("unknown state '" + state + "'");
+        }
+        target.kind = t.at("kind").get<std::string>();
+        target.similarity = t.at("similarity").get<std::string>();
+        record.targets.push_back(target);
+      }
+      record.new_ids = json.at("new").get<std::vector<int>>();
+      for (const auto& [stage, ms] : json.at("timings_ms").items()) {
+        record.timings.Add(stage, ms.get<double>());
+      }
+      frames.push_back(std::move(record));
+    } catch (const std::exception& e) {
+      throw InputError(path + ":" + std::to_string(number) + ": not a frame record (" + e.what() +
+                       ")");
+    }
+  }
+  return frames;
 }
 
 }  // namespace attend

@@ -53,4 +53,7 @@ int VisibleTargets(const FrameRecord& record);
 // One line of frames.jsonl (no trailing newline).
 std::string FrameRecordToJson(const FrameRecord& record);
 
+// Reads RUN/frames.jsonl (InputError naming the file and line of a malformed record).
+std::vector<FrameRecord> ReadFrameRecords(const std::string& path);
+
 }  // namespace attend

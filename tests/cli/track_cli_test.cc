@@ -18,7 +18,8 @@
 #include "tests/cli/attend_cli.h"
 #include "tests/support/attend_process.h"
 #include "tests/support/temp_dir.h"
-#include "tracker/evaluation.h"
+#include "eval/tracking_scores.h"
+#include "io/tracking_files.h"
 
 namespace fs = std::filesystem;
 

@@ -9,7 +9,7 @@
 #include "colour/colour.h"
 #include "features/builtin.h"
 #include "pipeline/frame_pipeline.h"
-#include "pipeline/run_evaluation.h"
+#include "eval/run_evaluation.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 #include "tests/support/temp_dir.h"

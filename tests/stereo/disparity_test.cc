@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "eval/disparity_scores.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 #include "tests/support/temp_dir.h"

@@ -7,7 +7,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "tracker/evaluation.h"
+#include "eval/tracking_scores.h"
 #include "util/error.h"
 
 namespace attend {

@@ -29,8 +29,8 @@
 #include <string>
 #include <vector>
 
+#include "eval/run_evaluation.h"
 #include "pipeline/frame_record.h"
-#include "pipeline/run_evaluation.h"
 
 namespace attend {
 

@@ -1,4 +1,4 @@
-#include "pipeline/run_report.h"
+#include "eval/run_report.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "pipeline/run_comparison.h"
+#include "eval/run_comparison.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -13,9 +13,9 @@
 #include <sstream>
 
 #include "config/param_block_yaml.h"
+#include "eval/run_evaluation.h"
 #include "io/ground_truth.h"
 #include "io/pfm.h"
-#include "pipeline/run_evaluation.h"
 #include "util/error.h"
 
 namespace attend {

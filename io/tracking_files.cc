@@ -1,6 +1,5 @@
-#include "tracker/evaluation.h"
+#include "io/tracking_files.h"
 
-#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -16,8 +15,6 @@ namespace attend {
 namespace {
 
 constexpr const char* kTracksCsvHeader = "frame,id,x,y,w,h,state";
-constexpr int kThresholds = 21;  // 0, 0.05, ..., 1
-constexpr double kPrecisionPixels = 20.0;
 
 std::string Trim(const std::string& text) {
   const size_t begin = text.find_first_not_of(" \t\r");
@@ -53,23 +50,6 @@ int ParseInteger(const std::string& text, const std::string& path, int line, con
     throw InputError(Where(path, line) + ": " + field + " number out of range: '" + text + "'");
   }
   return static_cast<int>(value);
-}
-
-bool IsEmpty(const cv::Rect2d& box) { return !(box.width > 0.0) || !(box.height > 0.0); }
-
-// Intersection over union of two non-empty boxes, as areas of continuous rectangles (the OTB
-// toolkit's calcRectInt gives the same value for its 1-based inclusive pixel boxes).
-double Iou(const cv::Rect2d& a, const cv::Rect2d& b) {
-  const double w = std::min(a.x + a.width, b.x + b.width) - std::max(a.x, b.x);
-  const double h = std::min(a.y + a.height, b.y + b.height) - std::max(a.y, b.y);
-  if (w <= 0.0 || h <= 0.0) return 0.0;
-  const double intersection = w * h;
-  return intersection / (a.area() + b.area() - intersection);
-}
-
-double CentreDistance(const cv::Rect2d& a, const cv::Rect2d& b) {
-  return std::hypot((a.x + 0.5 * a.width) - (b.x + 0.5 * b.width),
-                    (a.y + 0.5 * a.height) - (b.y + 0.5 * b.height));
 }
 
 }  // namespace
@@ -112,8 +92,8 @@ std::vector<TrackRow> ReadTracksCsv(const std::string& path) {
                        "' (must be in 0.." + std::to_string(kMaxFrameNumber) + ")");
     }
     if (row.id < 0 || row.id > kMaxId) {
-      throw InputError(Where(path, line) + ": id out of range: '" + fields[1] + "' (must be in 0.." +
-                       std::to_string(kMaxId) + ")");
+      throw InputError(Where(path, line) + ": id out of range: '" + fields[1] +
+                       "' (must be in 0.." + std::to_string(kMaxId) + ")");
     }
     if (row.box.width < 0.0 || row.box.height < 0.0) {
       throw InputError(Where(path, line) + ": w and h must be >= 0");
@@ -184,40 +164,6 @@ std::vector<cv::Rect2d> ReadOtbGroundTruth(const std::string& path) {
                             : cv::Rect2d(value[0] - 1.0, value[1] - 1.0, value[2], value[3]));
   }
   return boxes;
-}
-
-TrackingScores ScoreTracking(const std::vector<cv::Rect2d>& predicted,
-                             const std::vector<cv::Rect2d>& truth) {
-  TrackingScores scores;
-  scores.success.assign(kThresholds, 0.0);
-  int precise = 0;
-  double iou_sum = 0.0;
-  for (size_t frame = 0; frame < truth.size(); ++frame) {
-    if (IsEmpty(truth[frame])) continue;
-    ++scores.frames;
-    double iou = 0.0;
-    double error = std::numeric_limits<double>::infinity();
-    if (frame < predicted.size() && !IsEmpty(predicted[frame])) {
-      iou = Iou(predicted[frame], truth[frame]);
-      error = CentreDistance(predicted[frame], truth[frame]);
-    }
-    for (int k = 0; k < kThresholds; ++k) {
-      // k / 20.0 is the double nearest to 0.05 k; 0.05 * k is not always.
-      if (iou > k / 20.0) scores.success[k] += 1.0;
-    }
-    if (error <= kPrecisionPixels) ++precise;
-    iou_sum += iou;
-  }
-  if (scores.frames == 0) return scores;
-  double sum = 0.0;
-  for (double& rate : scores.success) {
-    rate /= scores.frames;
-    sum += rate;
-  }
-  scores.success_auc = sum / kThresholds;
-  scores.precision_20 = static_cast<double>(precise) / scores.frames;
-  scores.mean_iou = iou_sum / scores.frames;
-  return scores;
 }
 
 }  // namespace attend

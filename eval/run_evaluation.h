@@ -53,7 +53,4 @@ AttentionScores EvaluateAttention(const std::vector<FrameRecord>& frames,
                                   const std::vector<GtObject>& truth,
                                   const EvaluationOptions& options = {});
 
-// Reads RUN/frames.jsonl (InputError naming the file and line of a malformed record).
-std::vector<FrameRecord> ReadFrameRecords(const std::string& path);
-
 }  // namespace attend

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/run_comparison.h"
+#include "eval/run_comparison.h"
 
 namespace attend {
 

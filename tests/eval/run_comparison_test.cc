@@ -1,7 +1,7 @@
-// Comparing runs (pipeline/run_comparison.h): the saliency metrics against values worked out
+// Comparing runs (eval/run_comparison.h): the saliency metrics against values worked out
 // by hand, the flattened configuration and its differences, and CompareRuns on run folders
 // written here (a run against its own copy, against a changed run, with missing maps).
-#include "pipeline/run_comparison.h"
+#include "eval/run_comparison.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "io/pfm.h"
-#include "pipeline/run_report.h"
+#include "eval/run_report.h"
 #include "tests/support/temp_dir.h"
 #include "util/error.h"
 

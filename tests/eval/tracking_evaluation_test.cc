@@ -1,6 +1,7 @@
 // tracks.csv and OTB ground truth as files, and the OTB one-pass scores on boxes whose overlaps
-// are known by hand (tracker/evaluation.h, docs/TRACKING.md).
-#include "tracker/evaluation.h"
+// are known by hand (io/tracking_files.h, eval/tracking_scores.h, docs/TRACKING.md).
+#include "eval/tracking_scores.h"
+#include "io/tracking_files.h"
 
 #include <gtest/gtest.h>
 
