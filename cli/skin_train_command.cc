@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "features/skin_model.h"
+#include "features/skin_training.h"
 #include "util/error.h"
 #include "util/strings.h"
 #include "util/timer.h"

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
+#include "io/skin_files.h"
+
 namespace attend {
 
 namespace {
@@ -90,8 +92,8 @@ std::string SkinRegionVerdict::Describe() const {
   return line;
 }
 
-SkinRegionVerdict JudgeSkinRegion(const cv::Mat& mask, const cv::Mat& distances,
-                                  double threshold, const SkinRegionOptions& options) {
+SkinRegionVerdict JudgeSkinRegion(const cv::Mat& mask, const cv::Mat& distances, double threshold,
+                                  const SkinRegionOptions& options) {
   CV_Assert(mask.type() == CV_8UC1 && distances.type() == CV_32FC1 &&
             mask.size() == distances.size() && threshold > 0.0);
   CV_Assert(options.Check().empty());

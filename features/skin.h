@@ -1,5 +1,5 @@
 // The `skin` plugin (thesis 5.1.1, SPEC 2.3): every pixel's TSL chrominance is compared with
-// the skin model (features/skin_model.h). The binary map of the thesis is 1 where the squared
+// the skin model (colour/skin_model.h). The binary map of the thesis is 1 where the squared
 // Mahalanobis distance is below T_s and 0 elsewhere; the soft map is
 // max(0, 1 - sqrt(d^2 / T_s)), the Mahalanobis distance as a fraction of the threshold's,
 // which is also 0 outside the skin ellipse and rises to 1 at the model's mean. With
@@ -12,7 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "features/feature_map.h"
-#include "features/skin_model.h"
+#include "colour/skin_model.h"
 
 namespace attend {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "features/skin_model.h"
+#include "io/skin_files.h"
 #include "fuzz/fuzz_support.h"
 
 namespace {

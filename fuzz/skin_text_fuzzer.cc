@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "features/skin_model.h"
+#include "features/skin_training.h"
 #include "fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {

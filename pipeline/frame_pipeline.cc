@@ -3,7 +3,7 @@
 #include "colour/grey.h"
 #include "features/builtin.h"
 #include "features/plugin_loader.h"
-#include "features/skin_model.h"
+#include "io/skin_files.h"
 #include "saliency/saliency.h"
 #include "util/error.h"
 #include "util/timer.h"

@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "features/skin.h"
-#include "features/skin_model.h"
+#include "colour/skin_model.h"
 #include "pyramid/segmentation.h"
 #include "semiattentive/target_state.h"
 #include "tracker/target_tracker.h"

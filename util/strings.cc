@@ -1,6 +1,7 @@
 #include "util/strings.h"
 
 #include <algorithm>
+#include <charconv>
 #include <numeric>
 
 namespace attend {
@@ -52,6 +53,12 @@ std::vector<std::string> Split(std::string_view text, char separator) {
     parts.emplace_back(text.substr(start, end - start));
     start = end + 1;
   }
+}
+
+std::string ShortestNumber(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
 }
 
 std::string Join(const std::vector<std::string>& parts, std::string_view separator) {

@@ -31,6 +31,9 @@ size_t InvalidUtf8At(std::string_view text);
 size_t NonPrintableAt(std::string_view text);
 
 // Joins with a separator.
+// The shortest text that reads back as exactly `value` (std::to_chars).
+std::string ShortestNumber(double value);
+
 std::string Join(const std::vector<std::string>& parts, std::string_view separator);
 
 }  // namespace attend

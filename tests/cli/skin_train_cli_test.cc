@@ -9,7 +9,7 @@
 #include <random>
 #include <sstream>
 
-#include "features/skin_model.h"
+#include "io/skin_files.h"
 #include "tests/cli/attend_cli.h"
 #include "tests/support/attend_process.h"
 #include "tests/support/temp_dir.h"

@@ -1,7 +1,7 @@
-// The TSL skin model (features/skin_model.h): distances against hand computations, the fit
+// The TSL skin model (colour/skin_model.h, io/skin_files.h, features/skin_training.h): distances against hand computations, the fit
 // and the threshold rules on samples drawn from known Gaussians, the model file, the readers,
 // the split, and the shipped model against the UCI data when that is present.
-#include "features/skin_model.h"
+#include "features/skin_training.h"
 
 #include <gtest/gtest.h>
 

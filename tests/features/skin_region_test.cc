@@ -11,6 +11,7 @@
 
 #include "colour/colour.h"
 #include "features/skin.h"
+#include "io/skin_files.h"
 #include "pyramid/segmentation.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"

@@ -7,9 +7,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include "colour/colour.h"
-#include "features/builtin.h"
-#include "pipeline/frame_pipeline.h"
 #include "eval/run_evaluation.h"
+#include "features/builtin.h"
+#include "io/skin_files.h"
+#include "pipeline/frame_pipeline.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 #include "tests/support/temp_dir.h"

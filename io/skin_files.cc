@@ -1,9 +1,8 @@
-#include "features/skin_model.h"
+#include "io/skin_files.h"
 
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -21,67 +20,13 @@
 #include "config/param_block.h"
 #include "io/image_file.h"
 #include "util/error.h"
+#include "util/strings.h"
 
 namespace attend {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-// The largest S of any colour, reached by pure red and pure green (|(r', g')| = sqrt(5) / 3).
-constexpr double kMaxSaturation = 255.0;
-// A covariance is degenerate when det <= kSingular * a * c, i.e. when the correlation of T and
-// S is within 1e-12 of +-1 (all samples on a line).
-constexpr double kSingular = 1e-12;
-
-// What is wrong with a model, and under which key of its file.
-struct Problem {
-  std::string key;
-  std::string message;
-};
-
-std::string Number(double value) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
-
-Problem FindProblem(const SkinModel& model) {
-  if (!model.mean.allFinite()) return {"mean", "must be finite numbers"};
-  if (!(model.mean[0] >= 0.0 && model.mean[0] <= 1.0)) {
-    return {"mean", "T = " + Number(model.mean[0]) + " is outside [0, 1]"};
-  }
-  if (!(model.mean[1] >= 0.0 && model.mean[1] <= kMaxSaturation)) {
-    return {"mean", "S = " + Number(model.mean[1]) + " is outside [0, 255]"};
-  }
-  const Eigen::Matrix2d& c = model.covariance;
-  if (!c.allFinite()) return {"covariance", "must be finite numbers"};
-  // Relative to sqrt(a c), the largest off-diagonal a positive definite matrix can have.
-  const double scale =
-      std::max({std::abs(c(0, 1)), std::abs(c(1, 0)), std::sqrt(std::abs(c(0, 0) * c(1, 1)))});
-  if (std::abs(c(0, 1) - c(1, 0)) > 1e-12 * scale) {
-    return {"covariance", "is not symmetric: elements 1 and 2 (" + Number(c(0, 1)) + ", " +
-                              Number(c(1, 0)) + ") differ"};
-  }
-  const double det = c(0, 0) * c(1, 1) - c(0, 1) * c(1, 0);
-  if (!(c(0, 0) > 0.0 && c(1, 1) > 0.0 && det > kSingular * c(0, 0) * c(1, 1))) {
-    return {"covariance", "is not positive definite (variances " + Number(c(0, 0)) + " and " +
-                              Number(c(1, 1)) + ", determinant " + Number(det) + ")"};
-  }
-  if (!(std::isfinite(model.threshold) && model.threshold > 0.0)) {
-    return {"threshold", "must be a finite number > 0, got " + Number(model.threshold)};
-  }
-  return {};
-}
-
-// The splitmix64 generator's output function (Steele, Lea and Flood 2014, with the constants
-// of Vigna's splitmix64.c): a bijective 64-bit mixer, so consecutive indices hash apart.
-uint64_t SplitMix64(uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
 
 std::string Quoted(const std::string& text) {
   YAML::Emitter out;
@@ -110,17 +55,6 @@ uint64_t GetCount(const ParamBlock& block, const std::string& key, uint64_t max)
   return value;
 }
 
-// The threshold between the last accepted squared distance and the first rejected one.
-double ThresholdBetween(double accepted, double rejected) {
-  if (std::isfinite(rejected)) {
-    // Halfway; for adjacent doubles the midpoint may round onto `accepted`, which d < T rejects.
-    const double middle = 0.5 * (accepted + rejected);
-    return middle > accepted ? middle : rejected;
-  }
-  // Everything is accepted: a margin above the largest distance.
-  return accepted + 1e-6 * std::max(1.0, accepted);
-}
-
 cv::Mat ReadTrainingImage(const std::string& path, int flags, const char* what) {
   std::error_code error;
   if (!fs::is_regular_file(path, error)) throw InputError(path + ": no such " + what + " file");
@@ -140,23 +74,6 @@ std::string Excerpt(const char* begin, const char* end) {
 bool IsBlank(char c) { return c == ' ' || c == '\t'; }
 
 }  // namespace
-
-double SkinModel::SquaredDistance(double t, double s) const {
-  return SkinClassifier(*this).SquaredDistance(t, s);
-}
-
-std::string SkinModel::Check() const {
-  const Problem problem = FindProblem(*this);
-  return problem.key.empty() ? "" : problem.key + ": " + problem.message;
-}
-
-SkinClassifier::SkinClassifier(const SkinModel& model)
-    : mean_t_(model.mean[0]), mean_s_(model.mean[1]), threshold_(model.threshold) {
-  const Eigen::Matrix2d inverse = model.covariance.inverse();
-  inverse_tt_ = inverse(0, 0);
-  inverse_ts_ = 0.5 * (inverse(0, 1) + inverse(1, 0));
-  inverse_ss_ = inverse(1, 1);
-}
 
 SkinModel LoadSkinModel(const std::string& path) {
   const ParamBlock block = ParamBlock::LoadFile(path);
@@ -190,7 +107,7 @@ SkinModel LoadSkinModel(const std::string& path) {
   }
   model.mean = Eigen::Vector2d(mean[0], mean[1]);
   model.covariance << covariance[0], covariance[1], covariance[2], covariance[3];
-  const Problem problem = FindProblem(model);
+  const SkinModelProblem problem = FindSkinModelProblem(model);
   if (!problem.key.empty()) block.Fail(problem.key, problem.message);
   return model;
 }
@@ -205,20 +122,21 @@ void SaveSkinModel(const SkinModel& model, const std::string& path) {
   text << "# attend skin colour model (SPEC 2.3, thesis 5.1.1, docs/SKIN.md): a Gaussian over the\n"
           "# TSL chrominance x = (T, S) of skin pixels, T in [0, 1), S in [0, 255]. A pixel is\n"
           "# skin iff (x - mean)^T covariance^-1 (x - mean) < threshold.\n"
-       << "mean: [" << Number(model.mean[0]) << ", " << Number(model.mean[1]) << "]\n"
+       << "mean: [" << ShortestNumber(model.mean[0]) << ", " << ShortestNumber(model.mean[1])
+       << "]\n"
        << "# Row-major 2x2: [var T, cov(T, S), cov(T, S), var S].\n"
-       << "covariance: [" << Number(c(0, 0)) << ", " << Number(c(0, 1)) << ", " << Number(c(1, 0))
-       << ", " << Number(c(1, 1)) << "]\n"
+       << "covariance: [" << ShortestNumber(c(0, 0)) << ", " << ShortestNumber(c(0, 1)) << ", "
+       << ShortestNumber(c(1, 0)) << ", " << ShortestNumber(c(1, 1)) << "]\n"
        << "# T_s on the squared Mahalanobis distance, chosen by the rule training.rule:\n"
        << "# " << ExplainRule(p.rule) << ".\n"
-       << "threshold: " << Number(model.threshold) << "\n"
+       << "threshold: " << ShortestNumber(model.threshold) << "\n"
        << "# How the model was made; informative only. Sample counts and training rates are of\n"
           "# the training split; held-out rates of the samples that the split set aside.\n"
        << "training:\n"
        << "  command: " << Quoted(p.command) << "\n"
        << "  data: " << Quoted(p.data) << "\n"
        << "  rule: " << Quoted(p.rule) << "\n"
-       << "  holdout_fraction: " << Number(p.holdout_fraction) << "\n"
+       << "  holdout_fraction: " << ShortestNumber(p.holdout_fraction) << "\n"
        << "  seed: " << p.seed << "\n"
        << "  skin_samples: " << p.skin_samples << "\n"
        << "  nonskin_samples: " << p.nonskin_samples << "\n";
@@ -227,7 +145,7 @@ void SaveSkinModel(const SkinModel& model, const std::string& path) {
                                                   {"holdout_tpr", p.holdout_tpr},
                                                   {"holdout_fpr", p.holdout_fpr}};
   for (const auto& [key, value] : rates) {
-    if (value >= 0.0) text << "  " << key << ": " << Number(value) << "\n";
+    if (value >= 0.0) text << "  " << key << ": " << ShortestNumber(value) << "\n";
   }
 
   // Written beside the target and renamed over it: a reader sees the old file or the new one.
@@ -328,7 +246,8 @@ void ReadSkinImagePair(const std::string& image_path, const std::string& mask_pa
   // IMREAD_COLOR gives 8-bit BGR whatever the file holds. The mask is read as grey at its own
   // depth, so that a 16-bit mask with small values is not scaled to zero.
   const cv::Mat bgr = ReadTrainingImage(image_path, cv::IMREAD_COLOR, "image");
-  const cv::Mat mask = ReadTrainingImage(mask_path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH, "mask");
+  const cv::Mat mask =
+      ReadTrainingImage(mask_path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH, "mask");
   if (mask.size() != bgr.size()) {
     throw InputError(mask_path + ": the mask is " + std::to_string(mask.cols) + "x" +
                      std::to_string(mask.rows) + " but its image " + image_path + " is " +
@@ -345,148 +264,6 @@ void ReadSkinImagePair(const std::string& image_path, const std::string& mask_pa
       sink(cv::Vec2f(pixel[col][0], pixel[col][1]), label[col] != 0);
     }
   }
-}
-
-bool IsHeldOut(uint64_t seed, uint64_t index, double fraction) {
-  const uint64_t hash = SplitMix64(SplitMix64(seed) + index);
-  // The top 53 bits as a double in [0, 1), exactly.
-  const double u = static_cast<double>(hash >> 11) * 0x1.0p-53;
-  return u < fraction;
-}
-
-void SkinSplit::Add(const cv::Vec2f& ts, bool skin) {
-  SkinSamples& to = IsHeldOut(seed, next_index++, holdout_fraction) ? held_out : training;
-  (skin ? to.skin : to.nonskin).push_back(ts);
-}
-
-SkinRates EvaluateSkinModel(const SkinModel& model, const SkinSamples& samples) {
-  const SkinClassifier classifier(model);
-  const auto accepted = [&](const std::vector<cv::Vec2f>& set) {
-    int64_t count = 0;
-    for (const cv::Vec2f& ts : set) count += classifier.IsSkin(ts[0], ts[1]) ? 1 : 0;
-    return count;
-  };
-  SkinRates rates;
-  rates.skin = static_cast<int64_t>(samples.skin.size());
-  rates.nonskin = static_cast<int64_t>(samples.nonskin.size());
-  rates.tpr = rates.skin > 0 ? static_cast<double>(accepted(samples.skin)) / rates.skin : -1.0;
-  rates.fpr =
-      rates.nonskin > 0 ? static_cast<double>(accepted(samples.nonskin)) / rates.nonskin : -1.0;
-  return rates;
-}
-
-std::string ThresholdRule::Describe() const {
-  return kind == Kind::kYouden ? "youden" : "tpr:" + Number(target_tpr);
-}
-
-ThresholdRule ThresholdRule::Parse(const std::string& text) {
-  ThresholdRule rule;
-  if (text == "youden") return rule;
-  if (text.rfind("tpr:", 0) == 0) {
-    const std::string value = text.substr(4);
-    double target = 0.0;
-    const auto [end, status] = std::from_chars(value.data(), value.data() + value.size(), target);
-    if (status == std::errc() && end == value.data() + value.size() && target > 0.0 &&
-        target <= 1.0) {
-      rule.kind = Kind::kTpr;
-      rule.target_tpr = target;
-      return rule;
-    }
-    throw ConfigError("threshold rule '" + text + "': the target TPR must be a number in (0, 1]");
-  }
-  throw ConfigError("threshold rule '" + text + "': expected youden or tpr:X with X in (0, 1]");
-}
-
-SkinModel FitSkinModel(const SkinSamples& training, const ThresholdRule& rule) {
-  const size_t n = training.skin.size();
-  if (n < 3) {
-    throw InputError("the skin model needs at least 3 skin samples to fit, got " +
-                     std::to_string(n));
-  }
-  if (rule.kind == ThresholdRule::Kind::kYouden && training.nonskin.empty()) {
-    throw InputError(
-        "the youden threshold rule needs non-skin samples, and the training split has none "
-        "(use a tpr:X rule, or add non-skin samples)");
-  }
-  ATTEND_CHECK(rule.kind == ThresholdRule::Kind::kYouden ||
-               (rule.target_tpr > 0.0 && rule.target_tpr <= 1.0))
-      << "target TPR " << rule.target_tpr;
-
-  // Maximum likelihood: the sample mean and the covariance normalised by n (not n - 1).
-  SkinModel model;
-  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-  for (const cv::Vec2f& ts : training.skin) sum += Eigen::Vector2d(ts[0], ts[1]);
-  model.mean = sum / static_cast<double>(n);
-  double tt = 0.0, ts_sum = 0.0, ss = 0.0;
-  for (const cv::Vec2f& ts : training.skin) {
-    const double dt = ts[0] - model.mean[0], ds = ts[1] - model.mean[1];
-    tt += dt * dt;
-    ts_sum += dt * ds;
-    ss += ds * ds;
-  }
-  model.covariance << tt / n, ts_sum / n, ts_sum / n, ss / n;
-  const Problem problem = FindProblem(model);
-  if (!problem.key.empty()) {
-    throw InputError("the skin samples cannot be modelled: their " + problem.key + " " +
-                     problem.message + " (the samples must vary in both T and S)");
-  }
-
-  // Squared distances of every training sample, sorted, with their labels.
-  const SkinClassifier classifier(model);
-  std::vector<std::pair<double, bool>> distances;
-  distances.reserve(n + training.nonskin.size());
-  for (const cv::Vec2f& ts : training.skin) {
-    distances.emplace_back(classifier.SquaredDistance(ts[0], ts[1]), true);
-  }
-  for (const cv::Vec2f& ts : training.nonskin) {
-    distances.emplace_back(classifier.SquaredDistance(ts[0], ts[1]), false);
-  }
-  std::sort(distances.begin(), distances.end());
-  const double infinity = std::numeric_limits<double>::infinity();
-
-  if (rule.kind == ThresholdRule::Kind::kYouden) {
-    // Sweep the candidate thresholds: after each run of equal distances, everything up to it
-    // is accepted. Ties in J keep the first, the smaller threshold.
-    const double skin_count = static_cast<double>(n);
-    const double nonskin_count = static_cast<double>(training.nonskin.size());
-    int64_t true_positives = 0, false_positives = 0;
-    double best_j = -infinity;
-    for (size_t i = 0; i < distances.size(); ++i) {
-      (distances[i].second ? true_positives : false_positives) += 1;
-      const bool run_ends =
-          i + 1 == distances.size() || distances[i + 1].first > distances[i].first;
-      if (!run_ends) continue;
-      const double j = true_positives / skin_count - false_positives / nonskin_count;
-      if (j > best_j) {
-        best_j = j;
-        model.threshold = ThresholdBetween(
-            distances[i].first, i + 1 < distances.size() ? distances[i + 1].first : infinity);
-      }
-    }
-  } else {
-    // The k-th nearest skin sample, k = ceil(target n), must be accepted. The small slack keeps
-    // 0.95 * 40000 = 38000.000000000004 from asking for 38001.
-    const int64_t k = std::clamp<int64_t>(
-        static_cast<int64_t>(std::ceil(rule.target_tpr * n - 1e-9)), 1, static_cast<int64_t>(n));
-    int64_t seen = 0;
-    size_t i = 0;
-    for (; i < distances.size(); ++i) {
-      if (distances[i].second && ++seen == k) break;
-    }
-    // Equal distances are accepted together; the threshold goes past the whole run.
-    while (i + 1 < distances.size() && distances[i + 1].first == distances[i].first) ++i;
-    model.threshold = ThresholdBetween(
-        distances[i].first, i + 1 < distances.size() ? distances[i + 1].first : infinity);
-  }
-
-  SkinModel::Provenance& provenance = model.provenance;
-  provenance.rule = rule.Describe();
-  provenance.skin_samples = static_cast<int64_t>(n);
-  provenance.nonskin_samples = static_cast<int64_t>(training.nonskin.size());
-  const SkinRates rates = EvaluateSkinModel(model, training);
-  provenance.training_tpr = rates.tpr;
-  provenance.training_fpr = rates.fpr;
-  return model;
 }
 
 }  // namespace attend
