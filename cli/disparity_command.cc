@@ -19,11 +19,13 @@
 #include "cli/commands.h"
 #include "config/param_block.h"
 #include "eval/disparity_scores.h"
+#include "features/disparity_feature.h"
 #include "io/image_file.h"
 #include "io/pfm.h"
 #include "stereo/disparity.h"
 #include "util/error.h"
 #include "util/json_text.h"
+#include "util/strings.h"
 
 namespace attend {
 
@@ -62,25 +64,15 @@ DisparityOptions ResolveOptions(const DisparityArguments& args, bool subpixel_gi
   for (const std::string& assignment : args.sets) {
     if (assignment.rfind("disparity.", 0) != 0) {
       throw ConfigError("--set " + assignment +
-                        ": attend disparity takes only disparity.KEY=VALUE, KEY one of "
-                        "max_disparity, window, subpixel, left_right_check, lr_tolerance, "
-                        "smoothness, jump_penalty");
+                        ": attend disparity takes only disparity.KEY=VALUE, KEY one of " +
+                        Join(DisparityOptionKeys(), ", "));
     }
     root.Override(assignment);
   }
   const ParamBlock block = root.Child("disparity");
   root.CheckNoUnknownKeys();
 
-  DisparityOptions options;
-  options.max_disparity = block.GetInt("max_disparity", options.max_disparity,
-                                       Range::Closed(1, DisparityOptions::kMaxDisparity));
-  options.window = block.GetInt("window", options.window, Range::AtLeast(1));
-  options.subpixel = block.GetBool("subpixel", options.subpixel);
-  options.left_right_check = block.GetBool("left_right_check", options.left_right_check);
-  options.lr_tolerance = block.GetInt("lr_tolerance", options.lr_tolerance, Range::AtLeast(0));
-  options.smoothness = block.GetChoice("smoothness", options.smoothness, {"hard", "penalty"});
-  options.jump_penalty =
-      static_cast<float>(block.GetDouble("jump_penalty", options.jump_penalty, Range::AtLeast(0)));
+  DisparityOptions options = ReadDisparityOptions(block);
   block.CheckNoUnknownKeys();
 
   const auto only_one = [&block](const std::string& flag, const std::string& key) {

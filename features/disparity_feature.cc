@@ -28,19 +28,34 @@ class DisparityFeature : public FeatureMap {
 
 }  // namespace
 
+const std::vector<std::string>& DisparityOptionKeys() {
+  static const std::vector<std::string> keys = {"max_disparity",    "window",       "subpixel",
+                                                "left_right_check", "lr_tolerance", "smoothness",
+                                                "jump_penalty"};
+  return keys;
+}
+
+DisparityOptions ReadDisparityOptions(const ParamBlock& block, DisparityOptions options) {
+  options.max_disparity = block.GetInt("max_disparity", options.max_disparity);
+  options.window = block.GetInt("window", options.window);
+  options.subpixel = block.GetBool("subpixel", options.subpixel);
+  options.left_right_check = block.GetBool("left_right_check", options.left_right_check);
+  options.lr_tolerance = block.GetInt("lr_tolerance", options.lr_tolerance);
+  options.smoothness = block.GetString("smoothness", options.smoothness);
+  options.jump_penalty = static_cast<float>(block.GetDouble("jump_penalty", options.jump_penalty));
+  const std::string error = options.Check();
+  if (!error.empty()) {
+    // Check names the field first ("window must be odd, 1..31"): the error is put at its key.
+    const std::string key = error.substr(0, error.find(' '));
+    block.Fail(block.Has(key) ? key : "", error);
+  }
+  return options;
+}
+
 std::unique_ptr<FeatureMap> CreateDisparityFeature(const ParamBlock& params, const FeatureSetup&) {
-  DisparityOptions options;
-  options.max_disparity =
-      params.GetInt("max_disparity", options.max_disparity, Range::Closed(2, 1024));
-  options.window = params.GetInt("window", options.window, Range::Closed(1, 31));
-  if (options.window % 2 == 0) params.Fail("window", "must be odd");
-  options.subpixel = params.GetBool("subpixel", options.subpixel);
-  options.left_right_check = params.GetBool("left_right_check", options.left_right_check);
-  options.lr_tolerance =
-      params.GetInt("lr_tolerance", options.lr_tolerance, Range::Closed(0, 1024));
-  options.smoothness = params.GetChoice("smoothness", options.smoothness, {"hard", "penalty"});
-  options.jump_penalty =
-      static_cast<float>(params.GetDouble("jump_penalty", options.jump_penalty, Range::AtLeast(0)));
+  const DisparityOptions options = ReadDisparityOptions(params);
+  // The map is divided by D - 1.
+  if (options.max_disparity < 2) params.Fail("max_disparity", "must be >= 2 for the feature");
   const bool per_region = params.GetBool("per_region", false);
   return std::make_unique<DisparityFeature>(options, per_region);
 }

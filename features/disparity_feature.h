@@ -5,10 +5,24 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "features/feature_map.h"
+#include "stereo/disparity.h"
 
 namespace attend {
+
+// The keys of DisparityOptions, as the `disparity` feature and `attend disparity --set
+// disparity.KEY=VALUE` name them: max_disparity, window, subpixel, left_right_check,
+// lr_tolerance, smoothness, jump_penalty.
+const std::vector<std::string>& DisparityOptionKeys();
+
+// The one binding of DisparityOptions: the keys above read from `block` over `options`, then
+// DisparityOptions::Check, whose ranges are the only ones. A wrong type, or a value Check
+// refuses: ConfigError naming the key and where it was written. Other keys are left to the
+// caller (CheckNoUnknownKeys).
+DisparityOptions ReadDisparityOptions(const ParamBlock& block, DisparityOptions options = {});
 
 // Parameters: max_disparity (D), window, subpixel, left_right_check, lr_tolerance, per_region.
 std::unique_ptr<FeatureMap> CreateDisparityFeature(const ParamBlock& params,
