@@ -1,6 +1,9 @@
 #include "features/frame_context.h"
 
+#include <algorithm>
+
 #include "colour/colour.h"
+#include "features/skin.h"
 #include "util/error.h"
 
 namespace attend {
@@ -18,6 +21,7 @@ void FrameContext::Reset(int frame_index, const cv::Mat& left, const cv::Mat& ri
   cylinder_slot_.ready = false;
   tsl_slot_.ready = false;
   regions_slot_.ready = false;
+  for (SkinSlot& slot : skin_slots_) slot.ready = false;
 }
 
 const cv::Mat& FrameContext::Cylinder() const {
@@ -36,6 +40,22 @@ const cv::Mat& FrameContext::Tsl() const {
     tsl_slot_.ready = true;
   }
   return tsl_;
+}
+
+const cv::Mat& FrameContext::SkinDistance(const SkinModel& model) const {
+  const cv::Mat& tsl = Tsl();
+  std::lock_guard<std::mutex> lock(skin_mutex_);
+  auto slot = std::find_if(skin_slots_.begin(), skin_slots_.end(), [&](const SkinSlot& s) {
+    return s.mean == model.mean && s.covariance == model.covariance;
+  });
+  if (slot == skin_slots_.end()) {
+    slot = skin_slots_.insert(skin_slots_.end(), SkinSlot{model.mean, model.covariance});
+  }
+  if (!slot->ready) {
+    SkinDistanceMap(tsl, model, &slot->distance);
+    slot->ready = true;
+  }
+  return slot->distance;
 }
 
 const Segmentation& FrameContext::Regions() const {

@@ -1,6 +1,8 @@
 // The per-frame context that feature plugins read (SPEC 1, 2.3). It holds the frame and
 // lazily computes, once per frame, what several plugins share: the HSV cylinder and TSL
-// images and the frame's BIP colour segmentation with its region adjacency graph. The lazy
+// images, the skin distance map of each skin model asked for (the skin feature and the
+// attention stage's skin targets), and the frame's BIP colour segmentation with its region
+// adjacency graph. The lazy
 // getters are safe to call from several plugins at once; the first caller computes, the
 // others wait and then share the result.
 //
@@ -8,9 +10,11 @@
 // so after the first frame nothing is allocated.
 #pragma once
 
+#include <list>
 #include <mutex>
 #include <opencv2/core.hpp>
 
+#include "colour/skin_model.h"
 #include "pyramid/segmentation.h"
 
 namespace attend {
@@ -35,6 +39,10 @@ class FrameContext {
   // S, L); colour/colour.h.
   const cv::Mat& Cylinder() const;
   const cv::Mat& Tsl() const;
+  // The squared Mahalanobis distance of the left image's chrominance to `model`'s mean
+  // (CV_32FC1, SkinDistanceMap of Tsl()), once per frame for each model (by its mean and
+  // covariance). The reference stays valid until the next Reset.
+  const cv::Mat& SkinDistance(const SkinModel& model) const;
   // The BIP colour segmentation of the left image: labels, region statistics, adjacency graph.
   const Segmentation& Regions() const;
 
@@ -54,6 +62,15 @@ class FrameContext {
   mutable Slot regions_slot_;
   mutable cv::Mat cylinder_;
   mutable cv::Mat tsl_;
+  // One skin distance map per model asked for; a list, so that references stay valid.
+  struct SkinSlot {
+    Eigen::Vector2d mean;
+    Eigen::Matrix2d covariance;
+    bool ready = false;
+    cv::Mat distance;
+  };
+  mutable std::mutex skin_mutex_;
+  mutable std::list<SkinSlot> skin_slots_;
   mutable Segmenter segmenter_;
   mutable Segmentation regions_;
 };

@@ -16,7 +16,7 @@ class SkinFeature : public FeatureMap {
   SkinFeature(SkinModel model, SkinOutput output, bool per_region)
       : model_(std::move(model)), output_(output), per_region_(per_region) {}
   void Compute(const FrameContext& context, cv::Mat* out) override {
-    SkinMap(context.Tsl(), model_, output_, out);
+    SkinMapFromDistance(context.SkinDistance(model_), model_, output_, out);
     if (per_region_) AverageOverRegions(context.Regions(), out);
   }
 
@@ -31,12 +31,20 @@ class SkinFeature : public FeatureMap {
 void SkinMap(const cv::Mat& tsl, const SkinModel& model, SkinOutput output, cv::Mat* out) {
   // d^2 per pixel (SkinDistanceMap), then the binary or soft map of it, in place.
   SkinDistanceMap(tsl, model, out);
+  SkinMapFromDistance(*out, model, output, out);
+}
+
+void SkinMapFromDistance(const cv::Mat& distance, const SkinModel& model, SkinOutput output,
+                         cv::Mat* out) {
+  CV_Assert(distance.type() == CV_32FC1);
+  if (out->data != distance.data) out->create(distance.size(), CV_32FC1);
   const float threshold = static_cast<float>(model.threshold);
   const float inverse_threshold = 1.f / threshold;
   for (int y = 0; y < out->rows; ++y) {
+    const float* squared = distance.ptr<float>(y);
     float* value = out->ptr<float>(y);
     for (int x = 0; x < out->cols; ++x) {
-      const float d2 = value[x];
+      const float d2 = squared[x];
       if (output == SkinOutput::kBinary) {
         value[x] = d2 < threshold ? 1.f : 0.f;
       } else {

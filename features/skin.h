@@ -8,11 +8,11 @@
 #pragma once
 
 #include <memory>
-#include <string>
 #include <opencv2/core.hpp>
+#include <string>
 
-#include "features/feature_map.h"
 #include "colour/skin_model.h"
+#include "features/feature_map.h"
 
 namespace attend {
 
@@ -20,6 +20,9 @@ enum class SkinOutput { kBinary, kSoft };
 
 // The skin map of a TSL image (CV_32FC3, colour/colour.h) as CV_32FC1.
 void SkinMap(const cv::Mat& tsl, const SkinModel& model, SkinOutput output, cv::Mat* out);
+// The same map from the image's SkinDistanceMap for `model` (`distance`, which `out` may be).
+void SkinMapFromDistance(const cv::Mat& distance, const SkinModel& model, SkinOutput output,
+                         cv::Mat* out);
 
 // The squared Mahalanobis distance d^2 of every pixel's chrominance to the model's mean
 // (CV_32FC1), the quantity SkinMap thresholds: d^2 < T_s is skin, d^2 < confident x T_s is
@@ -41,9 +44,9 @@ struct SkinRegionOptions {
   double max_mean_distance = 0.6;
   // Shape: faces and hands are compact blobs. Solidity = area / area of the convex hull.
   double min_solidity = 0.6;
-  double max_aspect_ratio = 3.5;       // long over short side of the minimum-area rectangle
-  double max_area_fraction = 0.06;     // of the image: a face at arm's length is about 4 %
-  int min_area = 30;                   // px: fewer is noise, not a face or a hand
+  double max_aspect_ratio = 3.5;    // long over short side of the minimum-area rectangle
+  double max_area_fraction = 0.06;  // of the image: a face at arm's length is about 4 %
+  int min_area = 30;                // px: fewer is noise, not a face or a hand
   // "" when valid; otherwise "KEY: what is wrong".
   std::string Check() const;
 };
@@ -65,8 +68,8 @@ struct SkinRegionVerdict {
 // frame's TSL image) or of `tsl` (CV_32FC3). An empty region is not skin (failed: min_area).
 // The attention stage calls the first once per candidate with the frame's distance map,
 // computed once per frame; the second is the same decision from the TSL image.
-SkinRegionVerdict JudgeSkinRegion(const cv::Mat& mask, const cv::Mat& distances,
-                                  double threshold, const SkinRegionOptions& options);
+SkinRegionVerdict JudgeSkinRegion(const cv::Mat& mask, const cv::Mat& distances, double threshold,
+                                  const SkinRegionOptions& options);
 SkinRegionVerdict JudgeSkinRegionTsl(const cv::Mat& mask, const cv::Mat& tsl,
                                      const SkinModel& model, const SkinRegionOptions& options);
 

@@ -58,13 +58,13 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   // side; both only read the frame context. Errors are rethrown in a fixed order.
   stage.Restart();
   if (options_.threads == 1) {
-    attention_.Track(frame.left, context_.Tsl());
+    attention_.Track(frame.left, context_.SkinDistance(attention_.skin_model()), &tracked_);
     stage.Restart();
     features_.Compute(context_, false);
   } else {
     RunTasks(2, true, [&](int task) {
       if (task == 0) {
-        attention_.Track(frame.left, context_.Tsl());
+        attention_.Track(frame.left, context_.SkinDistance(attention_.skin_model()), &tracked_);
       } else {
         features_.Compute(context_, true);
       }
@@ -102,7 +102,8 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   SmoothSaliency(options_.saliency, &saliency_);
   record->timings.Add("saliency", stage.ElapsedMs());
 
-  attention_.Select(frame.left, saliency_, context_.Regions(), &attended_);
+  attention_.Select(frame.left, context_.SkinDistance(attention_.skin_model()), tracked_, saliency_,
+                    context_.Regions(), &attended_);
   record->timings.Add("track", attended_.track_ms);
   record->timings.Add("inhibit", attended_.inhibit_ms);
   record->timings.Add("select", attended_.select_ms);

@@ -58,6 +58,7 @@ class FramePipeline {
   std::vector<double> frame_weights_;
   cv::Mat saliency_;
   AttentionStage attention_;
+  TrackedTargets tracked_;  // what attention_ tracked in this frame
   AttentionFrame attended_;
 };
 

@@ -71,13 +71,13 @@ AttentionStage::AttentionStage(const AttentionOptions& options, SkinModel skin_m
 
 AttentionStage::~AttentionStage() = default;
 
-void AttentionStage::Track(const cv::Mat& bgr, const cv::Mat& tsl) {
+void AttentionStage::Track(const cv::Mat& bgr, const cv::Mat& skin_distance,
+                           TrackedTargets* tracked) {
   const Stopwatch stopwatch;
-  SkinDistanceMap(tsl, skin_model_, &skin_distance_);
-  skin_ = skin_distance_ < skin_model_.threshold;
-  results_.clear();
-  tracker_->Track(bgr, &results_, skin_);
-  track_ms_ = stopwatch.ElapsedMs();
+  tracked->skin = skin_distance < skin_model_.threshold;
+  tracked->results.clear();
+  tracker_->Track(bgr, &tracked->results, tracked->skin);
+  tracked->milliseconds = stopwatch.ElapsedMs();
 }
 
 namespace {
@@ -103,11 +103,12 @@ ReleaseReason AttentionStage::WhyReleased(const AttendedTarget& target, int low_
   return ReleaseReason::kNone;
 }
 
-void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
+void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
+                            const TrackedTargets& tracked, const cv::Mat& saliency,
                             const Segmentation& segmentation, AttentionFrame* frame) {
   frame->targets.clear();
   frame->new_ids.clear();
-  frame->track_ms = track_ms_;
+  frame->track_ms = tracked.milliseconds;
   const cv::Rect image(0, 0, bgr.cols, bgr.rows);
 
   // The states of the targets tracked this frame, their saliency and the drop rule.
@@ -127,7 +128,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
     held_.create(bgr.size(), CV_8UC1);
     held_.setTo(0);
   }
-  for (const TrackResult& result : results_) {
+  for (const TrackResult& result : tracked.results) {
     auto active = std::find_if(active_.begin(), active_.end(),
                                [&](const Active& a) { return a.id == result.id; });
     if (active == active_.end()) continue;
@@ -298,14 +299,15 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         }
         if (inhibited_area + seed_area > max_inhibited) continue;
         const cv::Mat region_mask = colour == best;
-        const double skin_share = static_cast<double>(cv::countNonZero(skin_ & region_mask)) /
-                                  segmentation.regions[best].area;
+        const double skin_share =
+            static_cast<double>(cv::countNonZero(tracked.skin & region_mask)) /
+            segmentation.regions[best].area;
         // A mostly-skin region is a skin target only when it is confident, skin-shaped skin
         // (features/skin.h, JudgeSkinRegion), unless skin_check is off (the thesis's rule).
         // A skin target is its skin region alone, whatever the seed.
         const bool skin =
             skin_share >= options_.skin_fraction &&
-            (!options_.skin_check || JudgeSkinRegion(region_mask, skin_distance_,
+            (!options_.skin_check || JudgeSkinRegion(region_mask, skin_distance,
                                                      skin_model_.threshold, options_.skin_region)
                                          .skin);
         if (skin) members.resize(1), seed_area = segmentation.regions[best].area;
@@ -313,8 +315,9 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
         for (const int region : members) taken[region] = 1;
         int id = -1;
         if (members.size() == 1) {
-          id = tracker_->StartFromRegion(
-              bgr, colour, best, skin ? TrackSimilarity::kSkin : TrackSimilarity::kColour, skin_);
+          id = tracker_->StartFromRegion(bgr, colour, best,
+                                         skin ? TrackSimilarity::kSkin : TrackSimilarity::kColour,
+                                         tracked.skin);
         } else {
           member_.assign(segmentation.regions.size(), 0);
           for (const int region : members) member_[region] = 1;
@@ -326,7 +329,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& saliency,
               out[x] = region[x] >= 0 && member_[region[x]] ? 255 : 0;
             }
           }
-          id = tracker_->StartFromMask(bgr, seed_mask_, TrackSimilarity::kColour, skin_);
+          id = tracker_->StartFromMask(bgr, seed_mask_, TrackSimilarity::kColour, tracked.skin);
         }
         if (id < 0) continue;
         active_.push_back({id, skin, 0});

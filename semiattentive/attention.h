@@ -29,8 +29,8 @@
 #include <string>
 #include <vector>
 
-#include "features/skin.h"
 #include "colour/skin_model.h"
+#include "features/skin.h"
 #include "pyramid/segmentation.h"
 #include "semiattentive/target_state.h"
 #include "tracker/target_tracker.h"
@@ -119,18 +119,29 @@ struct AttentionFrame {
   double track_ms = 0.0, inhibit_ms = 0.0, select_ms = 0.0;
 };
 
+// What AttentionStage::Track found in a frame, for Select in the same frame.
+struct TrackedTargets {
+  std::vector<TrackResult> results;  // one per target tracked, in id order
+  cv::Mat skin;                      // the frame's binary skin map (CV_8UC1, 255 on skin)
+  double milliseconds = 0.0;         // the time Track took
+};
+
 class AttentionStage {
  public:
   // `skin_model`: classifies pixels as skin for skin trackers and for choosing the similarity.
   AttentionStage(const AttentionOptions& options, SkinModel skin_model);
   ~AttentionStage();
 
-  // Tracks the existing targets in the frame (8-bit BGR, its TSL image). Call first.
-  void Track(const cv::Mat& bgr, const cv::Mat& tsl);
-  // Builds the inhibition from the targets, inhibits `saliency`, selects and starts new
-  // targets on the colour regions of `segmentation`, and fills `frame`.
-  void Select(const cv::Mat& bgr, const cv::Mat& saliency, const Segmentation& segmentation,
-              AttentionFrame* frame);
+  // The model whose SkinDistanceMap the steps below take (FrameContext::SkinDistance).
+  const SkinModel& skin_model() const { return skin_model_; }
+  // Tracks the existing targets in the frame (8-bit BGR, with `skin_distance`, its
+  // SkinDistanceMap for skin_model()) into `tracked`.
+  void Track(const cv::Mat& bgr, const cv::Mat& skin_distance, TrackedTargets* tracked);
+  // From the targets `tracked` in this frame: builds the inhibition, inhibits `saliency`,
+  // selects and starts new targets on the colour regions of `segmentation`, and fills
+  // `frame`.
+  void Select(const cv::Mat& bgr, const cv::Mat& skin_distance, const TrackedTargets& tracked,
+              const cv::Mat& saliency, const Segmentation& segmentation, AttentionFrame* frame);
 
   const cv::Mat& inhibition() const { return inhibition_; }  // CV_32FC1, 0 or 1
   const cv::Mat& inhibited() const { return inhibited_; }    // CV_32FC1
@@ -149,9 +160,7 @@ class AttentionStage {
   SkinModel skin_model_;
   std::unique_ptr<TargetTracker> tracker_;
   std::vector<Active> active_;
-  std::vector<TrackResult> results_;
-  cv::Mat skin_, inhibition_, inhibited_;
-  cv::Mat skin_distance_;        // squared distance to the skin model per pixel (SkinDistanceMap)
+  cv::Mat inhibition_, inhibited_;
   cv::Mat covered_;              // pixels of the active targets (masks, or boxes while occluded)
   cv::Mat held_;                 // the masks of the targets found and kept so far in this frame
   cv::Mat seed_mask_;            // an object seed's pixels
@@ -159,7 +168,6 @@ class AttentionStage {
   std::vector<uint8_t> member_;  // per colour region: in the object seed
   BipBuilder saliency_builder_;
   int attended_ = 0;
-  double track_ms_ = 0.0;
 };
 
 }  // namespace attend

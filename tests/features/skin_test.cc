@@ -57,6 +57,35 @@ TEST(Skin, MapFollowsTheMahalanobisDistance) {
   EXPECT_NEAR(close.model.SquaredDistance(b[0], b[1]), d2, 1e-6);
 }
 
+// The context computes a model's distance map once a frame and shares it: the second call
+// returns the same pixels, a model with another mean gets its own map, and a new frame is
+// computed anew. The skin feature and the attention stage both take it from there.
+TEST(Skin, TheContextComputesEachModelsDistanceOnceAFrame) {
+  cv::Mat first(8, 10, CV_8UC3, cv::Scalar(90, 120, 200));
+  cv::Mat second(8, 10, CV_8UC3, cv::Scalar(200, 120, 90));
+  SkinModel model;
+  model.mean = Eigen::Vector2d(0.6, 40.0);
+  model.covariance << 0.01, 0.0, 0.0, 100.0;
+  SkinModel other = model;
+  other.mean = Eigen::Vector2d(0.2, 10.0);
+
+  FrameContext context;
+  context.Reset(0, first);
+  const cv::Mat& distance = context.SkinDistance(model);
+  cv::Mat expected;
+  SkinDistanceMap(context.Tsl(), model, &expected);
+  EXPECT_EQ(cv::norm(distance, expected, cv::NORM_INF), 0.0);
+  EXPECT_EQ(context.SkinDistance(model).data, distance.data);  // shared, not recomputed
+  const cv::Mat& other_distance = context.SkinDistance(other);
+  EXPECT_NE(other_distance.data, distance.data);
+  SkinDistanceMap(context.Tsl(), other, &expected);
+  EXPECT_EQ(cv::norm(other_distance, expected, cv::NORM_INF), 0.0);
+
+  context.Reset(1, second);
+  SkinDistanceMap(context.Tsl(), model, &expected);
+  EXPECT_EQ(cv::norm(context.SkinDistance(model), expected, cv::NORM_INF), 0.0);
+}
+
 TEST(Skin, PerRegionRemovesIsolatedPixels) {
   // A skin square, and three isolated skin pixels on a blue wall.
   cv::Mat image(40, 40, CV_8UC3, cv::Scalar(200, 60, 20));

@@ -206,8 +206,11 @@ SkinModel ShippedSkinModel() {
 
 AttentionFrame Step(AttentionStage* stage, const Drawn& d) {
   AttentionFrame frame;
-  stage->Track(d.bgr, d.tsl);
-  stage->Select(d.bgr, d.saliency, d.segmentation, &frame);
+  cv::Mat skin_distance;
+  SkinDistanceMap(d.tsl, stage->skin_model(), &skin_distance);
+  TrackedTargets tracked;
+  stage->Track(d.bgr, skin_distance, &tracked);
+  stage->Select(d.bgr, skin_distance, tracked, d.saliency, d.segmentation, &frame);
   return frame;
 }
 
