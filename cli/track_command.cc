@@ -2,7 +2,6 @@
 // tracker, KCF or CSRT) over a sequence, started from boxes on its first frame; attend
 // eval-tracking: the OTB one-pass scores of its tracks.csv (SPEC 3.2, 4; docs/TRACKING.md).
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -21,13 +20,13 @@
 #include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "config/param_block.h"
+#include "eval/tracking_scores.h"
 #include "io/ground_truth.h"
 #include "io/image_file.h"
 #include "io/sequence.h"
+#include "io/tracking_files.h"
 #include "pipeline/options_io.h"
 #include "pipeline/overlay.h"
-#include "eval/tracking_scores.h"
-#include "io/tracking_files.h"
 #include "tracker/target_tracker.h"
 #include "util/error.h"
 #include "util/json_text.h"
@@ -126,121 +125,26 @@ Dumps ParseDumps(const std::string& text) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Frames: a sequence folder (left view only) or a plain folder of images.
+// Frames: a sequence folder (left view only) or a plain folder of images, at their native size
+// (boxes are in the source's pixels, as the ground truth is).
 
-struct TrackFrame {
-  int index = 0;
-  cv::Mat bgr;
-  std::string path;
-};
-
-class TrackInput {
- public:
-  virtual ~TrackInput() = default;
-  // The next frame of the range; false at the end. InputError for a frame that cannot be used.
-  virtual bool Next(TrackFrame* frame) = 0;
-  virtual std::string Describe() const = 0;
-};
-
-// A SPEC 3.1 sequence folder at its native size; only the left view is tracked.
-class SequenceInput final : public TrackInput {
- public:
-  SequenceInput(const std::string& folder, const FrameRange& range) : folder_(folder) {
-    std::error_code error;
-    if (fs::is_directory(folder, error) && !fs::is_directory(fs::path(folder) / "left", error) &&
-        fs::is_directory(fs::path(folder) / "img", error)) {
-      throw InputError("folder " + folder + ": no left/ folder, but an img/ folder (an OTB " +
-                       "sequence?); track a plain folder of images with --images " +
-                       (fs::path(folder) / "img").string());
-    }
-    SequenceOptions options;
-    options.folder = folder;
-    options.first_frame = range.first;
-    options.last_frame = range.last;
-    // Boxes are in the source's pixels, as the ground truth is.
-    options.resize = "native";
-    source_ = FrameSource::Open(options);
+std::unique_ptr<FrameSource> OpenTrackSource(const std::string& sequence, const std::string& images,
+                                             const FrameRange& range, SequenceOptions* options) {
+  std::error_code error;
+  if (images.empty() && fs::is_directory(sequence, error) &&
+      !fs::is_directory(fs::path(sequence) / "left", error) &&
+      fs::is_directory(fs::path(sequence) / "img", error)) {
+    throw InputError("folder " + sequence + ": no left/ folder, but an img/ folder (an OTB " +
+                     "sequence?); track a plain folder of images with --images " +
+                     (fs::path(sequence) / "img").string());
   }
-  bool Next(TrackFrame* frame) override {
-    StereoFrame stereo;
-    if (!source_->Next(&stereo)) return false;
-    frame->index = stereo.index;
-    frame->bgr = stereo.left;
-    frame->path = stereo.left_path;
-    return true;
-  }
-  std::string Describe() const override { return "folder " + folder_; }
-
- private:
-  std::string folder_;
-  std::unique_ptr<FrameSource> source_;
-};
-
-// The image files of a folder in sorted file-name order (the frame index is the position), with
-// the extensions and decoding of sequence folders (docs/SEQUENCES.md).
-class ImageFolderInput final : public TrackInput {
- public:
-  ImageFolderInput(const std::string& folder, const FrameRange& range) : folder_(folder) {
-    std::error_code error;
-    if (!fs::exists(folder, error)) throw InputError("--images " + folder + ": no such folder");
-    if (!fs::is_directory(folder, error)) throw InputError("--images " + folder + ": not a folder");
-    const std::vector<std::string> extensions = {".png", ".jpg", ".jpeg", ".ppm", ".pgm"};
-    try {
-      for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-        std::string extension = entry.path().extension().string();
-        std::transform(extension.begin(), extension.end(), extension.begin(),
-                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-        if (entry.is_regular_file() &&
-            std::find(extensions.begin(), extensions.end(), extension) != extensions.end()) {
-          files_.push_back(entry.path());
-        }
-      }
-    } catch (const fs::filesystem_error& e) {
-      throw InputError("--images " + folder + ": cannot list the images: " + e.what());
-    }
-    std::sort(files_.begin(), files_.end(), [](const fs::path& a, const fs::path& b) {
-      return a.filename().string() < b.filename().string();
-    });
-    if (files_.empty()) {
-      throw InputError("--images " + folder + ": no images (expected files ending in " +
-                       Join(extensions, ", ") + ")");
-    }
-    const int count = static_cast<int>(files_.size());
-    if (range.first >= count) {
-      throw InputError("--images " + folder + ": the frame range starts at frame " +
-                       std::to_string(range.first) + " but the folder has " +
-                       std::to_string(count) + " frames (0.." + std::to_string(count - 1) + ")");
-    }
-    next_ = range.first;
-    last_ = range.last < 0 ? count - 1 : std::min(range.last, count - 1);
-  }
-
-  bool Next(TrackFrame* frame) override {
-    if (next_ > last_) return false;
-    const int index = next_++;
-    const std::string path = files_[index].string();
-    const std::string where = "frame " + std::to_string(index) + " (" + path + ")";
-    const cv::Mat bgr = ReadImageFile(path, cv::IMREAD_COLOR, where);
-    if (size_.empty()) size_ = bgr.size();
-    if (bgr.size() != size_) {
-      throw InputError(where + ": size " + std::to_string(bgr.cols) + "x" +
-                       std::to_string(bgr.rows) + " differs from the first frame's " +
-                       std::to_string(size_.width) + "x" + std::to_string(size_.height));
-    }
-    frame->index = index;
-    frame->bgr = bgr;
-    frame->path = path;
-    return true;
-  }
-  std::string Describe() const override { return "images " + folder_; }
-
- private:
-  std::string folder_;
-  std::vector<fs::path> files_;
-  int next_ = 0;
-  int last_ = -1;
-  cv::Size size_;
-};
+  options->folder = images.empty() ? sequence : "";
+  options->images = images;
+  options->first_frame = range.first;
+  options->last_frame = range.last;
+  options->resize = "native";
+  return FrameSource::Open(*options);
+}
 
 // ---------------------------------------------------------------------------------------------
 // attend track
@@ -275,26 +179,15 @@ cv::Mat DrawTrackOverlay(const cv::Mat& frame, int index, const std::vector<Targ
     cv::addWeighted(frame, 0.55, tinted, 0.45, 0.0, tinted);
     tinted.copyTo(overlay, view.mask);
   }
-  const double font_scale = std::max(0.35, frame.cols / 900.0);
+  const double font_scale = OverlayFontScale(frame.cols);
   for (const TargetView& view : views) {
     const cv::Scalar colour = TargetColour(view.id);
     const bool found = view.state == "found";
     if (!view.roi.empty()) cv::rectangle(overlay, view.roi, colour, 1, cv::LINE_4);
     cv::rectangle(overlay, view.box, colour, found ? 2 : 1, cv::LINE_8);
-    std::string label = "#" + std::to_string(view.id);
-    if (!found) label += " (" + view.state + ")";
-    const cv::Point anchor(view.box.x, std::max(10, view.box.y - 3));
-    cv::putText(overlay, label, anchor, cv::FONT_HERSHEY_SIMPLEX, font_scale, cv::Scalar(0, 0, 0),
-                3, cv::LINE_AA);
-    cv::putText(overlay, label, anchor, cv::FONT_HERSHEY_SIMPLEX, font_scale, colour, 1,
-                cv::LINE_AA);
+    DrawTargetLabel(&overlay, view.id, view.box, found ? "" : " (" + view.state + ")", font_scale);
   }
-  const std::string caption = "frame " + std::to_string(index);
-  const cv::Point corner(4, frame.rows - 6);
-  cv::putText(overlay, caption, corner, cv::FONT_HERSHEY_SIMPLEX, font_scale, cv::Scalar(0, 0, 0),
-              3, cv::LINE_AA);
-  cv::putText(overlay, caption, corner, cv::FONT_HERSHEY_SIMPLEX, font_scale,
-              cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  DrawCaption(&overlay, "frame " + std::to_string(index), font_scale);
   return overlay;
 }
 
@@ -310,18 +203,18 @@ void WriteImage(const fs::path& path, const cv::Mat& image) {
   if (!written) throw OutputError(path.string() + ": cannot write the image");
 }
 
-void DumpFrame(const fs::path& out, const Dumps& dumps, const TrackFrame& frame,
+void DumpFrame(const fs::path& out, const Dumps& dumps, const StereoFrame& frame,
                const std::vector<TargetView>& views) {
   const std::string stem = FrameStem(frame.index) + ".png";
   if (dumps.masks) {
     for (const TargetView& view : views) {
       const cv::Mat mask =
-          view.mask.empty() ? cv::Mat(frame.bgr.size(), CV_8UC1, cv::Scalar(0)) : view.mask;
+          view.mask.empty() ? cv::Mat(frame.left.size(), CV_8UC1, cv::Scalar(0)) : view.mask;
       WriteImage(out / "masks" / std::to_string(view.id) / stem, mask);
     }
   }
   if (dumps.overlay)
-    WriteImage(out / "overlay" / stem, DrawTrackOverlay(frame.bgr, frame.index, views));
+    WriteImage(out / "overlay" / stem, DrawTrackOverlay(frame.left, frame.index, views));
 }
 
 int Track(const TrackArguments& args) {
@@ -332,15 +225,12 @@ int Track(const TrackArguments& args) {
   std::vector<cv::Rect> boxes;
   for (const std::string& init : args.inits) boxes.push_back(ParseBox(init));
 
-  std::unique_ptr<TrackInput> input;
-  if (!args.images.empty()) {
-    input = std::make_unique<ImageFolderInput>(args.images, range);
-  } else {
-    input = std::make_unique<SequenceInput>(args.sequence, range);
-  }
-  TrackFrame frame;
-  if (!input->Next(&frame)) {
-    throw InputError(input->Describe() + ": no frame in the range " +
+  SequenceOptions source_options;
+  const std::unique_ptr<FrameSource> source =
+      OpenTrackSource(args.sequence, args.images, range, &source_options);
+  StereoFrame frame;
+  if (!source->Next(&frame)) {
+    throw InputError(source_options.Describe() + ": no frame in the range " +
                      (args.frames.empty() ? std::string("0:") : args.frames));
   }
   const int first_frame = frame.index;
@@ -348,10 +238,10 @@ int Track(const TrackArguments& args) {
   // Targets start on the first frame of the range, one per box, ids 1, 2, ... in order. Every
   // box must lie inside the frame (a usage error, like a box of zero size) before any starts.
   const std::unique_ptr<TargetTracker> tracker = TargetTracker::Create(options);
-  const cv::Rect image(0, 0, frame.bgr.cols, frame.bgr.rows);
+  const cv::Rect image(0, 0, frame.left.cols, frame.left.rows);
   auto what = [&](size_t i) {
     return "--init " + BoxText(boxes[i]) + " (target " + std::to_string(i + 1) + ", frame " +
-           std::to_string(frame.index) + ", " + frame.path + ")";
+           std::to_string(frame.index) + ", " + frame.left_path + ")";
   };
   for (size_t i = 0; i < boxes.size(); ++i) {
     if ((boxes[i] & image) == boxes[i]) continue;
@@ -363,7 +253,7 @@ int Track(const TrackArguments& args) {
                       std::to_string(image.height) + " - h)");
   }
   for (size_t i = 0; i < boxes.size(); ++i) {
-    const int id = tracker->StartFromBox(frame.bgr, boxes[i]);
+    const int id = tracker->StartFromBox(frame.left, boxes[i]);
     if (id >= 0) continue;
     if (options.kind != TrackerKind::kBip) {
       throw InputError(what(i) + ": the " + tracker->name() + " tracker cannot start on it");
@@ -399,9 +289,9 @@ int Track(const TrackArguments& args) {
   std::vector<int> lost;
   std::vector<TrackResult> results;
   try {
-    while (!tracker->ids().empty() && input->Next(&frame)) {
+    while (!tracker->ids().empty() && source->Next(&frame)) {
       results.clear();
-      tracker->Track(frame.bgr, &results);
+      tracker->Track(frame.left, &results);
       track_ms += tracker->milliseconds();
       ++frames;
       last_frame = frame.index;
@@ -423,7 +313,7 @@ int Track(const TrackArguments& args) {
   }
   WriteTracksCsv(tracks_path, rows);
 
-  const nlohmann::json summary = {{"source", input->Describe()},
+  const nlohmann::json summary = {{"source", source_options.Describe()},
                                   {"out", args.out},
                                   {"tracker", tracker->name()},
                                   {"first_frame", first_frame},

@@ -146,7 +146,7 @@ class ImageFolderReader final : public NativeReader {
     files_ = ListFrameFiles(options.images, what);
     if (files_.empty()) {
       throw InputError(what + ": no frames (expected files ending in " +
-                       Join(FrameFileExtensions(), ", ") + ")");
+                       Join(FrameFileExtensions(), ", ") + "); the folder holds no images");
     }
     info->stereo = false;
     info->name = FolderStem(options.images);

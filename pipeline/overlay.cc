@@ -17,32 +17,42 @@ cv::Scalar TargetColour(int id) {
   return cv::Scalar(c[0], c[1], c[2]);
 }
 
+double OverlayFontScale(int width) { return std::max(0.35, width / 900.0); }
+
+void DrawLabel(cv::Mat* image, const std::string& text, cv::Point at, const cv::Scalar& colour,
+               double font_scale) {
+  cv::putText(*image, text, at, cv::FONT_HERSHEY_SIMPLEX, font_scale, cv::Scalar(0, 0, 0), 3,
+              cv::LINE_AA);
+  cv::putText(*image, text, at, cv::FONT_HERSHEY_SIMPLEX, font_scale, colour, 1, cv::LINE_AA);
+}
+
+void DrawCaption(cv::Mat* image, const std::string& text, double font_scale) {
+  DrawLabel(image, text, cv::Point(4, image->rows - 6), cv::Scalar(255, 255, 255), font_scale);
+}
+
+void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::string& suffix,
+                     double font_scale) {
+  // Ids count up in the order objects were attended, so the label is the focus order.
+  DrawLabel(image, "#" + std::to_string(id) + suffix, cv::Point(box.x, std::max(10, box.y - 3)),
+            TargetColour(id), font_scale);
+}
+
 cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record) {
   cv::Mat overlay = left.clone();
-  const double font_scale = std::max(0.35, left.cols / 900.0);
+  const double font_scale = OverlayFontScale(left.cols);
   for (const TargetRecord& target : record.targets) {
-    const cv::Scalar colour = TargetColour(target.id);
     const bool visible = Visible(target.state);
     const int thickness = target.state == TargetState::kNew ? 3 : (visible ? 2 : 1);
-    cv::rectangle(overlay, target.bbox, colour, thickness, visible ? cv::LINE_8 : cv::LINE_4);
-    // Ids count up in the order objects were attended, so the label is the focus order.
-    std::string label = std::to_string(target.id);
-    label.insert(0, 1, '#');
-    if (target.kind == "skin") label += " skin";
-    if (!visible) label.append(" (").append(TargetStateName(target.state)).append(")");
-    const cv::Point anchor(target.bbox.x, std::max(10, target.bbox.y - 3));
-    cv::putText(overlay, label, anchor, cv::FONT_HERSHEY_SIMPLEX, font_scale, cv::Scalar(0, 0, 0),
-                3, cv::LINE_AA);
-    cv::putText(overlay, label, anchor, cv::FONT_HERSHEY_SIMPLEX, font_scale, colour, 1,
-                cv::LINE_AA);
+    cv::rectangle(overlay, target.bbox, TargetColour(target.id), thickness,
+                  visible ? cv::LINE_8 : cv::LINE_4);
+    std::string suffix = target.kind == "skin" ? " skin" : "";
+    if (!visible) suffix.append(" (").append(TargetStateName(target.state)).append(")");
+    DrawTargetLabel(&overlay, target.id, target.bbox, suffix, font_scale);
   }
-  const std::string caption = "frame " + std::to_string(record.frame) + "  targets " +
-                              std::to_string(record.targets.size());
-  const cv::Point corner(4, left.rows - 6);
-  cv::putText(overlay, caption, corner, cv::FONT_HERSHEY_SIMPLEX, font_scale, cv::Scalar(0, 0, 0),
-              3, cv::LINE_AA);
-  cv::putText(overlay, caption, corner, cv::FONT_HERSHEY_SIMPLEX, font_scale,
-              cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  DrawCaption(&overlay,
+              "frame " + std::to_string(record.frame) + "  targets " +
+                  std::to_string(record.targets.size()),
+              font_scale);
   return overlay;
 }
 

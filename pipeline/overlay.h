@@ -3,6 +3,7 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "pipeline/frame_record.h"
 
@@ -13,5 +14,17 @@ cv::Scalar TargetColour(int id);
 
 // Draws `record` over a copy of `left` (8-bit BGR).
 cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record);
+
+// The pieces every overlay is drawn with (DrawOverlay, attend track's overlay):
+// the font scale for an image `width` pixels wide,
+double OverlayFontScale(int width);
+// a label in `colour` with a dark outline, its baseline starting at `at`,
+void DrawLabel(cv::Mat* image, const std::string& text, cv::Point at, const cv::Scalar& colour,
+               double font_scale);
+// the caption in the bottom-left corner (white on a dark outline),
+void DrawCaption(cv::Mat* image, const std::string& text, double font_scale);
+// and a target's label above its box: "#ID", then `suffix`.
+void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::string& suffix,
+                     double font_scale);
 
 }  // namespace attend
