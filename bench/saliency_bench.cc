@@ -29,6 +29,7 @@
 
 #include "features/builtin.h"
 #include "features/feature_set.h"
+#include "features/lazy_frame_context.h"
 #include "saliency/saliency.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
@@ -111,7 +112,7 @@ int main(int argc, char** argv) {
                                 "saliency_bench"),
       "features");
   attend::FeatureSet features(specs, registry, setup);
-  attend::FrameContext context;
+  attend::LazyFrameContext context;
   const attend::SaliencyOptions saliency_options;
 
   cv::Ptr<cv::saliency::StaticSaliencySpectralResidual> residual =

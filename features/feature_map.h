@@ -20,9 +20,22 @@
 
 namespace attend {
 
+// What a plugin is told when a sequence starts.
+struct SequenceStart {
+  std::string name;  // the sequence's name (sequence.yaml, or its folder or video stem)
+  cv::Size size;     // the frames' working size: every context of the sequence has it
+  bool stereo = false;
+  int first_frame = 0;  // the index of its first frame
+};
+
 class FeatureMap {
  public:
   virtual ~FeatureMap() = default;
+  // Called before the first frame of each sequence the plugin computes on, and after its last
+  // frame, by the thread that computes the frames. A plugin that keeps state across frames
+  // (a background, the previous frame) starts it afresh in BeginSequence.
+  virtual void BeginSequence(const SequenceStart& start) { (void)start; }
+  virtual void EndSequence() {}
   // Fills `out` with a CV_32FC1 map of context.size(): larger is more interesting. Called once
   // a frame, frames in order; other plugins may be computing on the same context at the same
   // time, so a plugin only reads the context. Any scale: saliency normalises every map.

@@ -54,6 +54,14 @@ void RunTasks(int count, bool concurrent, const std::function<void(int)>& task) 
   }
 }
 
+void FeatureSet::BeginSequence(const SequenceStart& start) {
+  for (Member& member : members_) member.feature->BeginSequence(start);
+}
+
+void FeatureSet::EndSequence() {
+  for (Member& member : members_) member.feature->EndSequence();
+}
+
 void FeatureSet::Compute(const FrameContext& context, bool concurrent) {
   RunTasks(static_cast<int>(members_.size()), concurrent, [&](int i) {
     const Stopwatch stopwatch;

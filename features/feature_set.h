@@ -38,6 +38,9 @@ class FeatureSet {
   // A plugin that throws, or returns a map of the wrong type or size, stops the frame with the
   // error of the first such plugin in list order.
   void Compute(const FrameContext& context, bool concurrent);
+  // FeatureMap::BeginSequence and EndSequence of every enabled feature, in list order.
+  void BeginSequence(const SequenceStart& start);
+  void EndSequence();
 
   const std::vector<FeatureResult>& results() const { return results_; }
 

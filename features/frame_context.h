@@ -1,78 +1,47 @@
-// The per-frame context that feature plugins read (SPEC 1, 2.3). It holds the frame and
-// lazily computes, once per frame, what several plugins share: the HSV cylinder and TSL
-// images, the skin distance map of each skin model asked for (the skin feature and the
-// attention stage's skin targets), and the frame's BIP colour segmentation with its region
-// adjacency graph. The lazy
-// getters are safe to call from several plugins at once; the first caller computes, the
-// others wait and then share the result.
+// What a feature plugin sees of a frame (SPEC 1, 2.3; docs/PLUGINS.md): the images, their colour
+// planes, each skin model's distance map and the frame's colour segmentation (labels, region
+// statistics, region adjacency graph; pyramid/regions.h). It is an interface: its layout does
+// not depend on how the values are computed (features/lazy_frame_context.h is the pipeline's),
+// so the pyramid's internals can change without changing what plugins are built against
+// (ATTEND_PLUGIN_ABI_VERSION, features/plugin_api.h).
 //
-// One context serves a whole stream of frames: Reset() starts a frame and keeps every buffer,
-// so after the first frame nothing is allocated.
+// Every getter may be called from several plugins at once; a value is computed once a frame,
+// by its first caller. A reference stays valid until the frame ends.
 #pragma once
 
-#include <list>
-#include <mutex>
 #include <opencv2/core.hpp>
 
 #include "colour/skin_model.h"
-#include "pyramid/segmentation.h"
+#include "pyramid/regions.h"
 
 namespace attend {
 
 class FrameContext {
  public:
-  explicit FrameContext(const SegmentationOptions& segmentation = {});
+  virtual ~FrameContext() = default;
   FrameContext(const FrameContext&) = delete;
   FrameContext& operator=(const FrameContext&) = delete;
 
-  // Starts a frame: `left` (and `right`, empty when monocular) are 8-bit BGR images of the
-  // same size. The images are referenced, not copied; they must outlive the frame.
-  void Reset(int frame_index, const cv::Mat& left, const cv::Mat& right = cv::Mat());
-
-  int frame_index() const { return frame_index_; }
-  const cv::Mat& left() const { return left_; }
-  const cv::Mat& right() const { return right_; }
-  bool stereo() const { return !right_.empty(); }
-  cv::Size size() const { return left_.size(); }
+  // The frame's index in its sequence.
+  virtual int frame_index() const = 0;
+  // The left and right images (8-bit BGR, one size); `right` is empty for a monocular source.
+  virtual const cv::Mat& left() const = 0;
+  virtual const cv::Mat& right() const = 0;
+  bool stereo() const { return !right().empty(); }
+  cv::Size size() const { return left().size(); }
 
   // The left image as HSV cylinder (CV_32FC3: S cos H, S sin H, V) and as TSL (CV_32FC3: T,
   // S, L); colour/colour.h.
-  const cv::Mat& Cylinder() const;
-  const cv::Mat& Tsl() const;
+  virtual const cv::Mat& Cylinder() const = 0;
+  virtual const cv::Mat& Tsl() const = 0;
   // The squared Mahalanobis distance of the left image's chrominance to `model`'s mean
-  // (CV_32FC1, SkinDistanceMap of Tsl()), once per frame for each model (by its mean and
-  // covariance). The reference stays valid until the next Reset.
-  const cv::Mat& SkinDistance(const SkinModel& model) const;
-  // The BIP colour segmentation of the left image: labels, region statistics, adjacency graph.
-  const Segmentation& Regions() const;
+  // (CV_32FC1; features/skin.h SkinDistanceMap), once a frame for each model.
+  virtual const cv::Mat& SkinDistance(const SkinModel& model) const = 0;
+  // The colour segmentation of the left image: labels, region statistics, adjacency graph.
+  virtual const Segmentation& Regions() const = 0;
 
- private:
-  // One lazily computed value: `ready` is guarded by `mutex`.
-  struct Slot {
-    std::mutex mutex;
-    bool ready = false;
-  };
-
-  int frame_index_ = -1;
-  cv::Mat left_;
-  cv::Mat right_;
-
-  mutable Slot cylinder_slot_;
-  mutable Slot tsl_slot_;
-  mutable Slot regions_slot_;
-  mutable cv::Mat cylinder_;
-  mutable cv::Mat tsl_;
-  // One skin distance map per model asked for; a list, so that references stay valid.
-  struct SkinSlot {
-    Eigen::Vector2d mean;
-    Eigen::Matrix2d covariance;
-    bool ready = false;
-    cv::Mat distance;
-  };
-  mutable std::mutex skin_mutex_;
-  mutable std::list<SkinSlot> skin_slots_;
-  mutable Segmenter segmenter_;
-  mutable Segmentation regions_;
+ protected:
+  FrameContext() = default;
 };
 
 }  // namespace attend

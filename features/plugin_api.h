@@ -10,13 +10,18 @@
 //
 // `attend` loads the libraries named in `plugins:` at start, checks the ABI version and calls
 // the register function; any failure is a configuration error (exit status 2) naming the file.
-// The version changes whenever the classes a plugin sees (FeatureMap, FeatureRegistry,
-// FrameContext, ParamBlock, Segmentation) change in a way that breaks binary compatibility.
+// The version changes whenever what a plugin sees changes in a way that breaks binary
+// compatibility: FeatureMap and SequenceStart (features/feature_map.h), FeatureRegistry,
+// FeatureSetup, the FrameContext interface (features/frame_context.h), Segmentation,
+// RegionStats and RegionGraph (pyramid/regions.h), SkinModel (colour/skin_model.h),
+// CylinderColour (colour/colour.h), ParamBlock and Range (config/param_block.h). Nothing of
+// the pyramid or the pipeline is in that list. Version 2: the context became an interface, and
+// FeatureMap got BeginSequence and EndSequence.
 #pragma once
 
 #include "features/feature_map.h"
 
-#define ATTEND_PLUGIN_ABI_VERSION 1
+#define ATTEND_PLUGIN_ABI_VERSION 2
 
 extern "C" {
 

@@ -8,7 +8,7 @@
 
 #include "features/feature_map.h"
 #include "features/feature_set.h"
-#include "features/frame_context.h"
+#include "features/lazy_frame_context.h"
 #include "io/sequence.h"
 #include "pipeline/attend_options.h"
 #include "pipeline/frame_record.h"
@@ -32,6 +32,9 @@ class FramePipeline {
   // second thread), `feature.<name>` (each plugin's own time), `saliency`, `inhibit` and
   // `select`.
   void Process(const StereoFrame& frame, FrameRecord* record);
+  // Tell the feature plugins that a sequence starts (before its first Process) or has ended.
+  void BeginSequence(const SequenceStart& start) { features_.BeginSequence(start); }
+  void EndSequence() { features_.EndSequence(); }
 
   // Results of the last frame.
   const FrameContext& context() const { return context_; }
@@ -50,7 +53,7 @@ class FramePipeline {
 
  private:
   const AttendOptions options_;
-  FrameContext context_;
+  LazyFrameContext context_;
   FeatureSet features_;
   std::vector<cv::Mat> normalised_;
   std::vector<double> weights_;

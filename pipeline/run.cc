@@ -153,6 +153,7 @@ RunSummary RunSequence(const RunRequest& request) {
   };
 
   try {
+    pipeline.BeginSequence({info.name, info.size, info.stereo, options.sequence.first_frame});
     while (true) {
       if (request.stop != nullptr && request.stop->load()) {
         summary.interrupted = true;
@@ -177,7 +178,8 @@ RunSummary RunSequence(const RunRequest& request) {
       record.timings.Add("write", stage.ElapsedMs());
       // The pipeline and the overlay work at the working size; the record is written in the
       // pixels of the input frames (SPEC 3.3).
-      const FrameRecord input = InputFromWorking(record, info.scale_x, info.scale_y, info.native_size);
+      const FrameRecord input =
+          InputFromWorking(record, info.scale_x, info.scale_y, info.native_size);
       folder.AppendFrame(input);
       // The scanpath: each target's centre where it was first attended, in selection order.
       for (const int id : input.new_ids) {
@@ -210,12 +212,14 @@ RunSummary RunSequence(const RunRequest& request) {
     } catch (const std::exception& summary_error) {
       // The summary could not be written either (a full disk, most often): the message says
       // what stopped the run, what is kept and what is missing.
-      throw OutputError(std::string(e.what()) + "; " + summary_error.what() + "; the run stopped after " +
-                        std::to_string(summary.frames) + " frames, all of them in " +
-                        summary.dir + "/frames.jsonl, and has no summary.json");
+      throw OutputError(std::string(e.what()) + "; " + summary_error.what() +
+                        "; the run stopped after " + std::to_string(summary.frames) +
+                        " frames, all of them in " + summary.dir +
+                        "/frames.jsonl, and has no summary.json");
     }
     throw;
   }
+  pipeline.EndSequence();
   try {
     finish();
   } catch (const std::exception& summary_error) {

@@ -39,8 +39,7 @@ StillSaliency::StillSaliency(const AttendOptions& options, const std::string& ho
   FramePipeline check(options_, registry_, setup);
 }
 
-StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features,
-                                 int scanpath_steps) const {
+StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features, int scanpath_steps) const {
   CV_Assert(bgr.type() == CV_8UC3 && !bgr.empty());
   // A pipeline per image: nothing (motion background, targets, inhibition) carries over.
   FeatureSetup setup;
@@ -54,6 +53,8 @@ StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features,
   StereoFrame frame;
   frame.index = 0;
   frame.left = ToWorkingSize(bgr, maps.working_size);
+  // Each image is a sequence of its own (shown again for the scanpath below).
+  pipeline.BeginSequence({"", maps.working_size, false, 0});
   FrameRecord record;
   pipeline.Process(frame, &record);
   maps.saliency = ToImageSize(pipeline.saliency(), maps.image_size);
@@ -84,6 +85,7 @@ StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features,
       }
     }
   }
+  pipeline.EndSequence();
   if (static_cast<int>(maps.scanpath.size()) > scanpath_steps) {
     maps.scanpath.resize(scanpath_steps);
     maps.scanpath_boxes.resize(scanpath_steps);

@@ -1,7 +1,6 @@
 // BIP colour segmentation (thesis 3.3.1): the roots' receptive fields are the regions.
 #pragma once
 
-#include <boost/graph/adjacency_list.hpp>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
@@ -9,6 +8,7 @@
 
 #include "colour/colour.h"
 #include "pyramid/bip.h"
+#include "pyramid/regions.h"
 
 namespace attend {
 
@@ -24,39 +24,6 @@ struct SegmentationOptions {
 
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-};
-
-// Statistics of one region, over its pixels.
-struct RegionStats {
-  int area = 0;            // pixels
-  CylinderColour colour;   // mean cylinder colour (the root's feature)
-  float saturation = 0.f;  // mean of the pixels' S, [0, 255]
-  float intensity = 0.f;   // mean of the pixels' V, [0, 255]
-  cv::Rect bbox;
-  // PL_i of eq. 5.1: 4-neighbour pixel edges between this region and other regions; the image
-  // border and pixels outside the mask do not count.
-  int perimeter = 0;
-};
-
-// The region adjacency graph: one vertex per region (same index as the label), an edge per
-// pair of regions sharing at least one 4-neighbour pixel edge, weighted by their number
-// (pl_ij of eq. 5.1).
-struct RegionBoundary {
-  int length = 0;
-};
-// Edges are kept in a vector (not Boost's default list), so building the graph of a frame
-// costs a few allocations rather than one per edge.
-using RegionGraph =
-    boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
-                          RegionBoundary, boost::no_property, boost::vecS>;
-
-struct Segmentation {
-  // CV_32SC1: region index per pixel, -1 outside the mask. Every region is 8-connected.
-  cv::Mat labels;
-  std::vector<RegionStats> regions;
-  RegionGraph graph;
-  int pyramid_levels = 0;     // height of the hierarchy
-  double milliseconds = 0.0;  // building the pyramid and labelling, not conversions or I/O
 };
 
 // Segments images; keeps the pyramid and all scratch buffers between calls, so one Segmenter

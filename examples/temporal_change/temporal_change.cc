@@ -18,12 +18,13 @@ class TemporalChange : public attend::FeatureMap {
  public:
   explicit TemporalChange(int window) : window_(window) {}
 
+  // A new sequence starts afresh: its first frame has no previous one.
+  void BeginSequence(const attend::SequenceStart&) override { previous_.release(); }
+
   void Compute(const attend::FrameContext& context, cv::Mat* out) override {
     cv::cvtColor(context.left(), luminance_, cv::COLOR_BGR2GRAY);
     luminance_.convertTo(current_, CV_32F);
-    // A frame that does not follow the previous one (a new sequence, a skipped range) starts
-    // afresh, like the first frame.
-    if (previous_.size() != current_.size() || context.frame_index() <= previous_index_) {
+    if (previous_.empty()) {
       out->create(current_.size(), CV_32FC1);
       out->setTo(0.f);
     } else {
@@ -31,12 +32,10 @@ class TemporalChange : public attend::FeatureMap {
       cv::boxFilter(difference_, *out, CV_32F, cv::Size(window_, window_));
     }
     std::swap(previous_, current_);
-    previous_index_ = context.frame_index();
   }
 
  private:
   int window_;
-  int previous_index_ = -1;
   cv::Mat luminance_, current_, previous_, difference_;
 };
 

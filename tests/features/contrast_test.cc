@@ -5,7 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "features/builtin.h"
-#include "features/frame_context.h"
+#include "features/lazy_frame_context.h"
 
 namespace attend {
 namespace {
@@ -16,7 +16,7 @@ cv::Mat FeatureOf(const std::string& name, const cv::Mat& image) {
   FeatureSpec spec;
   spec.name = name;
   std::unique_ptr<FeatureMap> feature = registry.Create(spec, FeatureSetup{});
-  FrameContext context;
+  LazyFrameContext context;
   context.Reset(0, image);
   cv::Mat map;
   feature->Compute(context, &map);

@@ -7,6 +7,7 @@
 
 #include "colour/colour.h"
 #include "features/builtin.h"
+#include "features/lazy_frame_context.h"
 #include "tests/support/error_message.h"
 #include "tests/support/temp_dir.h"
 
@@ -103,7 +104,7 @@ TEST(FeatureSet, DisabledFeatureIsCheckedButNotRun) {
   FeatureSet set(Specs("[{name: constant, value: 2}, {name: throws, enabled: false}]"), registry,
                  {});
   ASSERT_EQ(set.results().size(), 1u);
-  FrameContext context;
+  LazyFrameContext context;
   const cv::Mat image = Picture();
   context.Reset(0, image);
   set.Compute(context, false);
@@ -114,6 +115,49 @@ TEST(FeatureSet, DisabledFeatureIsCheckedButNotRun) {
               FeatureSet bad(Specs("[{name: constant, enabled: false, valeu: 3}]"), registry, {});
             }).find("valeu"),
             std::string::npos);
+}
+
+// A plugin that writes what it is told into a log.
+class Logging : public FeatureMap {
+ public:
+  explicit Logging(std::vector<std::string>* log) : log_(log) {}
+  void BeginSequence(const SequenceStart& start) override {
+    log_->push_back("begin " + start.name + " " + std::to_string(start.size.width) + "x" +
+                    std::to_string(start.size.height) + " " + std::to_string(start.first_frame));
+  }
+  void EndSequence() override { log_->push_back("end"); }
+  void Compute(const FrameContext& context, cv::Mat* out) override {
+    log_->push_back("frame " + std::to_string(context.frame_index()));
+    *out = cv::Mat::zeros(context.size(), CV_32FC1);
+  }
+
+ private:
+  std::vector<std::string>* log_;
+};
+
+TEST(FeatureSet, EnabledFeaturesHearWhereASequenceStartsAndEnds) {
+  std::vector<std::string> log;
+  FeatureRegistry registry;
+  std::vector<std::string> disabled_log;
+  registry.Add("logging", "", [&log](const ParamBlock&, const FeatureSetup&) {
+    return std::make_unique<Logging>(&log);
+  });
+  registry.Add("disabled", "", [&disabled_log](const ParamBlock&, const FeatureSetup&) {
+    return std::make_unique<Logging>(&disabled_log);
+  });
+  FeatureSet set(Specs("[{name: logging}, {name: disabled, enabled: false}]"), registry, {});
+  LazyFrameContext context;
+  const cv::Mat image = Picture();
+  set.BeginSequence({"walk", image.size(), false, 4});
+  for (int frame = 4; frame < 6; ++frame) {
+    context.Reset(frame, image);
+    set.Compute(context, false);
+  }
+  set.EndSequence();
+  const std::string size = std::to_string(image.cols) + "x" + std::to_string(image.rows);
+  EXPECT_EQ(log,
+            (std::vector<std::string>{"begin walk " + size + " 4", "frame 4", "frame 5", "end"}));
+  EXPECT_TRUE(disabled_log.empty());
 }
 
 TEST(FeatureSet, ConcurrentAndSerialGiveTheSameMaps) {
@@ -127,7 +171,7 @@ TEST(FeatureSet, ConcurrentAndSerialGiveTheSameMaps) {
   FeatureSet concurrent(specs, registry, setup);
   const cv::Mat image = Picture();
   for (int round = 0; round < 3; ++round) {
-    FrameContext a, b;
+    LazyFrameContext a, b;
     a.Reset(round, image);
     b.Reset(round, image);
     serial.Compute(a, false);
@@ -142,7 +186,7 @@ TEST(FeatureSet, ConcurrentAndSerialGiveTheSameMaps) {
 
 TEST(FeatureSet, WrongOutputNamesThePluginAndItsLibrary) {
   FeatureSet set(Specs("[{name: wrong_size}]"), RegistryWithTestPlugins(), {});
-  FrameContext context;
+  LazyFrameContext context;
   const cv::Mat image = Picture();
   context.Reset(0, image);
   const std::string message = ConfigErrorOf([&] { set.Compute(context, true); });
@@ -153,7 +197,7 @@ TEST(FeatureSet, WrongOutputNamesThePluginAndItsLibrary) {
 TEST(FeatureSet, FirstFailingPluginInListOrderIsReported) {
   FeatureSet set(Specs("[{name: constant}, {name: throws}, {name: wrong_size}]"),
                  RegistryWithTestPlugins(), {});
-  FrameContext context;
+  LazyFrameContext context;
   const cv::Mat image = Picture();
   context.Reset(0, image);
   for (const bool concurrent : {false, true}) {
@@ -184,7 +228,7 @@ TEST(FeatureSetup, RelativePathsFallBackToHome) {
 }
 
 TEST(FrameContext, SharesOneConversionAndSegmentationPerFrame) {
-  FrameContext context;
+  LazyFrameContext context;
   const cv::Mat image = Picture();
   context.Reset(0, image);
   const Segmentation* first = &context.Regions();

@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "features/lazy_frame_context.h"
 #include "util/error.h"
 #include "features/builtin.h"
 #include "tests/support/temp_dir.h"
@@ -181,7 +182,7 @@ TEST(MotionFeature, IsBuiltInAndReadsItsParameters) {
   // Per region: the moved square's colour regions carry one value each, the wall none.
   spec.params = ParamBlock::Parse("{per_region: true, blur: 0}", "test.yaml");
   std::unique_ptr<FeatureMap> feature = registry.Create(spec, setup);
-  FrameContext context;
+  LazyFrameContext context;
   cv::Mat map;
   const cv::Mat first = Scene(30, 0.0, 1), second = Scene(42, 0.0, 1);
   context.Reset(0, first);

@@ -6,6 +6,7 @@
 
 #include "colour/colour.h"
 #include "features/builtin.h"
+#include "features/lazy_frame_context.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 #include "tests/support/temp_dir.h"
@@ -69,7 +70,7 @@ TEST(Skin, TheContextComputesEachModelsDistanceOnceAFrame) {
   SkinModel other = model;
   other.mean = Eigen::Vector2d(0.2, 10.0);
 
-  FrameContext context;
+  LazyFrameContext context;
   context.Reset(0, first);
   const cv::Mat& distance = context.SkinDistance(model);
   cv::Mat expected;
@@ -96,7 +97,7 @@ TEST(Skin, PerRegionRemovesIsolatedPixels) {
   const FeatureRegistry registry = BuiltinFeatures();
   FeatureSetup setup;
   setup.home = testing::ProjectRoot();
-  FrameContext context;
+  LazyFrameContext context;
   context.Reset(0, image);
   cv::Mat pixels, regions;
   for (const bool per_region : {false, true}) {
@@ -122,7 +123,7 @@ TEST(Skin, FaceAndHandOfTheBundledSceneLightUp) {
   FeatureSetup setup;
   setup.home = root;
   std::unique_ptr<FeatureMap> feature = registry.Create(spec, setup);
-  FrameContext context;
+  LazyFrameContext context;
   context.Reset(10, frame.left, frame.right);
   cv::Mat map;
   feature->Compute(context, &map);

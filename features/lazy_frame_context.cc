@@ -1,4 +1,4 @@
-#include "features/frame_context.h"
+#include "features/lazy_frame_context.h"
 
 #include <algorithm>
 
@@ -8,9 +8,10 @@
 
 namespace attend {
 
-FrameContext::FrameContext(const SegmentationOptions& segmentation) : segmenter_(segmentation) {}
+LazyFrameContext::LazyFrameContext(const SegmentationOptions& segmentation)
+    : segmenter_(segmentation) {}
 
-void FrameContext::Reset(int frame_index, const cv::Mat& left, const cv::Mat& right) {
+void LazyFrameContext::Reset(int frame_index, const cv::Mat& left, const cv::Mat& right) {
   ATTEND_CHECK(!left.empty() && left.type() == CV_8UC3) << "the left image must be 8-bit BGR";
   ATTEND_CHECK(right.empty() || (right.type() == CV_8UC3 && right.size() == left.size()))
       << "the right image must be 8-bit BGR of the left image's size";
@@ -24,7 +25,7 @@ void FrameContext::Reset(int frame_index, const cv::Mat& left, const cv::Mat& ri
   for (SkinSlot& slot : skin_slots_) slot.ready = false;
 }
 
-const cv::Mat& FrameContext::Cylinder() const {
+const cv::Mat& LazyFrameContext::Cylinder() const {
   std::lock_guard<std::mutex> lock(cylinder_slot_.mutex);
   if (!cylinder_slot_.ready) {
     BgrToCylinder(left_, &cylinder_);
@@ -33,7 +34,7 @@ const cv::Mat& FrameContext::Cylinder() const {
   return cylinder_;
 }
 
-const cv::Mat& FrameContext::Tsl() const {
+const cv::Mat& LazyFrameContext::Tsl() const {
   std::lock_guard<std::mutex> lock(tsl_slot_.mutex);
   if (!tsl_slot_.ready) {
     BgrToTsl(left_, &tsl_);
@@ -42,7 +43,7 @@ const cv::Mat& FrameContext::Tsl() const {
   return tsl_;
 }
 
-const cv::Mat& FrameContext::SkinDistance(const SkinModel& model) const {
+const cv::Mat& LazyFrameContext::SkinDistance(const SkinModel& model) const {
   const cv::Mat& tsl = Tsl();
   std::lock_guard<std::mutex> lock(skin_mutex_);
   auto slot = std::find_if(skin_slots_.begin(), skin_slots_.end(), [&](const SkinSlot& s) {
@@ -58,7 +59,7 @@ const cv::Mat& FrameContext::SkinDistance(const SkinModel& model) const {
   return slot->distance;
 }
 
-const Segmentation& FrameContext::Regions() const {
+const Segmentation& LazyFrameContext::Regions() const {
   const cv::Mat& cylinder = Cylinder();
   std::lock_guard<std::mutex> lock(regions_slot_.mutex);
   if (!regions_slot_.ready) {

@@ -1,0 +1,74 @@
+// The frame context the pipeline hands the feature plugins (features/frame_context.h): it holds
+// the frame and lazily computes, once per frame, what several plugins share: the HSV cylinder
+// and TSL images, the skin distance map of each skin model asked for (the skin feature and
+// the attention stage's skin targets), and the frame's BIP colour segmentation with its region
+// adjacency graph. The lazy getters are safe to call from several plugins at once; the first
+// caller computes, the others wait and then share the result.
+//
+// One context serves a whole stream of frames: Reset() starts a frame and keeps every buffer,
+// so after the first frame nothing is allocated.
+#pragma once
+
+#include <list>
+#include <mutex>
+#include <opencv2/core.hpp>
+
+#include "colour/skin_model.h"
+#include "features/frame_context.h"
+#include "pyramid/segmentation.h"
+
+namespace attend {
+
+class LazyFrameContext final : public FrameContext {
+ public:
+  explicit LazyFrameContext(const SegmentationOptions& segmentation = {});
+
+  // Starts a frame: `left` (and `right`, empty when monocular) are 8-bit BGR images of the
+  // same size. The images are referenced, not copied; they must outlive the frame.
+  void Reset(int frame_index, const cv::Mat& left, const cv::Mat& right = cv::Mat());
+
+  int frame_index() const override { return frame_index_; }
+  const cv::Mat& left() const override { return left_; }
+  const cv::Mat& right() const override { return right_; }
+
+  // The left image as HSV cylinder (CV_32FC3: S cos H, S sin H, V) and as TSL (CV_32FC3: T,
+  // S, L); colour/colour.h.
+  const cv::Mat& Cylinder() const override;
+  const cv::Mat& Tsl() const override;
+  // The squared Mahalanobis distance of the left image's chrominance to `model`'s mean
+  // (CV_32FC1, SkinDistanceMap of Tsl()), once per frame for each model (by its mean and
+  // covariance). The reference stays valid until the next Reset.
+  const cv::Mat& SkinDistance(const SkinModel& model) const override;
+  // The BIP colour segmentation of the left image: labels, region statistics, adjacency graph.
+  const Segmentation& Regions() const override;
+
+ private:
+  // One lazily computed value: `ready` is guarded by `mutex`.
+  struct Slot {
+    std::mutex mutex;
+    bool ready = false;
+  };
+
+  int frame_index_ = -1;
+  cv::Mat left_;
+  cv::Mat right_;
+
+  mutable Slot cylinder_slot_;
+  mutable Slot tsl_slot_;
+  mutable Slot regions_slot_;
+  mutable cv::Mat cylinder_;
+  mutable cv::Mat tsl_;
+  // One skin distance map per model asked for; a list, so that references stay valid.
+  struct SkinSlot {
+    Eigen::Vector2d mean;
+    Eigen::Matrix2d covariance;
+    bool ready = false;
+    cv::Mat distance;
+  };
+  mutable std::mutex skin_mutex_;
+  mutable std::list<SkinSlot> skin_slots_;
+  mutable Segmenter segmenter_;
+  mutable Segmentation regions_;
+};
+
+}  // namespace attend
