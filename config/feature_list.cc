@@ -13,6 +13,7 @@ std::vector<FeatureSpec> ReadFeatureList(const ParamBlock& root, const std::stri
     if (spec.name.empty()) entry.Fail("name", "must not be empty");
     spec.weight = entry.GetDouble("weight", 1.0, Range::AtLeast(0.0));
     spec.enabled = entry.GetBool("enabled", true);
+    spec.normalisation = entry.GetString("normalisation", "");
     if (!names.insert(spec.name).second) {
       entry.Fail("name", "feature '" + spec.name + "' is listed twice");
     }

@@ -17,8 +17,11 @@ struct FeatureSpec {
   // A disabled feature is still created (so its parameters are checked) but never computed:
   // it leaves no map, no dump and no time.
   bool enabled = true;
-  // The whole entry; `name`, `weight` and `enabled` are already marked as read, so a plugin reads
-  // its own keys and then calls params.CheckNoUnknownKeys().
+  // The normalisation of this feature's map before the sum: a name in the feature registry's
+  // normalisations (minmax, local_maxima, or one a plugin added); "" is saliency.normalisation.
+  std::string normalisation;
+  // The whole entry; `name`, `weight`, `enabled` and `normalisation` are already marked as read, so
+  // a plugin reads its own keys and then calls params.CheckNoUnknownKeys().
   ParamBlock params;
 };
 

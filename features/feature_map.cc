@@ -57,6 +57,31 @@ std::vector<std::string> FeatureRegistry::Names() const {
   return names;
 }
 
+void FeatureRegistry::AddNormalisation(const std::string& name, const std::string& summary,
+                                       MapNormalisation normalise) {
+  if (name.empty()) {
+    throw ConfigError(origin_ + ": registers a normalisation with an empty name");
+  }
+  const auto found = normalisations_.find(name);
+  if (found != normalisations_.end()) {
+    throw ConfigError(origin_ + ": registers normalisation '" + name + "', which " +
+                      found->second.origin + " already registered");
+  }
+  normalisations_[name] = NormalisationEntry{name, summary, std::move(normalise), origin_};
+}
+
+const FeatureRegistry::NormalisationEntry* FeatureRegistry::FindNormalisation(
+    const std::string& name) const {
+  const auto found = normalisations_.find(name);
+  return found == normalisations_.end() ? nullptr : &found->second;
+}
+
+std::vector<std::string> FeatureRegistry::NormalisationNames() const {
+  std::vector<std::string> names;
+  for (const auto& [name, entry] : normalisations_) names.push_back(name);
+  return names;
+}
+
 std::unique_ptr<FeatureMap> FeatureRegistry::Create(const FeatureSpec& spec,
                                                     const FeatureSetup& setup) const {
   const Entry* entry = Find(spec.name);

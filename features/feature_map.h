@@ -67,6 +67,11 @@ struct FeatureSetup {
 using FeatureFactory =
     std::function<std::unique_ptr<FeatureMap>(const ParamBlock& params, const FeatureSetup& setup)>;
 
+// Turns a feature's map (CV_32FC1, any scale) into `out`: CV_32FC1 of the same size with values
+// in [0, 1], before the weighted sum (SPEC 2.3). A feature chooses one by name
+// (`normalisation:` in its entry); saliency.normalisation is the default.
+using MapNormalisation = std::function<void(const cv::Mat& map, cv::Mat* out)>;
+
 class FeatureRegistry {
  public:
   struct Entry {
@@ -84,12 +89,27 @@ class FeatureRegistry {
   const Entry* Find(const std::string& name) const;
   std::vector<std::string> Names() const;
 
+  // Normalisations beside the built-in ones (minmax and local_maxima, saliency/saliency.h),
+  // which the pipeline adds; a plugin library adds its own in its register function. A name
+  // already taken: ConfigError naming both origins.
+  struct NormalisationEntry {
+    std::string name;
+    std::string summary;
+    MapNormalisation normalise;
+    std::string origin;
+  };
+  void AddNormalisation(const std::string& name, const std::string& summary,
+                        MapNormalisation normalise);
+  const NormalisationEntry* FindNormalisation(const std::string& name) const;
+  std::vector<std::string> NormalisationNames() const;
+
   // Creates the plugin of `spec` and checks that it read all of its parameters. An unknown
   // name: ConfigError at the entry's `name`, with the closest known name and the full list.
   std::unique_ptr<FeatureMap> Create(const FeatureSpec& spec, const FeatureSetup& setup) const;
 
  private:
   std::map<std::string, Entry> entries_;
+  std::map<std::string, NormalisationEntry> normalisations_;
   std::string origin_ = "built-in";
 };
 

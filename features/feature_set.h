@@ -17,6 +17,7 @@ namespace attend {
 struct FeatureResult {
   std::string name;
   double weight = 1.0;
+  std::string normalisation;  // FeatureSpec::normalisation ("" for the default)
   cv::Mat map;                // CV_32FC1, the frame's size
   double milliseconds = 0.0;  // computing this map (including shared work it triggered first)
 };

@@ -1,11 +1,15 @@
 #include "pipeline/frame_pipeline.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "colour/grey.h"
 #include "features/builtin.h"
 #include "features/plugin_loader.h"
 #include "io/skin_files.h"
 #include "saliency/saliency.h"
 #include "util/error.h"
+#include "util/strings.h"
 #include "util/timer.h"
 
 namespace attend {
@@ -34,6 +38,20 @@ SkinModel LoadAttentionSkinModel(const std::string& path, const FeatureSetup& se
   }
 }
 
+// A plugin's normalisation must give CV_32FC1 of the map's size with values in [0, 1]; anything
+// else is a configuration error naming the feature and the library (a broken plugin was
+// configured), as for a feature's own map (CheckFeatureOutput).
+void CheckNormalisedMap(const std::string& feature, const std::string& origin,
+                        const cv::Mat& normalised, cv::Size size) {
+  const std::string who = "the normalisation of feature '" + feature + "' (" + origin + ")";
+  if (normalised.type() != CV_32FC1 || normalised.size() != size) {
+    throw ConfigError(who + " returned a map that is not CV_32FC1 of the feature map's size");
+  }
+  if (!cv::checkRange(normalised, true, nullptr, 0.0, std::nextafter(1.0, 2.0))) {
+    throw ConfigError(who + " returned values outside [0, 1] or not finite");
+  }
+}
+
 }  // namespace
 
 FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry& registry,
@@ -44,6 +62,38 @@ FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry
       attention_(options.attention, LoadAttentionSkinModel(options.attention.skin_model, setup)) {
   normalised_.resize(features_.results().size());
   for (const FeatureResult& result : features_.results()) weights_.push_back(result.weight);
+  // Each feature's normalisation: the built-in ones by name, then the registry's (plugins').
+  const std::vector<std::string>& builtin = SaliencyOptions::Normalisations();
+  std::vector<std::string> known = builtin;
+  for (const std::string& name : registry.NormalisationNames()) {
+    if (std::find(builtin.begin(), builtin.end(), name) != builtin.end()) {
+      throw ConfigError(registry.FindNormalisation(name)->origin + ": registers normalisation '" +
+                        name + "', which is built in");
+    }
+    known.push_back(name);
+  }
+  for (const FeatureSpec& spec : options.features) {
+    if (!spec.enabled) continue;
+    const std::string& name = spec.normalisation;
+    std::string origin;
+    MapNormalisation normalise;
+    if (std::find(builtin.begin(), builtin.end(), name) != builtin.end()) {
+      SaliencyOptions chosen = options.saliency;
+      chosen.normalisation = name;
+      normalise = [chosen](const cv::Mat& map, cv::Mat* out) { NormaliseMap(map, chosen, out); };
+    } else if (!name.empty()) {
+      const FeatureRegistry::NormalisationEntry* entry = registry.FindNormalisation(name);
+      if (entry == nullptr) {
+        spec.params.Fail("normalisation", "unknown normalisation '" + name + "'" +
+                                              DidYouMean(name, known) +
+                                              "; known: " + Join(known, ", "));
+      }
+      normalise = entry->normalise;
+      origin = entry->origin;
+    }
+    normalisers_.push_back(std::move(normalise));
+    plugin_normalisation_origin_.push_back(origin);
+  }
 }
 
 void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
@@ -78,7 +128,15 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   stage.Restart();
   const std::vector<FeatureResult>& results = features_.results();
   for (size_t i = 0; i < results.size(); ++i) {
-    NormaliseMap(results[i].map, options_.saliency, &normalised_[i]);
+    if (!normalisers_[i]) {
+      NormaliseMap(results[i].map, options_.saliency, &normalised_[i]);
+      continue;
+    }
+    normalisers_[i](results[i].map, &normalised_[i]);
+    if (!plugin_normalisation_origin_[i].empty()) {
+      CheckNormalisedMap(results[i].name, plugin_normalisation_origin_[i], normalised_[i],
+                         results[i].map.size());
+    }
   }
   // SPEC 2.3 divides by the sum of all weights. A grey frame has no colour, so there colour
   // features measure nothing rather than "no contrast"; counting their weights would cap the
