@@ -18,31 +18,26 @@ struct Fixture {
   attend::fuzz::RunFiles valid = attend::fuzz::ValidRunFiles(sequence);
 };
 
-const Fixture& GetFixture() {
-  static const Fixture fixture = [] {
-    Fixture f;
-    attend::fuzz::WriteGroundTruth(f.sequence);
-    attend::fuzz::WriteRunFolder(f.run, f.valid);
-    return f;
-  }();
-  return fixture;
-}
+// The valid run folder and ground truth, written at initialisation.
+const Fixture* fixture = nullptr;
 
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   attend::fuzz::Initialize();
-  GetFixture();
+  static const Fixture written;
+  attend::fuzz::WriteGroundTruth(written.sequence);
+  attend::fuzz::WriteRunFolder(written.run, written.valid);
+  fixture = &written;
   attend::fuzz::SilenceStandardOutput();
   return 0;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace attend;
-  const Fixture& fixture = GetFixture();
-  fuzz::WriteFuzzedRunFiles(data, size, fixture.valid, fixture.run);
+  fuzz::WriteFuzzedRunFiles(data, size, fixture->valid, fixture->run);
   fuzz::ExpectOnlyDocumentedErrors([&] {
-    fuzz::RunCommand(AddEvalCommand, {"eval", fixture.run, "--gt", fixture.sequence + "/gt"});
+    fuzz::RunCommand(AddEvalCommand, {"eval", fixture->run, "--gt", fixture->sequence + "/gt"});
   });
   return 0;
 }
