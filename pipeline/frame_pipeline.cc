@@ -108,13 +108,15 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   // side; both only read the frame context. Errors are rethrown in a fixed order.
   stage.Restart();
   if (options_.threads == 1) {
-    attention_.Track(frame.left, context_.SkinDistance(attention_.skin_model()), &tracked_);
+    attention_.Track(frame.left, context_.SkinDistance(attention_.skin_model()), &tracked_,
+                     context_.Cylinder());
     stage.Restart();
     features_.Compute(context_, false);
   } else {
     RunTasks(2, true, [&](int task) {
       if (task == 0) {
-        attention_.Track(frame.left, context_.SkinDistance(attention_.skin_model()), &tracked_);
+        attention_.Track(frame.left, context_.SkinDistance(attention_.skin_model()), &tracked_,
+                         context_.Cylinder());
       } else {
         features_.Compute(context_, true);
       }

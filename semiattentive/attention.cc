@@ -72,11 +72,11 @@ AttentionStage::AttentionStage(const AttentionOptions& options, SkinModel skin_m
 AttentionStage::~AttentionStage() = default;
 
 void AttentionStage::Track(const cv::Mat& bgr, const cv::Mat& skin_distance,
-                           TrackedTargets* tracked) {
+                           TrackedTargets* tracked, const cv::Mat& cylinder) {
   const Stopwatch stopwatch;
   tracked->skin = skin_distance < skin_model_.threshold;
   tracked->results.clear();
-  tracker_->Track(bgr, &tracked->results, tracked->skin);
+  tracker_->Track(bgr, &tracked->results, tracked->skin, cylinder);
   tracked->milliseconds = stopwatch.ElapsedMs();
 }
 

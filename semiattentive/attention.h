@@ -135,8 +135,10 @@ class AttentionStage {
   // The model whose SkinDistanceMap the steps below take (FrameContext::SkinDistance).
   const SkinModel& skin_model() const { return skin_model_; }
   // Tracks the existing targets in the frame (8-bit BGR, with `skin_distance`, its
-  // SkinDistanceMap for skin_model()) into `tracked`.
-  void Track(const cv::Mat& bgr, const cv::Mat& skin_distance, TrackedTargets* tracked);
+  // SkinDistanceMap for skin_model(), and optionally `cylinder`, its BgrToCylinder, which the
+  // tracker then need not compute again) into `tracked`.
+  void Track(const cv::Mat& bgr, const cv::Mat& skin_distance, TrackedTargets* tracked,
+             const cv::Mat& cylinder = cv::Mat());
   // From the targets `tracked` in this frame: builds the inhibition, inhibits `saliency`,
   // selects and starts new targets on the colour regions of `segmentation`, and fills
   // `frame`.

@@ -83,9 +83,9 @@ class BipTargetTracker final : public TargetTracker {
                       TrackSimilarity similarity, const cv::Mat& skin) override {
     return tracker_.StartFromRegion(frame, labels, region, similarity, skin);
   }
-  void Track(const cv::Mat& frame, std::vector<TrackResult>* results,
-             const cv::Mat& skin) override {
-    tracker_.Track(frame, results, skin);
+  void Track(const cv::Mat& frame, std::vector<TrackResult>* results, const cv::Mat& skin,
+             const cv::Mat& cylinder) override {
+    tracker_.Track(frame, results, skin, cylinder);
   }
   cv::Mat Mask(int id) const override { return tracker_.Mask(id); }
   void Remove(int id) override { tracker_.Remove(id); }
@@ -93,9 +93,7 @@ class BipTargetTracker final : public TargetTracker {
   TrackerKind kind() const override { return TrackerKind::kBip; }
   bool UsesSkin() const override { return true; }
   double milliseconds() const override { return tracker_.milliseconds(); }
-  double segmentation_milliseconds() const override {
-    return tracker_.segmentation_milliseconds();
-  }
+  double segmentation_milliseconds() const override { return tracker_.segmentation_milliseconds(); }
 
  private:
   MultiTracker tracker_;
@@ -126,7 +124,8 @@ class OpenCvTargetTracker final : public TargetTracker {
     return Start(frame, box, shape);
   }
 
-  void Track(const cv::Mat& frame, std::vector<TrackResult>* results, const cv::Mat&) override {
+  void Track(const cv::Mat& frame, std::vector<TrackResult>* results, const cv::Mat&,
+             const cv::Mat&) override {
     const Stopwatch stopwatch;
     const cv::Rect image(0, 0, frame.cols, frame.rows);
     std::vector<int> lost;

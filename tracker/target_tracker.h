@@ -99,8 +99,11 @@ class TargetTracker {
   // reported lost is removed afterwards. `skin` as for the starts. The results' `level` and
   // `overlap` are the BIP's (-1 and 0 for the other kinds); `roi` is the region searched (the
   // box for the OpenCV kinds, which search around it by their own padding).
+  // `cylinder`, when given, is the frame's HSV cylinder image (BgrToCylinder, CV_32FC3, the
+  // frame's size), which the bip kind then takes instead of converting its regions of interest
+  // again; the values are the same either way.
   virtual void Track(const cv::Mat& frame, std::vector<TrackResult>* results,
-                     const cv::Mat& skin = cv::Mat()) = 0;
+                     const cv::Mat& skin = cv::Mat(), const cv::Mat& cylinder = cv::Mat()) = 0;
 
   // The target's pixels in the last frame it was started or searched in (CV_8UC1, frame size);
   // empty when it was not found there or the id is unknown.

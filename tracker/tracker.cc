@@ -103,7 +103,7 @@ cv::Rect Aligned(const cv::Rect& bounds) {
 // `schedule_side` (0: the crop's).
 void BuildHierarchy(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity similarity,
                     const cv::Mat& mask, cv::Rect bounds, int schedule_side, float t_max,
-                    Hierarchy* hierarchy) {
+                    Hierarchy* hierarchy, const cv::Mat& cylinder = cv::Mat()) {
   bounds = Aligned(bounds);
   hierarchy->origin = bounds.tl();
   hierarchy->size = bounds.size();
@@ -113,7 +113,12 @@ void BuildHierarchy(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity s
     hierarchy->bip =
         &hierarchy->builder.Build(features, ClassSimilarity(), mask(bounds), schedule_side);
   } else {
-    HsvSimilarity::Features(frame(bounds), &features);
+    // The frame's cylinder image when the caller has it (the same values as converting here).
+    if (cylinder.empty()) {
+      HsvSimilarity::Features(frame(bounds), &features);
+    } else {
+      features = cylinder(bounds);
+    }
     hierarchy->bip =
         &hierarchy->builder.Build(features, HsvSimilarity(t_max), mask(bounds), schedule_side);
   }
@@ -282,9 +287,11 @@ std::string TrackerOptions::Check() const {
   if (!(appearance_share >= 0.f && appearance_share <= 1.f)) {
     return "appearance_share must be in [0, 1]";
   }
-  if (!(appearance_rate >= 0.f && appearance_rate <= 1.f)) return "appearance_rate must be in [0, 1]";
+  if (!(appearance_rate >= 0.f && appearance_rate <= 1.f))
+    return "appearance_rate must be in [0, 1]";
   if (!(min_score > 0.f && min_score <= 1.f)) return "min_score must be in (0, 1]";
-  if (!(redetect_range >= 0.f && redetect_range <= 10.f)) return "redetect_range must be in [0, 10]";
+  if (!(redetect_range >= 0.f && redetect_range <= 10.f))
+    return "redetect_range must be in [0, 10]";
   if (!(redetect_ratio > 0.f && redetect_ratio <= 1.f)) return "redetect_ratio must be in (0, 1]";
   return "";
 }
@@ -343,7 +350,8 @@ struct MultiTracker::Impl {
   // Bounded mode with `appearance`: the frame in grey, and the ZNCC of the searched target's
   // model over its ROI; correlation_(y, x) is that of the box moved by (x, y) - box_to_roi_.
   cv::Mat grey_;
-  cv::Mat frame_;  // the current frame (a header), for MeanDistinct
+  cv::Mat frame_;           // the current frame (a header), for MeanDistinct
+  cv::Mat frame_cylinder_;  // its cylinder image when the caller gave one (a header)
   mutable cv::Mat cylinder_;
   cv::Mat correlation_;
   cv::Point box_to_roi_;
@@ -351,7 +359,7 @@ struct MultiTracker::Impl {
   double best_correlation_ = 0.0;  // at the last accepted displacement
   mutable cv::Mat model_, patch_;
   mutable std::vector<int> region_inside_, region_all_;  // BoundTarget's counts
-  mutable std::vector<float> fg_, bg_;                  // LearnDistinct's histograms
+  mutable std::vector<float> fg_, bg_;                   // LearnDistinct's histograms
 
   explicit Impl(const TrackerOptions& o) : options(o) {}
 
@@ -493,14 +501,13 @@ struct MultiTracker::Impl {
     box_to_roi_ = target.box.tl() - target.roi.tl();
     for (int l = std::min(WorkingLevel(target), h.bip->num_levels() - 1); l >= 0; --l) {
       Match match;
-      const double min_overlap = options.mode == TrackerMode::kBounded
-                                     ? options.bounded_min_overlap
-                                     : options.min_overlap;
+      const double min_overlap =
+          options.mode == TrackerMode::kBounded ? options.bounded_min_overlap : options.min_overlap;
       if (!SearchLevel(target, h, l, nullptr, min_overlap, &match)) continue;
       if (options.mode == TrackerMode::kBounded && l > 0) {
         const int cell = 1 << l;
-        const cv::Rect window(match.displacement.x * cell - cell, match.displacement.y * cell - cell,
-                              2 * cell + 1, 2 * cell + 1);
+        const cv::Rect window(match.displacement.x * cell - cell,
+                              match.displacement.y * cell - cell, 2 * cell + 1, 2 * cell + 1);
         Match fine;
         if (SearchLevel(target, h, 0, &window, 0.0, &fine)) match = fine;
       }
@@ -559,9 +566,8 @@ struct MultiTracker::Impl {
     if (correlated_) {
       // The appearance joins the overlap (TrackerOptions::appearance). The score is not
       // monotone in the search order, so every displacement is scored exactly.
-      const double sigma = std::max(1.0, options.motion_sigma *
-                                             std::sqrt(static_cast<double>(target.box.area())) /
-                                             (1 << l));
+      const double sigma = std::max(
+          1.0, options.motion_sigma * std::sqrt(static_cast<double>(target.box.area())) / (1 << l));
       const double share = options.appearance_share;
       double best_score = 0.0;
       for (const cv::Point& d : displacements) {
@@ -571,8 +577,7 @@ struct MultiTracker::Impl {
         if (k <= best_score) break;  // nearest first: k only falls
         const double c = std::max(0.0, CorrelationAt(d, l));
         const int64_t overlap = score_at(d, -1);
-        const double score =
-            k * ((1 - share) * static_cast<double>(overlap) / total + share * c);
+        const double score = k * ((1 - share) * static_cast<double>(overlap) / total + share * c);
         if (score > best_score) {
           best_score = score;
           best = overlap;
@@ -591,9 +596,8 @@ struct MultiTracker::Impl {
       // displacements that match, the target most likely moved little. Displacements come
       // nearest first, so the weight only falls, and the search stops once even a whole
       // overlap could no longer win.
-      const double sigma = std::max(1.0, options.motion_sigma *
-                                             std::sqrt(static_cast<double>(target.box.area())) /
-                                             (1 << l));
+      const double sigma = std::max(
+          1.0, options.motion_sigma * std::sqrt(static_cast<double>(target.box.area())) / (1 << l));
       double best_weighted = 0.0;
       for (const cv::Point& d : displacements) {
         const double ex = d.x - prior.x, ey = d.y - prior.y;
@@ -734,8 +738,8 @@ struct MultiTracker::Impl {
   // Bounded mode with `appearance`: the ZNCC of the target's grey model, at its box's size,
   // over `area` of the frame; false when there is no model or `area` cannot hold the box.
   bool Correlate(const Target& target, const cv::Rect& area, cv::Mat* correlation) const {
-    if (options.mode != TrackerMode::kBounded || !options.appearance ||
-        target.appearance.empty() || grey_.empty()) {
+    if (options.mode != TrackerMode::kBounded || !options.appearance || target.appearance.empty() ||
+        grey_.empty()) {
       return false;
     }
     const cv::Rect& box = target.box;
@@ -760,11 +764,18 @@ struct MultiTracker::Impl {
   double MeanDistinct(const Target& target, const cv::Rect& box) const {
     const cv::Rect inside = box & cv::Rect(0, 0, frame_.cols, frame_.rows);
     if (target.distinct.empty() || inside.empty()) return -1.0;
-    BgrToCylinder(frame_(inside), &cylinder_);
+    // The caller's cylinder image when it gave one, else converted here (the same values).
+    cv::Mat cylinder;
+    if (frame_cylinder_.empty()) {
+      BgrToCylinder(frame_(inside), &cylinder_);
+      cylinder = cylinder_;
+    } else {
+      cylinder = frame_cylinder_(inside);
+    }
     double sum = 0.0;
-    for (int y = 0; y < cylinder_.rows; ++y) {
-      const float* f = cylinder_.ptr<float>(y);
-      for (int x = 0; x < cylinder_.cols; ++x) sum += target.distinct[ColourBin(f + 3 * x)];
+    for (int y = 0; y < cylinder.rows; ++y) {
+      const float* f = cylinder.ptr<float>(y);
+      for (int x = 0; x < cylinder.cols; ++x) sum += target.distinct[ColourBin(f + 3 * x)];
     }
     return sum / inside.area();
   }
@@ -801,8 +812,9 @@ struct MultiTracker::Impl {
     const cv::Rect& box = target->box;
     const int gx = static_cast<int>(std::lround(options.redetect_range * box.width));
     const int gy = static_cast<int>(std::lround(options.redetect_range * box.height));
-    const cv::Rect area = cv::Rect(box.x - gx, box.y - gy, box.width + 2 * gx, box.height + 2 * gy) &
-                          cv::Rect(0, 0, grey_.cols, grey_.rows);
+    const cv::Rect area =
+        cv::Rect(box.x - gx, box.y - gy, box.width + 2 * gx, box.height + 2 * gy) &
+        cv::Rect(0, 0, grey_.cols, grey_.rows);
     cv::Mat correlation;
     if (!Correlate(*target, area, &correlation)) return;
     double best = 0.0;
@@ -817,8 +829,10 @@ struct MultiTracker::Impl {
       return;
     }
     for (size_t l = 0; l < target->levels.size(); ++l) {
-      target->levels[l].cells.x += static_cast<int>(std::lround(shift.x / static_cast<double>(1 << l)));
-      target->levels[l].cells.y += static_cast<int>(std::lround(shift.y / static_cast<double>(1 << l)));
+      target->levels[l].cells.x +=
+          static_cast<int>(std::lround(shift.x / static_cast<double>(1 << l)));
+      target->levels[l].cells.y +=
+          static_cast<int>(std::lround(shift.y / static_cast<double>(1 << l)));
     }
     target->box += shift;
     target->smooth.x += shift.x;
@@ -894,7 +908,8 @@ struct MultiTracker::Impl {
     const double w = (1 - rate) * moved_smooth.width + rate * (x1 - x0);
     const double hgt = (1 - rate) * moved_smooth.height + rate * (y1 - y0);
     const double crate = options.centre_rate;
-    const double cx = (1 - crate) * (moved_smooth.x + moved_smooth.width / 2.0) + crate * (x0 + x1) / 2.0;
+    const double cx =
+        (1 - crate) * (moved_smooth.x + moved_smooth.width / 2.0) + crate * (x0 + x1) / 2.0;
     const double cy =
         (1 - crate) * (moved_smooth.y + moved_smooth.height / 2.0) + crate * (y0 + y1) / 2.0;
     *smooth = cv::Rect2d(cx - w / 2, cy - hgt / 2, std::max(1.0, w), std::max(1.0, hgt));
@@ -906,11 +921,13 @@ struct MultiTracker::Impl {
     return box.empty() ? (moved & image) : box;
   }
 
-  void Track(const cv::Mat& frame, const cv::Mat& skin, std::vector<TrackResult>* results) {
+  void Track(const cv::Mat& frame, const cv::Mat& skin, const cv::Mat& cylinder,
+             std::vector<TrackResult>* results) {
     segmentation_ms = 0.0;
     if (options.mode == TrackerMode::kBounded && options.appearance) {
       cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
       frame_ = frame;
+      frame_cylinder_ = cylinder;
     }
     const cv::Rect image(0, 0, frame.cols, frame.rows);
     const int epsilon_max = options.EpsilonMaxPixels(frame.cols);
@@ -981,7 +998,7 @@ struct MultiTracker::Impl {
       for (size_t g = 0; g < groups.size(); ++g) {
         Hierarchy& part = Pyramid(similarity, g);
         BuildHierarchy(frame, skin, similarity, union_mask, groups[g], schedule_side,
-                       options.t_oversegment, &part);
+                       options.t_oversegment, &part, cylinder);
         pyramid_levels = std::max(pyramid_levels, part.bip->num_levels());
       }
       segmentation_ms += segmentation.ElapsedMs();
@@ -1216,11 +1233,13 @@ int MultiTracker::StartFromRegion(const cv::Mat& frame, const cv::Mat& labels, i
 }
 
 void MultiTracker::Track(const cv::Mat& frame, std::vector<TrackResult>* results,
-                         const cv::Mat& skin) {
+                         const cv::Mat& skin, const cv::Mat& cylinder) {
   const Stopwatch stopwatch;
   ATTEND_CHECK(!frame.empty() && frame.type() == CV_8UC3) << "frames must be 8-bit BGR";
+  ATTEND_CHECK(cylinder.empty() || (cylinder.type() == CV_32FC3 && cylinder.size() == frame.size()))
+      << "the cylinder image must be CV_32FC3 of the frame's size";
   std::vector<TrackResult> found;
-  impl_->Track(frame, skin, &found);
+  impl_->Track(frame, skin, cylinder, &found);
   results->insert(results->end(), found.begin(), found.end());
   milliseconds_ = stopwatch.ElapsedMs();
   segmentation_milliseconds_ = impl_->segmentation_ms;

@@ -141,8 +141,10 @@ class MultiTracker {
 
   // Searches every active target in `frame` and appends one result per target, in id order.
   // A target reported lost is removed afterwards. `skin` is needed when a skin target exists.
+  // `cylinder`: the frame's BgrToCylinder when the caller has it (it is then not computed
+  // again for the regions of interest); the results are the same.
   void Track(const cv::Mat& frame, std::vector<TrackResult>* results,
-             const cv::Mat& skin = cv::Mat());
+             const cv::Mat& skin = cv::Mat(), const cv::Mat& cylinder = cv::Mat());
 
   // The target's pixels in the last frame (CV_8UC1, frame size); empty when it was not found.
   cv::Mat Mask(int id) const;

@@ -328,6 +328,50 @@ void ExpectPartsAgreeWithTheWholePyramid(const std::vector<cv::Rect>& starts, in
   EXPECT_GT(compared, 0);
 }
 
+// A caller that has the frame's cylinder image (the attention loop's frame context) hands it
+// to Track, which then does not convert its regions of interest again: the results are those
+// of the tracker that converts them itself, in both modes.
+TEST(Tracker, TheCallersCylinderImageGivesTheSameResults) {
+  const cv::Size size(320, 240);
+  auto scene = [&](int frame) {
+    cv::Mat image = Frame(size,
+                          {{cv::Rect(20 + 3 * frame, 30, 40, 30), kRed},
+                           {cv::Rect(200 - 2 * frame, 130, 70, 60), kBlue},
+                           {cv::Rect(60, 150 + frame, 24, 20), kGreen}},
+                          frame);
+    cv::Mat texture(60, 70, CV_8UC3);
+    cv::RNG(11).fill(texture, cv::RNG::UNIFORM, 0, 50);
+    cv::Mat blue = image(cv::Rect(200 - 2 * frame, 130, 70, 60));
+    blue += texture;
+    return image;
+  };
+  for (const TrackerOptions& options : {TrackerOptions(), BoundedTrackerOptions()}) {
+    MultiTracker own(options), given(options);
+    const cv::Mat first = scene(0);
+    for (const cv::Rect& start :
+         {cv::Rect(20, 30, 40, 30), cv::Rect(200, 130, 70, 60), cv::Rect(60, 150, 24, 20)}) {
+      ASSERT_EQ(own.StartFromBox(first, start), given.StartFromBox(first, start));
+    }
+    for (int frame = 1; frame <= 10; ++frame) {
+      const cv::Mat image = scene(frame);
+      cv::Mat cylinder;
+      BgrToCylinder(image, &cylinder);
+      std::vector<TrackResult> a, b;
+      own.Track(image, &a);
+      given.Track(image, &b, cv::Mat(), cylinder);
+      ASSERT_EQ(a.size(), b.size()) << "frame " << frame;
+      for (size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].state, b[i].state) << "frame " << frame << " target " << a[i].id;
+        EXPECT_EQ(a[i].box, b[i].box) << "frame " << frame << " target " << a[i].id;
+        EXPECT_EQ(a[i].overlap, b[i].overlap) << "frame " << frame << " target " << a[i].id;
+        const cv::Mat mask_a = own.Mask(a[i].id), mask_b = given.Mask(b[i].id);
+        ASSERT_EQ(mask_a.empty(), mask_b.empty()) << "frame " << frame;
+        if (!mask_a.empty()) EXPECT_EQ(cv::countNonZero(mask_a != mask_b), 0);
+      }
+    }
+  }
+}
+
 // The pyramid over the union of the ROIs is built in independent parts (one per group of
 // nearby ROIs) unless a group's ROIs could hold a regular cell above level 6; either way the
 // results are those of one pyramid over all the ROIs.
