@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/text_fields.h"
 #include "util/error.h"
 #include "util/limits.h"
 #include "util/strings.h"
@@ -14,37 +15,15 @@ namespace attend {
 
 namespace {
 
-double ParseNumber(const std::string& text, const std::string& path, int line, const char* field) {
-  try {
-    size_t used = 0;
-    const double value = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(value)) return value;
-  } catch (const std::exception&) {
-  }
-  throw InputError(path + ":" + std::to_string(line) + ": field '" + field +
-                   "' is not a number: '" + text + "'");
-}
-
 // An integer in [0, max] (checked before the conversion to int, which would overflow).
 int ParseInteger(const std::string& text, const std::string& path, int line, const char* field,
                  int max) {
-  const double value = ParseNumber(text, path, line, field);
-  if (value != std::floor(value)) {
-    throw InputError(path + ":" + std::to_string(line) + ": field '" + field +
-                     "' is not an integer: '" + text + "'");
-  }
+  const double value = ParseWholeField(text, path, line, field);
   if (value < 0 || value > max) {
     throw InputError(path + ":" + std::to_string(line) + ": " + field + " number out of range: '" +
                      text + "' (must be in 0.." + std::to_string(max) + ")");
   }
   return static_cast<int>(value);
-}
-
-std::string Trim(const std::string& text) {
-  const size_t begin = text.find_first_not_of(" \t\r");
-  if (begin == std::string::npos) return "";
-  const size_t end = text.find_last_not_of(" \t\r");
-  return text.substr(begin, end - begin + 1);
 }
 
 }  // namespace
@@ -57,7 +36,7 @@ std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
   int line = 0;
   while (std::getline(in, text)) {
     ++line;
-    text = Trim(text);
+    text = TrimField(text);
     if (text.empty()) continue;
     if (line == 1 && text.rfind("frame", 0) == 0) continue;  // header
     std::vector<std::string> fields = Split(text, ',');
@@ -65,16 +44,16 @@ std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
       throw InputError(path + ":" + std::to_string(line) + ": expected 9 fields (" +
                        kObjectsCsvHeader + "), got " + std::to_string(fields.size()));
     }
-    for (std::string& field : fields) field = Trim(field);
+    for (std::string& field : fields) field = TrimField(field);
     GtObject object;
     object.frame = ParseInteger(fields[0], path, line, "frame", kMaxFrameNumber);
     object.id = ParseInteger(fields[1], path, line, "id", kMaxId);
-    object.box.x = ParseNumber(fields[2], path, line, "x");
-    object.box.y = ParseNumber(fields[3], path, line, "y");
-    object.box.width = ParseNumber(fields[4], path, line, "w");
-    object.box.height = ParseNumber(fields[5], path, line, "h");
-    object.visible_fraction = ParseNumber(fields[6], path, line, "visible_fraction");
-    if (!fields[7].empty()) object.disparity = ParseNumber(fields[7], path, line, "disparity");
+    object.box.x = ParseNumberField(fields[2], path, line, "x");
+    object.box.y = ParseNumberField(fields[3], path, line, "y");
+    object.box.width = ParseNumberField(fields[4], path, line, "w");
+    object.box.height = ParseNumberField(fields[5], path, line, "h");
+    object.visible_fraction = ParseNumberField(fields[6], path, line, "visible_fraction");
+    if (!fields[7].empty()) object.disparity = ParseNumberField(fields[7], path, line, "disparity");
     object.kind = fields[8];
     if (object.box.width < 0 || object.box.height < 0 || object.visible_fraction < 0 ||
         object.visible_fraction > 1) {

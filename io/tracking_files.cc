@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "io/text_fields.h"
 #include "util/error.h"
 #include "util/limits.h"
 #include "util/strings.h"
@@ -16,35 +17,10 @@ namespace {
 
 constexpr const char* kTracksCsvHeader = "frame,id,x,y,w,h,state";
 
-std::string Trim(const std::string& text) {
-  const size_t begin = text.find_first_not_of(" \t\r");
-  if (begin == std::string::npos) return "";
-  const size_t end = text.find_last_not_of(" \t\r");
-  return text.substr(begin, end - begin + 1);
-}
-
 std::string Where(const std::string& path, int line) { return path + ":" + std::to_string(line); }
 
-// A finite number, or with `allow_nan` also "nan" (OTB's mark for a frame without a box).
-double ParseNumber(const std::string& text, const std::string& path, int line, const char* field,
-                   bool allow_nan = false) {
-  try {
-    size_t used = 0;
-    const double value = std::stod(text, &used);
-    if (used == text.size() && (std::isfinite(value) || (allow_nan && std::isnan(value)))) {
-      return value;
-    }
-  } catch (const std::exception&) {
-  }
-  throw InputError(Where(path, line) + ": field '" + field + "' is not a number: '" + text + "'");
-}
-
 int ParseInteger(const std::string& text, const std::string& path, int line, const char* field) {
-  const double value = ParseNumber(text, path, line, field);
-  if (value != std::floor(value)) {
-    throw InputError(Where(path, line) + ": field '" + field + "' is not an integer: '" + text +
-                     "'");
-  }
+  const double value = ParseWholeField(text, path, line, field);
   // Checked before the conversion to int, which would overflow.
   if (std::fabs(value) > std::numeric_limits<int>::max()) {
     throw InputError(Where(path, line) + ": " + field + " number out of range: '" + text + "'");
@@ -63,7 +39,7 @@ std::vector<TrackRow> ReadTracksCsv(const std::string& path) {
   bool header = false;
   while (std::getline(in, text)) {
     ++line;
-    text = Trim(text);
+    text = TrimField(text);
     if (text.empty()) continue;
     if (!header) {
       if (text != kTracksCsvHeader) {
@@ -78,14 +54,14 @@ std::vector<TrackRow> ReadTracksCsv(const std::string& path) {
       throw InputError(Where(path, line) + ": expected 7 fields (" + kTracksCsvHeader + "), got " +
                        std::to_string(fields.size()));
     }
-    for (std::string& field : fields) field = Trim(field);
+    for (std::string& field : fields) field = TrimField(field);
     TrackRow row;
     row.frame = ParseInteger(fields[0], path, line, "frame");
     row.id = ParseInteger(fields[1], path, line, "id");
-    row.box.x = ParseNumber(fields[2], path, line, "x");
-    row.box.y = ParseNumber(fields[3], path, line, "y");
-    row.box.width = ParseNumber(fields[4], path, line, "w");
-    row.box.height = ParseNumber(fields[5], path, line, "h");
+    row.box.x = ParseNumberField(fields[2], path, line, "x");
+    row.box.y = ParseNumberField(fields[3], path, line, "y");
+    row.box.width = ParseNumberField(fields[4], path, line, "w");
+    row.box.height = ParseNumberField(fields[5], path, line, "h");
     row.state = fields[6];
     if (row.frame < 0 || row.frame > kMaxFrameNumber) {
       throw InputError(Where(path, line) + ": frame number out of range: '" + fields[0] +
@@ -126,7 +102,7 @@ std::vector<cv::Rect2d> ReadOtbGroundTruth(const std::string& path) {
   if (!in) throw InputError(path + ": cannot read the ground-truth file");
   std::vector<std::string> lines;
   std::string text;
-  while (std::getline(in, text)) lines.push_back(Trim(text));
+  while (std::getline(in, text)) lines.push_back(TrimField(text));
   while (!lines.empty() && lines.back().empty()) lines.pop_back();
   if (lines.empty()) throw InputError(path + ": no boxes (expected one 'x y w h' a line)");
 
@@ -154,7 +130,7 @@ std::vector<cv::Rect2d> ReadOtbGroundTruth(const std::string& path) {
     }
     const char* names[] = {"x", "y", "w", "h"};
     double value[4];
-    for (int k = 0; k < 4; ++k) value[k] = ParseNumber(fields[k], path, line, names[k], true);
+    for (int k = 0; k < 4; ++k) value[k] = ParseNumberField(fields[k], path, line, names[k], true);
     if (value[2] < 0.0 || value[3] < 0.0) {
       throw InputError(Where(path, line) + ": w and h must be >= 0");
     }

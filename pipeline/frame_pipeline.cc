@@ -75,8 +75,8 @@ FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry
   for (const FeatureSpec& spec : options.features) {
     if (!spec.enabled) continue;
     const std::string& name = spec.normalisation;
-    std::string origin;
-    MapNormalisation normalise;
+    ChosenNormalisation chosen_normalisation;
+    MapNormalisation& normalise = chosen_normalisation.normalise;
     if (std::find(builtin.begin(), builtin.end(), name) != builtin.end()) {
       SaliencyOptions chosen = options.saliency;
       chosen.normalisation = name;
@@ -89,10 +89,9 @@ FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry
                                               "; known: " + Join(known, ", "));
       }
       normalise = entry->normalise;
-      origin = entry->origin;
+      chosen_normalisation.plugin = entry->origin;
     }
-    normalisers_.push_back(std::move(normalise));
-    plugin_normalisation_origin_.push_back(origin);
+    normalisers_.push_back(std::move(chosen_normalisation));
   }
 }
 
@@ -130,14 +129,14 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   stage.Restart();
   const std::vector<FeatureResult>& results = features_.results();
   for (size_t i = 0; i < results.size(); ++i) {
-    if (!normalisers_[i]) {
+    const ChosenNormalisation& chosen = normalisers_[i];
+    if (!chosen.normalise) {
       NormaliseMap(results[i].map, options_.saliency, &normalised_[i]);
       continue;
     }
-    normalisers_[i](results[i].map, &normalised_[i]);
-    if (!plugin_normalisation_origin_[i].empty()) {
-      CheckNormalisedMap(results[i].name, plugin_normalisation_origin_[i], normalised_[i],
-                         results[i].map.size());
+    chosen.normalise(results[i].map, &normalised_[i]);
+    if (!chosen.plugin.empty()) {
+      CheckNormalisedMap(results[i].name, chosen.plugin, normalised_[i], results[i].map.size());
     }
   }
   // SPEC 2.3 divides by the sum of all weights. A grey frame has no colour, so there colour

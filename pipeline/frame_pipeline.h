@@ -56,10 +56,13 @@ class FramePipeline {
   LazyFrameContext context_;
   FeatureSet features_;
   std::vector<cv::Mat> normalised_;
-  // Per feature: its normalisation when it chose one (empty: saliency.normalisation), and
-  // whether that one came from a plugin (its output is checked).
-  std::vector<MapNormalisation> normalisers_;
-  std::vector<std::string> plugin_normalisation_origin_;
+  // Per feature: its normalisation when it chose one (empty: saliency.normalisation), and the
+  // library it came from when a plugin added it ("" otherwise; a plugin's output is checked).
+  struct ChosenNormalisation {
+    MapNormalisation normalise;
+    std::string plugin;
+  };
+  std::vector<ChosenNormalisation> normalisers_;
   std::vector<double> weights_;
   bool grey_ = false;
   std::vector<double> frame_weights_;

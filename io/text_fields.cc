@@ -1,0 +1,41 @@
+#include "io/text_fields.h"
+
+#include <cmath>
+#include <exception>
+
+#include "util/error.h"
+
+namespace attend {
+
+std::string TrimField(const std::string& text) {
+  const size_t begin = text.find_first_not_of(" \t\r");
+  if (begin == std::string::npos) return "";
+  const size_t end = text.find_last_not_of(" \t\r");
+  return text.substr(begin, end - begin + 1);
+}
+
+double ParseNumberField(const std::string& text, const std::string& path, int line,
+                        const char* field, bool allow_nan) {
+  try {
+    size_t used = 0;
+    const double value = std::stod(text, &used);
+    if (used == text.size() && (std::isfinite(value) || (allow_nan && std::isnan(value)))) {
+      return value;
+    }
+  } catch (const std::exception&) {
+  }
+  throw InputError(path + ":" + std::to_string(line) + ": field '" + field +
+                   "' is not a number: '" + text + "'");
+}
+
+double ParseWholeField(const std::string& text, const std::string& path, int line,
+                       const char* field) {
+  const double value = ParseNumberField(text, path, line, field);
+  if (value != std::floor(value)) {
+    throw InputError(path + ":" + std::to_string(line) + ": field '" + field +
+                     "' is not an integer: '" + text + "'");
+  }
+  return value;
+}
+
+}  // namespace attend
