@@ -10,20 +10,19 @@ namespace {
 class DisparityFeature : public FeatureMap {
  public:
   DisparityFeature(const DisparityOptions& options, bool per_region)
-      : estimator_(options), per_region_(per_region) {}
+      : options_(options), per_region_(per_region) {}
 
   bool NeedsStereo() const override { return true; }
 
+  // The context computes the disparity, once a frame, shared with plugins that ask for it.
   void Compute(const FrameContext& context, cv::Mat* out) override {
-    estimator_.Compute(context.left(), context.right(), &disparity_);
-    disparity_.convertTo(*out, CV_32F, 1.0 / (estimator_.options().max_disparity - 1));
+    context.Disparity(options_).convertTo(*out, CV_32F, 1.0 / (options_.max_disparity - 1));
     if (per_region_) AverageOverRegions(context.Regions(), out);
   }
 
  private:
-  DisparityEstimator estimator_;
+  DisparityOptions options_;
   bool per_region_;
-  cv::Mat disparity_;
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
 // What a feature plugin sees of a frame (SPEC 1, 2.3; docs/PLUGINS.md): the images, their colour
-// planes, each skin model's distance map and the frame's colour segmentation (labels, region
-// statistics, region adjacency graph; pyramid/regions.h). It is an interface: its layout does
+// planes, each skin model's distance map, the frame's colour segmentation (labels, region
+// statistics, region adjacency graph; pyramid/regions.h) and, from a stereo source, the
+// disparity. It is an interface: its layout does
 // not depend on how the values are computed (features/lazy_frame_context.h is the pipeline's),
 // so the pyramid's internals can change without changing what plugins are built against
 // (ATTEND_PLUGIN_ABI_VERSION, features/plugin_api.h).
@@ -13,6 +14,7 @@
 
 #include "colour/skin_model.h"
 #include "pyramid/regions.h"
+#include "stereo/disparity.h"
 
 namespace attend {
 
@@ -39,6 +41,15 @@ class FrameContext {
   virtual const cv::Mat& SkinDistance(const SkinModel& model) const = 0;
   // The colour segmentation of the left image: labels, region statistics, adjacency graph.
   virtual const Segmentation& Regions() const = 0;
+  // The disparity map of the stereo pair (CV_32FC1, in pixels, on the left image's grid;
+  // stereo/disparity.h) computed with `options`, once a frame for each options asked for: the
+  // `disparity` feature and a plugin that asks with the same options share one computation.
+  // Only for a stereo source (stereo(); a plugin that needs it says so with NeedsStereo).
+  virtual const cv::Mat& Disparity(const DisparityOptions& options) const = 0;
+  // The options of the run's disparity: those of the `disparity` feature's entry when the run
+  // enables it, else DisparityOptions's defaults. Disparity(disparity_options()) is the map
+  // that feature uses.
+  virtual const DisparityOptions& disparity_options() const = 0;
 
  protected:
   FrameContext() = default;

@@ -23,6 +23,7 @@ void LazyFrameContext::Reset(int frame_index, const cv::Mat& left, const cv::Mat
   tsl_slot_.ready = false;
   regions_slot_.ready = false;
   for (SkinSlot& slot : skin_slots_) slot.ready = false;
+  for (DisparitySlot& slot : disparity_slots_) slot.ready = false;
 }
 
 const cv::Mat& LazyFrameContext::Cylinder() const {
@@ -57,6 +58,21 @@ const cv::Mat& LazyFrameContext::SkinDistance(const SkinModel& model) const {
     slot->ready = true;
   }
   return slot->distance;
+}
+
+const cv::Mat& LazyFrameContext::Disparity(const DisparityOptions& options) const {
+  ATTEND_CHECK(stereo()) << "the disparity needs a stereo frame (frame " << frame_index_ << ")";
+  std::lock_guard<std::mutex> lock(disparity_mutex_);
+  auto slot = std::find_if(disparity_slots_.begin(), disparity_slots_.end(),
+                           [&](const DisparitySlot& s) { return s.estimator.options() == options; });
+  if (slot == disparity_slots_.end()) {
+    slot = disparity_slots_.emplace(disparity_slots_.end(), options);
+  }
+  if (!slot->ready) {
+    slot->estimator.Compute(left_, right_, &slot->disparity);
+    slot->ready = true;
+  }
+  return slot->disparity;
 }
 
 const Segmentation& LazyFrameContext::Regions() const {

@@ -1,8 +1,8 @@
 // The frame context the pipeline hands the feature plugins (features/frame_context.h): it holds
 // the frame and lazily computes, once per frame, what several plugins share: the HSV cylinder
 // and TSL images, the skin distance map of each skin model asked for (the skin feature and
-// the attention stage's skin targets), and the frame's BIP colour segmentation with its region
-// adjacency graph. The lazy getters are safe to call from several plugins at once; the first
+// the attention stage's skin targets), the frame's BIP colour segmentation with its region
+// adjacency graph, and the disparity map for each DisparityOptions asked for. The lazy getters are safe to call from several plugins at once; the first
 // caller computes, the others wait and then share the result.
 //
 // One context serves a whole stream of frames: Reset() starts a frame and keeps every buffer,
@@ -26,6 +26,9 @@ class LazyFrameContext final : public FrameContext {
   // Starts a frame: `left` (and `right`, empty when monocular) are 8-bit BGR images of the
   // same size. The images are referenced, not copied; they must outlive the frame.
   void Reset(int frame_index, const cv::Mat& left, const cv::Mat& right = cv::Mat());
+  // The options of the run's disparity (FrameContext::disparity_options); the defaults until
+  // set. The pipeline sets those of the `disparity` feature's entry.
+  void set_disparity_options(const DisparityOptions& options) { disparity_options_ = options; }
 
   int frame_index() const override { return frame_index_; }
   const cv::Mat& left() const override { return left_; }
@@ -41,6 +44,10 @@ class LazyFrameContext final : public FrameContext {
   const cv::Mat& SkinDistance(const SkinModel& model) const override;
   // The BIP colour segmentation of the left image: labels, region statistics, adjacency graph.
   const Segmentation& Regions() const override;
+  // The disparity of the stereo pair by DisparityEstimator with `options`, once per frame for
+  // each options (each keeps its estimator and buffers between frames).
+  const cv::Mat& Disparity(const DisparityOptions& options) const override;
+  const DisparityOptions& disparity_options() const override { return disparity_options_; }
 
  private:
   // One lazily computed value: `ready` is guarded by `mutex`.
@@ -67,6 +74,17 @@ class LazyFrameContext final : public FrameContext {
   };
   mutable std::mutex skin_mutex_;
   mutable std::list<SkinSlot> skin_slots_;
+  // One estimator and disparity map per options asked for; a list, so that references stay
+  // valid.
+  struct DisparitySlot {
+    explicit DisparitySlot(const DisparityOptions& options) : estimator(options) {}
+    DisparityEstimator estimator;
+    bool ready = false;
+    cv::Mat disparity;
+  };
+  mutable std::mutex disparity_mutex_;
+  mutable std::list<DisparitySlot> disparity_slots_;
+  DisparityOptions disparity_options_;
   mutable Segmenter segmenter_;
   mutable Segmentation regions_;
 };

@@ -14,14 +14,15 @@
 // compatibility: FeatureMap and SequenceStart (features/feature_map.h), FeatureRegistry,
 // FeatureSetup, the FrameContext interface (features/frame_context.h), Segmentation,
 // RegionStats and RegionGraph (pyramid/regions.h), SkinModel (colour/skin_model.h),
-// CylinderColour (colour/colour.h), ParamBlock and Range (config/param_block.h). Nothing of
-// the pyramid or the pipeline is in that list. Version 2: the context became an interface, and
-// FeatureMap got BeginSequence and EndSequence.
+// CylinderColour (colour/colour.h), DisparityOptions (stereo/disparity.h), ParamBlock and
+// Range (config/param_block.h). Nothing of the pyramid or the pipeline is in that list.
+// Version 2: the context became an interface, and FeatureMap got BeginSequence and
+// EndSequence. Version 3: the context gives the disparity.
 #pragma once
 
 #include "features/feature_map.h"
 
-#define ATTEND_PLUGIN_ABI_VERSION 2
+#define ATTEND_PLUGIN_ABI_VERSION 3
 
 extern "C" {
 

@@ -5,6 +5,7 @@
 
 #include "colour/grey.h"
 #include "features/builtin.h"
+#include "features/disparity_feature.h"
 #include "features/plugin_loader.h"
 #include "io/skin_files.h"
 #include "saliency/saliency.h"
@@ -60,6 +61,12 @@ FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry
       context_(options.segmentation),
       features_(options.features, registry, setup),
       attention_(options.attention, LoadAttentionSkinModel(options.attention.skin_model, setup)) {
+  // The run's disparity (FrameContext::disparity_options) is the `disparity` feature's.
+  for (const FeatureSpec& spec : options.features) {
+    if (spec.enabled && spec.name == "disparity") {
+      context_.set_disparity_options(ReadDisparityOptions(spec.params));
+    }
+  }
   normalised_.resize(features_.results().size());
   for (const FeatureResult& result : features_.results()) weights_.push_back(result.weight);
   // Each feature's normalisation: the built-in ones by name, then the registry's (plugins').

@@ -51,6 +51,8 @@ struct DisparityOptions {
 
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+
+  bool operator==(const DisparityOptions&) const = default;
 };
 
 // Computes disparity maps; keeps its buffers between calls, so a stream of frames of one size

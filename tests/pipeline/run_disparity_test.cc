@@ -1,0 +1,47 @@
+// The run's disparity (FrameContext::disparity_options): the `disparity` feature's entry sets
+// the options plugins find in the context; without that feature they are the defaults.
+#include <gtest/gtest.h>
+
+#include "features/builtin.h"
+#include "pipeline/frame_pipeline.h"
+#include "tests/support/temp_dir.h"
+
+namespace attend {
+namespace {
+
+AttendOptions WithFeatures(const std::string& features) {
+  AttendOptions options;
+  options.features =
+      ReadFeatureList(ParamBlock::Parse("features: " + features, "test.yaml"), "features");
+  return options;
+}
+
+FeatureSetup StereoSetup() {
+  FeatureSetup setup;
+  setup.stereo = true;
+  setup.home = testing::ProjectRoot();
+  return setup;
+}
+
+TEST(RunDisparity, TheDisparityFeaturesEntryChoosesTheContextsOptions) {
+  const FramePipeline pipeline(
+      WithFeatures("[{name: intensity_contrast}, {name: disparity, max_disparity: 24, window: "
+                   "9, smoothness: penalty}]"),
+      BuiltinFeatures(), StereoSetup());
+  const DisparityOptions& options = pipeline.context().disparity_options();
+  EXPECT_EQ(options.max_disparity, 24);
+  EXPECT_EQ(options.window, 9);
+  EXPECT_EQ(options.smoothness, "penalty");
+}
+
+TEST(RunDisparity, WithoutTheFeatureOrWithItDisabledTheOptionsAreTheDefaults) {
+  for (const std::string& features :
+       {std::string("[{name: intensity_contrast}]"),
+        std::string("[{name: intensity_contrast}, {name: disparity, window: 9, enabled: false}]")}) {
+    const FramePipeline pipeline(WithFeatures(features), BuiltinFeatures(), StereoSetup());
+    EXPECT_TRUE(pipeline.context().disparity_options() == DisparityOptions()) << features;
+  }
+}
+
+}  // namespace
+}  // namespace attend
