@@ -17,37 +17,6 @@
 
 namespace attend {
 
-namespace {
-
-// Formats a number without trailing zeros ("0.5", "3", "1e+06").
-std::string FormatNumber(double value) {
-  std::ostringstream out;
-  out.precision(12);
-  out << value;
-  return out.str();
-}
-
-}  // namespace
-
-bool Range::Contains(double value) const {
-  if (std::isnan(value)) return false;
-  const bool above_min = min_open ? value > min : value >= min;
-  const bool below_max = max_open ? value < max : value <= max;
-  return above_min && below_max;
-}
-
-std::string Range::Describe() const {
-  const bool has_min = std::isfinite(min);
-  const bool has_max = std::isfinite(max);
-  if (has_min && has_max) {
-    return std::string("must be in ") + (min_open ? "(" : "[") + FormatNumber(min) + ", " +
-           FormatNumber(max) + (max_open ? ")" : "]");
-  }
-  if (has_min) return std::string("must be ") + (min_open ? "> " : ">= ") + FormatNumber(min);
-  if (has_max) return std::string("must be ") + (max_open ? "< " : "<= ") + FormatNumber(max);
-  return "must be a finite number";
-}
-
 // The document a block belongs to: its file name and the overrides applied to it.
 struct Document {
   std::string source;
@@ -330,6 +299,14 @@ std::vector<std::string> ParamBlock::Keys() const {
 void ParamBlock::Fail(const std::string& key, const std::string& message) const {
   const std::string path = KeyPath(key);
   throw ConfigError(Where(key) + ": " + (path.empty() ? "" : path + ": ") + message);
+}
+
+void ParamBlock::FailCheck(const std::string& error) const {
+  const size_t end = error.find_first_of(": ");
+  const std::string key = error.substr(0, end);
+  if (end == std::string::npos || !Has(key)) Fail("", error);
+  const size_t rest = error.find_first_not_of(": ", end);
+  Fail(key, rest == std::string::npos ? error : error.substr(rest));
 }
 
 namespace {

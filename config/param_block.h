@@ -5,28 +5,13 @@
 // type are reported the same way. All failures throw ConfigError (exit status 2).
 #pragma once
 
-#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "util/range.h"
+
 namespace attend {
-
-// An interval that a numeric value must lie in; open or closed at each end.
-struct Range {
-  double min = -std::numeric_limits<double>::infinity();
-  double max = std::numeric_limits<double>::infinity();
-  bool min_open = false;
-  bool max_open = false;
-
-  static Range Any() { return {}; }
-  static Range AtLeast(double min) { return {min}; }
-  static Range Above(double min) { return {min, std::numeric_limits<double>::infinity(), true}; }
-  static Range Closed(double min, double max) { return {min, max}; }
-  bool Contains(double value) const;
-  // "must be >= 0", "must be in [0, 1]", ...
-  std::string Describe() const;
-};
 
 class ParamBlock {
  public:
@@ -85,6 +70,10 @@ class ParamBlock {
 
   // Throws ConfigError "WHERE: KEYPATH: message".
   [[noreturn]] void Fail(const std::string& key, const std::string& message) const;
+  // Throws the error of an options struct's Check() ("window must be odd", "scales: each must
+  // be ..."): at the key it starts with when this block has that key ("WHERE: KEYPATH: must
+  // be odd"), else at the block with the whole message.
+  [[noreturn]] void FailCheck(const std::string& error) const;
 
   // Throws ConfigError for the first key present that no getter asked for, naming it, its
   // line and the closest key that was asked for.

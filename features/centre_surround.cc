@@ -29,13 +29,18 @@ void MinMaxInPlace(cv::Mat* map) {
 
 }  // namespace
 
+const FieldRanges<CentreSurroundOptions>& CentreSurroundOptions::Ranges() {
+  static const FieldRanges<CentreSurroundOptions> ranges = {
+      {"surround", &CentreSurroundOptions::surround, Range::AboveUpTo(1, 50)}};
+  return ranges;
+}
+
 std::string CentreSurroundOptions::Check() const {
-  if (scales.empty()) return "scales: must not be empty";
+  if (scales.empty()) return "scales must not be empty";
   for (const double c : scales) {
-    if (!(c > 0.0 && c <= 200.0)) return "scales: each must be in (0, 200]";
+    if (!ScaleRange().Contains(c)) return "scales: each " + ScaleRange().Describe();
   }
-  if (!(surround > 1.0 && surround <= 50.0)) return "surround: must be in (1, 50]";
-  return "";
+  return CheckFieldRanges(*this, Ranges());
 }
 
 void CentreSurroundMap(const cv::Mat& bgr, const CentreSurroundOptions& options, cv::Mat* out) {
@@ -65,10 +70,12 @@ void CentreSurroundMap(const cv::Mat& bgr, const CentreSurroundOptions& options,
 std::unique_ptr<FeatureMap> CreateCentreSurroundFeature(const ParamBlock& params,
                                                         const FeatureSetup&) {
   CentreSurroundOptions options;
-  options.scales = params.GetDoubles("scales", options.scales, Range{0.0, 200.0, true, false});
-  options.surround = params.GetDouble("surround", options.surround, Range{1.0, 50.0, true, false});
+  options.scales =
+      params.GetDoubles("scales", options.scales, CentreSurroundOptions::ScaleRange());
+  options.surround = params.GetDouble("surround", options.surround,
+                                      RangeOf(CentreSurroundOptions::Ranges(), "surround"));
   const std::string error = options.Check();
-  if (!error.empty()) params.Fail(error.substr(0, error.find(':')), error.substr(error.find(':') + 2));
+  if (!error.empty()) params.FailCheck(error);
   return std::make_unique<CentreSurroundFeature>(options);
 }
 

@@ -13,13 +13,19 @@
 #include <vector>
 
 #include "features/feature_map.h"
+#include "util/field_ranges.h"
 
 namespace attend {
 
 struct CentreSurroundOptions {
   std::vector<double> scales = {2.0, 4.0, 8.0};  // centre sigmas, px
   double surround = 4.0;                         // surround sigma / centre sigma
+  // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+  // The range of each of `scales`, and of the numeric fields (util/field_ranges.h); Check and
+  // the feature's keys apply them.
+  static Range ScaleRange() { return Range::AboveUpTo(0, 200); }
+  static const FieldRanges<CentreSurroundOptions>& Ranges();
 };
 
 // `bgr`: 8-bit BGR. Fills `out` (CV_32FC1, [0, 1]).

@@ -43,11 +43,7 @@ DisparityOptions ReadDisparityOptions(const ParamBlock& block, DisparityOptions 
   options.smoothness = block.GetString("smoothness", options.smoothness);
   options.jump_penalty = static_cast<float>(block.GetDouble("jump_penalty", options.jump_penalty));
   const std::string error = options.Check();
-  if (!error.empty()) {
-    // Check names the field first ("window must be odd, 1..31"): the error is put at its key.
-    const std::string key = error.substr(0, error.find(' '));
-    block.Fail(block.Has(key) ? key : "", error);
-  }
+  if (!error.empty()) block.FailCheck(error);
   return options;
 }
 

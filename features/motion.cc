@@ -45,12 +45,20 @@ class MotionFeature final : public FeatureMap {
 
 }  // namespace
 
+const FieldRanges<MotionOptions>& MotionOptions::Ranges() {
+  static const FieldRanges<MotionOptions> ranges = {
+      {"blur", &MotionOptions::blur, Range::Closed(0, 50)},
+      {"rate", &MotionOptions::rate, Range::AboveUpTo(0, 1)},
+      {"min_change", &MotionOptions::min_change, Range::Closed(0, 255)},
+      {"noise_factor", &MotionOptions::noise_factor, Range::Closed(0, 100)},
+      {"window", &MotionOptions::window, Range::Closed(1, 201)}};
+  return ranges;
+}
+
 std::string MotionOptions::Check() const {
-  if (!(blur >= 0.0 && blur <= 50.0)) return "blur: must be in [0, 50]";
-  if (!(rate > 0.0 && rate <= 1.0)) return "rate: must be in (0, 1]";
-  if (!(min_change >= 0.0 && min_change <= 255.0)) return "min_change: must be in [0, 255]";
-  if (!(noise_factor >= 0.0 && noise_factor <= 100.0)) return "noise_factor: must be in [0, 100]";
-  if (window < 1 || window > 201 || window % 2 == 0) return "window: must be odd, 1..201";
+  const std::string error = CheckFieldRanges(*this, Ranges());
+  if (!error.empty()) return error;
+  if (window % 2 == 0) return "window must be odd";
   return "";
 }
 
@@ -147,13 +155,16 @@ void MotionDetector::Compute(int frame_index, const cv::Mat& bgr,
 
 std::unique_ptr<FeatureMap> CreateMotionFeature(const ParamBlock& params, const FeatureSetup&) {
   MotionOptions options;
-  options.blur = params.GetDouble("blur", options.blur, Range::Closed(0, 50));
-  options.rate = params.GetDouble("rate", options.rate, Range{0.0, 1.0, true, false});
-  options.min_change = params.GetDouble("min_change", options.min_change, Range::Closed(0, 255));
+  const FieldRanges<MotionOptions>& ranges = MotionOptions::Ranges();
+  options.blur = params.GetDouble("blur", options.blur, RangeOf(ranges, "blur"));
+  options.rate = params.GetDouble("rate", options.rate, RangeOf(ranges, "rate"));
+  options.min_change =
+      params.GetDouble("min_change", options.min_change, RangeOf(ranges, "min_change"));
   options.noise_factor =
-      params.GetDouble("noise_factor", options.noise_factor, Range::Closed(0, 100));
-  options.window = params.GetInt("window", options.window, Range::Closed(1, 201));
-  if (options.window % 2 == 0) params.Fail("window", "must be odd");
+      params.GetDouble("noise_factor", options.noise_factor, RangeOf(ranges, "noise_factor"));
+  options.window = params.GetInt("window", options.window, RangeOf(ranges, "window"));
+  const std::string error = options.Check();
+  if (!error.empty()) params.FailCheck(error);
   options.per_region = params.GetBool("per_region", options.per_region);
   return std::make_unique<MotionFeature>(options);
 }

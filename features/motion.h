@@ -22,6 +22,7 @@
 #include <opencv2/core.hpp>
 
 #include "features/feature_map.h"
+#include "util/field_ranges.h"
 
 namespace attend {
 
@@ -32,8 +33,10 @@ struct MotionOptions {
   double noise_factor = 3.0;  // change below this many robust noise sigmas is noise
   int window = 9;             // side of the box filter on the change, px, odd; 1: none
   bool per_region = false;    // average the change over each BIP colour region instead
-  // "" when valid; otherwise "KEY: what is wrong".
+  // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+  // The numeric fields' ranges (util/field_ranges.h), which Check and the configuration apply.
+  static const FieldRanges<MotionOptions>& Ranges();
 };
 
 // The stateful computation behind the plugin, usable without a FrameContext. `segmentation`

@@ -14,8 +14,8 @@
 // compatibility: FeatureMap and SequenceStart (features/feature_map.h), FeatureRegistry,
 // FeatureSetup, the FrameContext interface (features/frame_context.h), Segmentation,
 // RegionStats and RegionGraph (pyramid/regions.h), SkinModel (colour/skin_model.h),
-// CylinderColour (colour/colour.h), DisparityOptions (stereo/disparity.h), ParamBlock and
-// Range (config/param_block.h). Nothing of the pyramid or the pipeline is in that list.
+// CylinderColour (colour/colour.h), DisparityOptions (stereo/disparity.h), ParamBlock
+// (config/param_block.h) and Range (util/range.h). Nothing of the pyramid or the pipeline is in that list.
 // Version 2: the context became an interface, and FeatureMap got BeginSequence and
 // EndSequence. Version 3: the context gives the disparity.
 #pragma once

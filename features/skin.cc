@@ -76,19 +76,20 @@ void SkinDistanceMap(const cv::Mat& tsl, const SkinModel& model, cv::Mat* out) {
   }
 }
 
-std::string SkinRegionOptions::Check() const {
-  if (!(confident > 0.0 && confident <= 1.0)) return "confident: must be in (0, 1]";
-  if (!(min_confident_share >= 0.0 && min_confident_share <= 1.0))
-    return "min_confident_share: must be in [0, 1]";
-  if (!(max_mean_distance >= 0.0 && max_mean_distance <= 1.0))
-    return "max_mean_distance: must be in [0, 1]";
-  if (!(min_solidity >= 0.0 && min_solidity <= 1.0)) return "min_solidity: must be in [0, 1]";
-  if (!(max_aspect_ratio >= 1.0)) return "max_aspect_ratio: must be >= 1";
-  if (!(max_area_fraction > 0.0 && max_area_fraction <= 1.0))
-    return "max_area_fraction: must be in (0, 1]";
-  if (min_area < 1) return "min_area: must be >= 1";
-  return "";
+const FieldRanges<SkinRegionOptions>& SkinRegionOptions::Ranges() {
+  using O = SkinRegionOptions;
+  static const FieldRanges<SkinRegionOptions> ranges = {
+      {"confident", &O::confident, Range::Closed(0.001, 1)},
+      {"min_confident_share", &O::min_confident_share, Range::Closed(0, 1)},
+      {"max_mean_distance", &O::max_mean_distance, Range::Closed(0, 1)},
+      {"min_solidity", &O::min_solidity, Range::Closed(0, 1)},
+      {"max_aspect_ratio", &O::max_aspect_ratio, Range::Closed(1, 1000)},
+      {"max_area_fraction", &O::max_area_fraction, Range::AboveUpTo(0, 1)},
+      {"min_area", &O::min_area, Range::Closed(1, 1e8)}};
+  return ranges;
 }
+
+std::string SkinRegionOptions::Check() const { return CheckFieldRanges(*this, Ranges(), ": "); }
 
 std::string SkinRegionVerdict::Describe() const {
   char line[256];

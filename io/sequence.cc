@@ -483,6 +483,21 @@ int SequenceOptions::SourceCount() const {
          (video.empty() ? 0 : 1) + (images.empty() ? 0 : 1);
 }
 
+const FieldRanges<SequenceOptions>& SequenceOptions::Ranges() {
+  static const FieldRanges<SequenceOptions> ranges = {
+      {"first_frame", &SequenceOptions::first_frame, Range::Closed(0, 1e9)},
+      {"last_frame", &SequenceOptions::last_frame, Range::Closed(-1, 1e9)},
+      {"stride", &SequenceOptions::stride, Range::Closed(1, 1e6)}};
+  return ranges;
+}
+
+const FieldRanges<SequenceOptions>& SequenceOptions::SizeRanges() {
+  static const FieldRanges<SequenceOptions> ranges = {
+      {"width", &SequenceOptions::width, Range::AboveUpTo(0, 16384)},
+      {"height", &SequenceOptions::height, Range::AboveUpTo(0, 16384)}};
+  return ranges;
+}
+
 std::string SequenceOptions::Check() const {
   const bool has_pair = !left_video.empty() || !right_video.empty();
   const int sources = SourceCount();
@@ -496,8 +511,8 @@ std::string SequenceOptions::Check() const {
     return left_video.empty() ? "left_video must be set together with right_video"
                               : "right_video must be set together with left_video";
   }
-  if (stride < 1) return "stride must be >= 1, got " + std::to_string(stride);
-  if (first_frame < 0) return "first_frame must be >= 0, got " + std::to_string(first_frame);
+  const std::string error = CheckFieldRanges(*this, Ranges());
+  if (!error.empty()) return error;
   if (last_frame != -1 && last_frame < first_frame) {
     return "last_frame must be -1 (to the end) or >= first_frame (" + std::to_string(first_frame) +
            "), got " + std::to_string(last_frame);
@@ -508,11 +523,12 @@ std::string SequenceOptions::Check() const {
            DidYouMean(resize, modes);
   }
   if (resize != "native") {
-    if (width <= 0) {
-      return "width must be > 0 unless resize is native, got " + std::to_string(width);
-    }
-    if (height <= 0) {
-      return "height must be > 0 unless resize is native, got " + std::to_string(height);
+    for (const FieldRange<SequenceOptions>& field : SizeRanges()) {
+      const int side = this->*std::get<int SequenceOptions::*>(field.member);
+      if (!field.range.Contains(side)) {
+        return std::string(field.name) + " " + field.range.DescribeBreach(side) +
+               " unless resize is native, got " + std::to_string(side);
+      }
     }
   }
   return "";

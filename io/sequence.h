@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "util/field_ranges.h"
+
 namespace attend {
 
 struct SequenceOptions {
@@ -38,6 +40,11 @@ struct SequenceOptions {
 
   // Empty when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+  // The numeric fields' ranges (util/field_ranges.h), which Check and the configuration apply.
+  static const FieldRanges<SequenceOptions>& Ranges();
+  // Those of width and height, which Check applies only unless resize is native (the
+  // configuration always).
+  static const FieldRanges<SequenceOptions>& SizeRanges();
   // How many sources are set (a video pair counts once).
   int SourceCount() const;
   // The values of `resize`.

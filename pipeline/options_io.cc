@@ -15,27 +15,32 @@ namespace {
 
 // Visits every key of the configuration in file order. The visitor decides what a key means:
 // read it from YAML, write it, or list it. Keeping one list is what keeps reading, writing
-// and documentation in step.
+// and documentation in step. The ranges of numeric keys are not written here: each section
+// names the options structs whose fields it binds (Ranges), and a key takes the range of its
+// field (util/field_ranges.h), the one that struct's Check() applies.
 template <typename Visitor>
 void VisitOptions(AttendOptions* o, Visitor& v) {
   v.BeginSection("sequence");
+  v.Ranges(&o->sequence, SequenceOptions::Ranges());
+  v.Ranges(&o->sequence, SequenceOptions::SizeRanges());
   v.Field("folder", &o->sequence.folder);
   v.Field("left_video", &o->sequence.left_video);
   v.Field("right_video", &o->sequence.right_video);
   v.Field("side_by_side_video", &o->sequence.side_by_side_video);
   v.Field("video", &o->sequence.video);
   v.Field("images", &o->sequence.images);
-  v.Field("first_frame", &o->sequence.first_frame, Range::Closed(0, 1e9));
-  v.Field("last_frame", &o->sequence.last_frame, Range::Closed(-1, 1e9));
-  v.Field("stride", &o->sequence.stride, Range::Closed(1, 1e6));
-  v.Field("width", &o->sequence.width, Range::Closed(1, 16384));
-  v.Field("height", &o->sequence.height, Range::Closed(1, 16384));
+  v.Field("first_frame", &o->sequence.first_frame);
+  v.Field("last_frame", &o->sequence.last_frame);
+  v.Field("stride", &o->sequence.stride);
+  v.Field("width", &o->sequence.width);
+  v.Field("height", &o->sequence.height);
   v.Choice("resize", &o->sequence.resize, SequenceOptions::ResizeModes());
   v.EndSection([o] { return o->sequence.Check(); });
 
   v.BeginSection("segmentation");
-  v.Field("t_max", &o->segmentation.t_max, Range::Closed(0.001, 1000));
-  v.Field("min_region_area", &o->segmentation.min_region_area, Range::Closed(0, 1e6));
+  v.Ranges(&o->segmentation, SegmentationOptions::Ranges());
+  v.Field("t_max", &o->segmentation.t_max);
+  v.Field("min_region_area", &o->segmentation.min_region_area);
   v.Field("link_across_kinds", &o->segmentation.bip.link_across_kinds);
   v.EndSection([o] { return o->segmentation.Check(); });
 
@@ -50,53 +55,56 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("plugins", &o->plugins);
 
   v.BeginSection("saliency");
+  v.Ranges(&o->saliency, SaliencyOptions::Ranges());
   v.Choice("normalisation", &o->saliency.normalisation, SaliencyOptions::Normalisations());
-  v.Field("local_maxima_window", &o->saliency.local_maxima_window, Range::Closed(3, 1001));
-  v.Field("blur", &o->saliency.blur, Range::Closed(0, 1));
+  v.Field("local_maxima_window", &o->saliency.local_maxima_window);
+  v.Field("blur", &o->saliency.blur);
   v.Choice("combination", &o->saliency.combination, {"sum", "product"});
   v.EndSection([o] { return o->saliency.Check(); });
 
   v.BeginSection("select");
-  v.Field("min_saliency", &o->attention.select.min_saliency, Range::Closed(0, 1));
-  v.Field("min_area", &o->attention.select.min_area, Range::Closed(1, 1e8));
-  v.Field("max_new", &o->attention.select.max_new, Range::Closed(1, 1000));
-  v.Field("max_targets", &o->attention.select.max_targets, Range::Closed(1, 1000));
-  v.Field("max_area_fraction", &o->attention.select.max_area_fraction, Range::Closed(0.001, 1));
-  v.Field("max_inhibited_fraction", &o->attention.select.max_inhibited_fraction,
-          Range::Closed(0.001, 1));
-  v.Field("saliency_t_max", &o->attention.select.saliency_t_max, Range::Closed(0.001, 1000));
+  v.Ranges(&o->attention.select, SelectOptions::Ranges());
+  v.Ranges(&o->attention, AttentionOptions::Ranges());
+  v.Ranges(&o->attention.skin_region, SkinRegionOptions::Ranges());
+  v.Field("min_saliency", &o->attention.select.min_saliency);
+  v.Field("min_area", &o->attention.select.min_area);
+  v.Field("max_new", &o->attention.select.max_new);
+  v.Field("max_targets", &o->attention.select.max_targets);
+  v.Field("max_area_fraction", &o->attention.select.max_area_fraction);
+  v.Field("max_inhibited_fraction", &o->attention.select.max_inhibited_fraction);
+  v.Field("saliency_t_max", &o->attention.select.saliency_t_max);
   v.Choice("seed", &o->attention.select.seed, SelectOptions::Seeds());
-  v.Field("seed_share", &o->attention.select.seed_share, Range::Closed(0.01, 1));
-  v.Field("seed_level", &o->attention.select.seed_level, Range::Closed(0.01, 1));
-  v.Field("skin_fraction", &o->attention.skin_fraction, Range::Closed(0, 1));
+  v.Field("seed_share", &o->attention.select.seed_share);
+  v.Field("seed_level", &o->attention.select.seed_level);
+  v.Field("skin_fraction", &o->attention.skin_fraction);
   v.Field("skin_model", &o->attention.skin_model);
   v.Field("skin_check", &o->attention.skin_check);
-  v.Field("skin_confident", &o->attention.skin_region.confident, Range::Closed(0.001, 1));
-  v.Field("skin_min_confident_share", &o->attention.skin_region.min_confident_share,
-          Range::Closed(0, 1));
-  v.Field("skin_max_mean_distance", &o->attention.skin_region.max_mean_distance,
-          Range::Closed(0, 1));
-  v.Field("skin_min_solidity", &o->attention.skin_region.min_solidity, Range::Closed(0, 1));
-  v.Field("skin_max_aspect_ratio", &o->attention.skin_region.max_aspect_ratio,
-          Range::Closed(1, 1000));
-  v.Field("skin_max_area_fraction", &o->attention.skin_region.max_area_fraction,
-          Range::Closed(0, 1));
-  v.Field("skin_min_area", &o->attention.skin_region.min_area, Range::Closed(1, 1e8));
+  v.Field("skin_confident", &o->attention.skin_region.confident);
+  v.Field("skin_min_confident_share", &o->attention.skin_region.min_confident_share);
+  v.Field("skin_max_mean_distance", &o->attention.skin_region.max_mean_distance);
+  v.Field("skin_min_solidity", &o->attention.skin_region.min_solidity);
+  v.Field("skin_max_aspect_ratio", &o->attention.skin_region.max_aspect_ratio);
+  v.Field("skin_max_area_fraction", &o->attention.skin_region.max_area_fraction);
+  v.Field("skin_min_area", &o->attention.skin_region.min_area);
   v.EndSection([o] { return o->attention.Check(); });
 
   v.BeginSection("drop");
-  v.Field("min_saliency", &o->attention.drop.min_saliency, Range::Closed(0, 1));
-  v.Field("frames", &o->attention.drop.frames, Range::Closed(1, 1e6));
-  v.Field("max_shared", &o->attention.drop.max_shared, Range::Closed(0, 1));
+  v.Ranges(&o->attention.drop, DropOptions::Ranges());
+  v.Field("min_saliency", &o->attention.drop.min_saliency);
+  v.Field("frames", &o->attention.drop.frames);
+  v.Field("max_shared", &o->attention.drop.max_shared);
   v.EndSection([o] { return o->attention.Check(); });
 
   v.BeginSection("inhibition");
-  v.Field("margin", &o->attention.inhibition.margin, Range::Closed(0, 1000));
+  v.Ranges(&o->attention.inhibition, InhibitionOptions::Ranges());
+  v.Field("margin", &o->attention.inhibition.margin);
   v.Field("keep_occluded", &o->attention.inhibition.keep_occluded);
   v.Field("occluded_search", &o->attention.inhibition.occluded_search);
   v.EndSection([o] { return o->attention.Check(); });
 
   v.BeginSection("tracker");
+  v.Ranges(&o->attention.tracker.bip, TrackerOptions::Ranges());
+  v.Ranges(&o->attention.tracker.opencv, OpenCvTrackerOptions::Ranges());
   {
     // Enums in the options; the visitors see their names.
     TargetTrackerOptions& t = o->attention.tracker;
@@ -108,29 +116,29 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
                              TrackerModeName(TrackerMode::kBounded)});
     t.bip.mode =
         mode == TrackerModeName(TrackerMode::kBounded) ? TrackerMode::kBounded : TrackerMode::kThesis;
-    v.Field("t_colour", &t.bip.t_colour, Range::Closed(0.001, 1000));
-    v.Field("t_oversegment", &t.bip.t_oversegment, Range::Closed(0.001, 1000));
-    v.Field("t_refine", &t.bip.t_refine, Range::Closed(0, 1000));
-    v.Field("alpha", &t.bip.alpha, Range::Closed(0.001, 1));
-    v.Field("epsilon", &t.bip.epsilon, Range::Closed(0, 1000));
-    v.Field("epsilon_max", &t.bip.epsilon_max, Range::Closed(0, 1000));
-    v.Field("working_area", &t.bip.working_area, Range::Closed(0.01, 1));
-    v.Field("min_overlap", &t.bip.min_overlap, Range::Closed(0.01, 1));
-    v.Field("bounded_min_overlap", &t.bip.bounded_min_overlap, Range::Closed(0.01, 1));
-    v.Field("bound_growth", &t.bip.bound_growth, Range::Closed(0, 1));
-    v.Field("size_rate", &t.bip.size_rate, Range::Closed(0, 1));
-    v.Field("centre_rate", &t.bip.centre_rate, Range::Closed(0, 1));
+    v.Field("t_colour", &t.bip.t_colour);
+    v.Field("t_oversegment", &t.bip.t_oversegment);
+    v.Field("t_refine", &t.bip.t_refine);
+    v.Field("alpha", &t.bip.alpha);
+    v.Field("epsilon", &t.bip.epsilon);
+    v.Field("epsilon_max", &t.bip.epsilon_max);
+    v.Field("working_area", &t.bip.working_area);
+    v.Field("min_overlap", &t.bip.min_overlap);
+    v.Field("bounded_min_overlap", &t.bip.bounded_min_overlap);
+    v.Field("bound_growth", &t.bip.bound_growth);
+    v.Field("size_rate", &t.bip.size_rate);
+    v.Field("centre_rate", &t.bip.centre_rate);
     v.Field("distinctive_weights", &t.bip.distinctive_weights);
-    v.Field("distinct_rate", &t.bip.distinct_rate, Range::Closed(0, 1));
-    v.Field("motion_sigma", &t.bip.motion_sigma, Range::Closed(0, 100));
+    v.Field("distinct_rate", &t.bip.distinct_rate);
+    v.Field("motion_sigma", &t.bip.motion_sigma);
     v.Field("appearance", &t.bip.appearance);
-    v.Field("appearance_share", &t.bip.appearance_share, Range::Closed(0, 1));
-    v.Field("appearance_rate", &t.bip.appearance_rate, Range::Closed(0, 1));
-    v.Field("min_score", &t.bip.min_score, Range::Closed(0.01, 1));
-    v.Field("redetect_range", &t.bip.redetect_range, Range::Closed(0, 10));
-    v.Field("redetect_ratio", &t.bip.redetect_ratio, Range::Closed(0.01, 1));
-    v.Field("lost_frames", &t.opencv.lost_frames, Range::Closed(1, 1e6));
-    v.Field("kcf_detect_thresh", &t.opencv.kcf_detect_thresh, Range::Closed(0, 1));
+    v.Field("appearance_share", &t.bip.appearance_share);
+    v.Field("appearance_rate", &t.bip.appearance_rate);
+    v.Field("min_score", &t.bip.min_score);
+    v.Field("redetect_range", &t.bip.redetect_range);
+    v.Field("redetect_ratio", &t.bip.redetect_ratio);
+    v.Field("lost_frames", &t.opencv.lost_frames);
+    v.Field("kcf_detect_thresh", &t.opencv.kcf_detect_thresh);
     // A key of another kind than the chosen one would have no effect: it is an error when its
     // value differs from its default, so that a file that sets every key at its default (as
     // configs/default.yaml and RUN/config.yaml do, SPEC 3.4) can change the kind alone.
@@ -185,17 +193,25 @@ class Reader {
     const std::string error = check();
     if (!error.empty()) section.Fail("", error);
     blocks_.pop_back();
+    ranges_.clear();
+  }
+  // The section's keys fill fields of `options`: each numeric one is read with its field's
+  // range.
+  template <typename Options>
+  void Ranges(const Options* options, const FieldRanges<Options>& fields) {
+    ranges_.push_back(
+        [options, &fields](const void* field) { return FindFieldRange(*options, fields, field); });
   }
   void Field(const std::string& key, std::string* value) { *value = top().GetString(key, *value); }
   void Field(const std::string& key, bool* value) { *value = top().GetBool(key, *value); }
   void Field(const std::string& key, int* value, Range range = {}) {
-    *value = top().GetInt(key, *value, range);
+    *value = top().GetInt(key, *value, RangeOf(value, range));
   }
   void Field(const std::string& key, double* value, Range range = {}) {
-    *value = top().GetDouble(key, *value, range);
+    *value = top().GetDouble(key, *value, RangeOf(value, range));
   }
   void Field(const std::string& key, float* value, Range range = {}) {
-    *value = static_cast<float>(top().GetDouble(key, *value, range));
+    *value = static_cast<float>(top().GetDouble(key, *value, RangeOf(value, range)));
   }
   void Field(const std::string& key, std::vector<std::string>* value) {
     *value = top().GetStrings(key, *value);
@@ -228,7 +244,15 @@ class Reader {
 
  private:
   const ParamBlock& top() const { return blocks_.back(); }
+  // The range of the field at `field` in the structs the section named, else `given`.
+  Range RangeOf(const void* field, const Range& given) const {
+    for (const auto& find : ranges_) {
+      if (const Range* range = find(field)) return *range;
+    }
+    return given;
+  }
   std::vector<ParamBlock> blocks_;
+  std::vector<std::function<const Range*(const void*)>> ranges_;
 };
 
 // Writes every key with its current value.
@@ -239,6 +263,8 @@ class Writer {
     out_ << YAML::Key << key << YAML::Value << YAML::BeginMap;
   }
   void EndSection(const std::function<std::string()>&) { out_ << YAML::EndMap; }
+  template <typename Options>
+  void Ranges(const Options*, const FieldRanges<Options>&) {}
   template <typename T>
   void Field(const std::string& key, T* value, Range = {}) {
     out_ << YAML::Key << key << YAML::Value;
@@ -296,6 +322,8 @@ class KeyLister {
  public:
   void BeginSection(const std::string& key) { prefix_.push_back(key); }
   void EndSection(const std::function<std::string()>&) { prefix_.pop_back(); }
+  template <typename Options>
+  void Ranges(const Options*, const FieldRanges<Options>&) {}
   template <typename T>
   void Field(const std::string& key, T*, Range = {}) {
     Add(key);

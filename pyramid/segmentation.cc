@@ -11,10 +11,16 @@
 
 namespace attend {
 
+const FieldRanges<SegmentationOptions>& SegmentationOptions::Ranges() {
+  static const FieldRanges<SegmentationOptions> ranges = {
+      {"t_max", &SegmentationOptions::t_max, Range::Closed(0.001, 1000)},
+      {"min_region_area", &SegmentationOptions::min_region_area, Range::Closed(0, 1e6)}};
+  return ranges;
+}
+
 std::string SegmentationOptions::Check() const {
-  if (!(t_max > 0.f) || t_max > 1000.f) return "t_max must be in (0, 1000]";
-  if (min_region_area < 0) return "min_region_area must be >= 0";
-  return bip.Check();
+  const std::string error = CheckFieldRanges(*this, Ranges());
+  return error.empty() ? bip.Check() : error;
 }
 
 namespace {

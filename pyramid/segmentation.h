@@ -9,6 +9,7 @@
 #include "colour/colour.h"
 #include "pyramid/bip.h"
 #include "pyramid/regions.h"
+#include "util/field_ranges.h"
 
 namespace attend {
 
@@ -24,6 +25,8 @@ struct SegmentationOptions {
 
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+  // The numeric fields' ranges (util/field_ranges.h), which Check and the configuration apply.
+  static const FieldRanges<SegmentationOptions>& Ranges();
 };
 
 // Segments images; keeps the pyramid and all scratch buffers between calls, so one Segmenter

@@ -50,15 +50,21 @@ const std::vector<std::string>& SaliencyOptions::Normalisations() {
   return names;
 }
 
+const FieldRanges<SaliencyOptions>& SaliencyOptions::Ranges() {
+  static const FieldRanges<SaliencyOptions> ranges = {
+      {"local_maxima_window", &SaliencyOptions::local_maxima_window, Range::Closed(3, 1001)},
+      {"blur", &SaliencyOptions::blur, Range::Closed(0, 1)}};
+  return ranges;
+}
+
 std::string SaliencyOptions::Check() const {
   if (std::find(Normalisations().begin(), Normalisations().end(), normalisation) ==
       Normalisations().end()) {
     return "normalisation '" + normalisation + "' is not minmax or local_maxima";
   }
-  if (local_maxima_window < 3 || local_maxima_window % 2 == 0) {
-    return "local_maxima_window must be odd and at least 3";
-  }
-  if (!(blur >= 0.0 && blur <= 1.0)) return "blur must be in [0, 1]";
+  const std::string error = CheckFieldRanges(*this, Ranges());
+  if (!error.empty()) return error;
+  if (local_maxima_window % 2 == 0) return "local_maxima_window must be odd";
   if (combination != "sum" && combination != "product") {
     return "combination '" + combination + "' is not sum or product";
   }

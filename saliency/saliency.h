@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "util/field_ranges.h"
+
 namespace attend {
 
 struct SaliencyOptions {
@@ -33,6 +35,8 @@ struct SaliencyOptions {
   static const std::vector<std::string>& Normalisations();
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+  // The numeric fields' ranges (util/field_ranges.h), which Check and the configuration apply.
+  static const FieldRanges<SaliencyOptions>& Ranges();
 };
 
 // Normalises `map` (CV_32FC1) into `out` (CV_32FC1, [0, 1]).

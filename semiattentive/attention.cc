@@ -22,43 +22,58 @@ const std::vector<std::string>& SelectOptions::Seeds() {
   return seeds;
 }
 
+const FieldRanges<SelectOptions>& SelectOptions::Ranges() {
+  using O = SelectOptions;
+  static const FieldRanges<SelectOptions> ranges = {
+      {"min_saliency", &O::min_saliency, Range::Closed(0, 1)},
+      {"min_area", &O::min_area, Range::Closed(1, 1e8)},
+      {"max_new", &O::max_new, Range::Closed(1, 1000)},
+      {"max_targets", &O::max_targets, Range::Closed(1, 1000)},
+      {"max_area_fraction", &O::max_area_fraction, Range::Closed(0.001, 1)},
+      {"max_inhibited_fraction", &O::max_inhibited_fraction, Range::Closed(0.001, 1)},
+      {"saliency_t_max", &O::saliency_t_max, Range::Closed(0.001, 1000)},
+      {"seed_share", &O::seed_share, Range::Closed(0.01, 1)},
+      {"seed_level", &O::seed_level, Range::Closed(0.01, 1)}};
+  return ranges;
+}
+
+const FieldRanges<DropOptions>& DropOptions::Ranges() {
+  static const FieldRanges<DropOptions> ranges = {
+      {"min_saliency", &DropOptions::min_saliency, Range::Closed(0, 1)},
+      {"frames", &DropOptions::frames, Range::Closed(1, 1e6)},
+      {"max_shared", &DropOptions::max_shared, Range::Closed(0, 1)}};
+  return ranges;
+}
+
+const FieldRanges<InhibitionOptions>& InhibitionOptions::Ranges() {
+  static const FieldRanges<InhibitionOptions> ranges = {
+      {"margin", &InhibitionOptions::margin, Range::Closed(0, 1000)}};
+  return ranges;
+}
+
+const FieldRanges<AttentionOptions>& AttentionOptions::Ranges() {
+  static const FieldRanges<AttentionOptions> ranges = {
+      {"skin_fraction", &AttentionOptions::skin_fraction, Range::Closed(0, 1)}};
+  return ranges;
+}
+
 std::string AttentionOptions::Check() const {
-  if (!(select.min_saliency >= 0.f && select.min_saliency <= 1.f)) {
-    return "select.min_saliency must be in [0, 1]";
-  }
-  if (select.min_area < 1) return "select.min_area must be >= 1";
-  if (select.max_new < 1) return "select.max_new must be >= 1";
-  if (select.max_targets < 1) return "select.max_targets must be >= 1";
-  if (!(select.max_area_fraction > 0.f && select.max_area_fraction <= 1.f)) {
-    return "select.max_area_fraction must be in (0, 1]";
-  }
-  if (!(select.saliency_t_max > 0.f)) return "select.saliency_t_max must be > 0";
+  std::string error = CheckFieldRanges(select, SelectOptions::Ranges());
+  if (!error.empty()) return "select." + error;
   if (std::find(SelectOptions::Seeds().begin(), SelectOptions::Seeds().end(), select.seed) ==
       SelectOptions::Seeds().end()) {
     return "select.seed must be region or object";
   }
-  if (!(select.seed_share > 0.f && select.seed_share <= 1.f)) {
-    return "select.seed_share must be in (0, 1]";
-  }
-  if (!(select.seed_level > 0.f && select.seed_level <= 1.f)) {
-    return "select.seed_level must be in (0, 1]";
-  }
-  if (!(select.max_inhibited_fraction > 0.f && select.max_inhibited_fraction <= 1.f)) {
-    return "select.max_inhibited_fraction must be in (0, 1]";
-  }
-  if (!(drop.min_saliency >= 0.f && drop.min_saliency <= 1.f)) {
-    return "drop.min_saliency must be in [0, 1]";
-  }
-  if (drop.frames < 1) return "drop.frames must be >= 1";
-  if (!(drop.max_shared >= 0.f && drop.max_shared <= 1.f)) {
-    return "drop.max_shared must be in [0, 1]";
-  }
-  if (inhibition.margin < 0) return "inhibition.margin must be >= 0";
-  if (!(skin_fraction >= 0.f && skin_fraction <= 1.f)) return "skin_fraction must be in [0, 1]";
-  const std::string skin_error = skin_region.Check();
-  if (!skin_error.empty()) return "select.skin_region: " + skin_error;
-  const std::string tracker_error = tracker.Check();
-  if (!tracker_error.empty()) return "tracker." + tracker_error;
+  error = CheckFieldRanges(drop, DropOptions::Ranges());
+  if (!error.empty()) return "drop." + error;
+  error = CheckFieldRanges(inhibition, InhibitionOptions::Ranges());
+  if (!error.empty()) return "inhibition." + error;
+  error = CheckFieldRanges(*this, Ranges());
+  if (!error.empty()) return error;
+  error = skin_region.Check();
+  if (!error.empty()) return "select.skin_region: " + error;
+  error = tracker.Check();
+  if (!error.empty()) return "tracker." + error;
   return "";
 }
 

@@ -63,6 +63,9 @@ struct SelectOptions {
   // pixel where the inhibited saliency is at least this times the candidate's mean.
   float seed_level = 0.5f;
   static const std::vector<std::string>& Seeds();
+  // The numeric fields' ranges (util/field_ranges.h), for AttentionOptions::Check and the
+  // configuration's `select` section.
+  static const FieldRanges<SelectOptions>& Ranges();
 };
 
 struct DropOptions {
@@ -72,6 +75,7 @@ struct DropOptions {
   // already hold is a duplicate and is released ("duplicate"): a tracker that slid onto
   // another target's object. 1: never (the thesis's stage).
   float max_shared = 0.5f;
+  static const FieldRanges<DropOptions>& Ranges();
 };
 
 struct InhibitionOptions {
@@ -80,6 +84,7 @@ struct InhibitionOptions {
   // ... and the area their tracker searched them in this frame (the box and its ROI border):
   // an object that reappears there is the occluded target coming back, not a new one.
   bool occluded_search = true;
+  static const FieldRanges<InhibitionOptions>& Ranges();
 };
 
 struct AttentionOptions {
@@ -97,6 +102,8 @@ struct AttentionOptions {
   SkinRegionOptions skin_region;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+  // The ranges of this struct's own numeric fields (skin_fraction).
+  static const FieldRanges<AttentionOptions>& Ranges();
 };
 
 // One target in one frame (SPEC 3.3).

@@ -41,13 +41,14 @@ bool TrackerKindFromName(const std::string& name, TrackerKind* kind) {
   return false;
 }
 
-std::string OpenCvTrackerOptions::Check() const {
-  if (lost_frames < 1) return "lost_frames must be >= 1";
-  if (!(kcf_detect_thresh >= 0.f && kcf_detect_thresh <= 1.f)) {
-    return "kcf_detect_thresh must be in [0, 1]";
-  }
-  return "";
+const FieldRanges<OpenCvTrackerOptions>& OpenCvTrackerOptions::Ranges() {
+  static const FieldRanges<OpenCvTrackerOptions> ranges = {
+      {"lost_frames", &OpenCvTrackerOptions::lost_frames, Range::Closed(1, 1e6)},
+      {"kcf_detect_thresh", &OpenCvTrackerOptions::kcf_detect_thresh, Range::Closed(0, 1)}};
+  return ranges;
 }
+
+std::string OpenCvTrackerOptions::Check() const { return CheckFieldRanges(*this, Ranges()); }
 
 std::string TargetTrackerOptions::Check() const {
   return kind == TrackerKind::kBip ? bip.Check() : opencv.Check();

@@ -54,6 +54,8 @@ struct OpenCvTrackerOptions {
   float kcf_detect_thresh = 0.5f;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+  // The numeric fields' ranges (util/field_ranges.h), for Check and the configuration.
+  static const FieldRanges<OpenCvTrackerOptions>& Ranges();
 };
 
 struct TargetTrackerOptions {

@@ -267,32 +267,35 @@ int TrackerOptions::EpsilonMaxPixels(int width) const {
   return std::max(EpsilonPixels(width), static_cast<int>(std::lround(epsilon_max * width / 128.0)));
 }
 
+const FieldRanges<TrackerOptions>& TrackerOptions::Ranges() {
+  using O = TrackerOptions;
+  static const FieldRanges<TrackerOptions> ranges = {
+      {"t_colour", &O::t_colour, Range::Closed(0.001, 1000)},
+      {"t_oversegment", &O::t_oversegment, Range::Closed(0.001, 1000)},
+      {"t_refine", &O::t_refine, Range::Closed(0, 1000)},
+      {"alpha", &O::alpha, Range::Closed(0.001, 1)},
+      {"epsilon", &O::epsilon, Range::Closed(0, 1000)},
+      {"epsilon_max", &O::epsilon_max, Range::Closed(0, 1000)},
+      {"working_area", &O::working_area, Range::Closed(0.01, 1)},
+      {"min_overlap", &O::min_overlap, Range::Closed(0.01, 1)},
+      {"bounded_min_overlap", &O::bounded_min_overlap, Range::Closed(0.01, 1)},
+      {"bound_growth", &O::bound_growth, Range::Closed(0, 1)},
+      {"size_rate", &O::size_rate, Range::Closed(0, 1)},
+      {"centre_rate", &O::centre_rate, Range::Closed(0, 1)},
+      {"distinct_rate", &O::distinct_rate, Range::Closed(0, 1)},
+      {"motion_sigma", &O::motion_sigma, Range::Closed(0, 100)},
+      {"appearance_share", &O::appearance_share, Range::Closed(0, 1)},
+      {"appearance_rate", &O::appearance_rate, Range::Closed(0, 1)},
+      {"min_score", &O::min_score, Range::Closed(0.01, 1)},
+      {"redetect_range", &O::redetect_range, Range::Closed(0, 10)},
+      {"redetect_ratio", &O::redetect_ratio, Range::Closed(0.01, 1)}};
+  return ranges;
+}
+
 std::string TrackerOptions::Check() const {
-  if (!(t_colour > 0.f)) return "t_colour must be > 0";
-  if (!(t_oversegment > 0.f)) return "t_oversegment must be > 0";
-  if (!(t_refine >= 0.f)) return "t_refine must be >= 0";
-  if (!(alpha > 0.f && alpha <= 1.f)) return "alpha must be in (0, 1]";
-  if (!(epsilon >= 0.f)) return "epsilon must be >= 0";
+  const std::string error = CheckFieldRanges(*this, Ranges());
+  if (!error.empty()) return error;
   if (!(epsilon_max >= epsilon)) return "epsilon_max must be >= epsilon";
-  if (!(working_area > 0.f && working_area <= 1.f)) return "working_area must be in (0, 1]";
-  if (!(min_overlap > 0.f && min_overlap <= 1.f)) return "min_overlap must be in (0, 1]";
-  if (!(bound_growth >= 0.f && bound_growth <= 1.f)) return "bound_growth must be in [0, 1]";
-  if (!(size_rate >= 0.f && size_rate <= 1.f)) return "size_rate must be in [0, 1]";
-  if (!(centre_rate >= 0.f && centre_rate <= 1.f)) return "centre_rate must be in [0, 1]";
-  if (!(distinct_rate >= 0.f && distinct_rate <= 1.f)) return "distinct_rate must be in [0, 1]";
-  if (!(motion_sigma >= 0.f)) return "motion_sigma must be >= 0";
-  if (!(bounded_min_overlap > 0.f && bounded_min_overlap <= 1.f)) {
-    return "bounded_min_overlap must be in (0, 1]";
-  }
-  if (!(appearance_share >= 0.f && appearance_share <= 1.f)) {
-    return "appearance_share must be in [0, 1]";
-  }
-  if (!(appearance_rate >= 0.f && appearance_rate <= 1.f))
-    return "appearance_rate must be in [0, 1]";
-  if (!(min_score > 0.f && min_score <= 1.f)) return "min_score must be in (0, 1]";
-  if (!(redetect_range >= 0.f && redetect_range <= 10.f))
-    return "redetect_range must be in [0, 10]";
-  if (!(redetect_ratio > 0.f && redetect_ratio <= 1.f)) return "redetect_ratio must be in (0, 1]";
   return "";
 }
 

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "util/field_ranges.h"
+
 namespace attend {
 
 // Which tracker: the thesis's as written (chapter 4), or the variant for real footage whose
@@ -82,6 +84,9 @@ struct TrackerOptions {
   int EpsilonMaxPixels(int width) const;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+  // The numeric fields' ranges (util/field_ranges.h), which Check and the `tracker` section of
+  // the configuration both apply.
+  static const FieldRanges<TrackerOptions>& Ranges();
 };
 
 // TrackerOptions with mode = kBounded, the other fields at their defaults.

@@ -30,10 +30,10 @@ size_t InvalidUtf8At(std::string_view text);
 // yaml-cpp but not written back as the same bytes.
 size_t NonPrintableAt(std::string_view text);
 
-// Joins with a separator.
 // The shortest text that reads back as exactly `value` (std::to_chars).
 std::string ShortestNumber(double value);
 
+// Joins with a separator.
 std::string Join(const std::vector<std::string>& parts, std::string_view separator);
 
 }  // namespace attend
