@@ -1,28 +1,21 @@
 // attend disparity: the dense disparity map of one rectified stereo pair (SPEC 2.3, 3.2;
 // docs/DISPARITY.md), with the Middlebury bad-pixel rates of SPEC 4 when ground truth is given.
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <string>
 #include <system_error>
 #include <vector>
 
+#include "app/estimate_disparity.h"
 #include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "config/param_block.h"
-#include "eval/disparity_scores.h"
 #include "features/disparity_feature.h"
-#include "io/image_file.h"
-#include "io/pfm.h"
-#include "stereo/disparity.h"
 #include "util/error.h"
 #include "util/json_text.h"
 #include "util/strings.h"
@@ -45,10 +38,6 @@ struct DisparityArguments {
   double gt_scale = 1.0;
   std::vector<std::string> sets;
 };
-
-std::string SizeText(const cv::Mat& image) {
-  return std::to_string(image.cols) + "x" + std::to_string(image.rows);
-}
 
 std::string Lowercase(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(),
@@ -111,72 +100,6 @@ DisparityOptions ResolveOptions(const DisparityArguments& args, bool subpixel_gi
   return options;
 }
 
-// 8-bit grey or BGR, as the estimator takes them: grey files stay grey, colour files become
-// BGR (alpha dropped) and 16-bit samples are scaled to 8 bits.
-cv::Mat ReadStereoImage(const std::string& path) {
-  std::error_code error;
-  if (!fs::is_regular_file(path, error)) throw InputError(path + ": no such image file");
-  return ReadImageFile(path, cv::IMREAD_ANYCOLOR, path);
-}
-
-// Ground truth in pixels (CV_32FC1): a one-channel PFM, or a one-channel 8- or 16-bit image,
-// each value divided by `scale`. Zero (and, in a PFM, infinity) stays unknown.
-cv::Mat ReadGroundTruth(const std::string& path, double scale) {
-  cv::Mat disparity;
-  if (Lowercase(fs::path(path).extension().string()) == ".pfm") {
-    const cv::Mat map = ReadPfm(path);
-    if (map.channels() != 1) {
-      throw InputError(path +
-                       ": ground truth must be a one-channel PFM (Pf), not a three-channel "
-                       "one");
-    }
-    disparity = map;
-  } else {
-    std::error_code error;
-    if (!fs::is_regular_file(path, error)) throw InputError(path + ": no such ground-truth file");
-    const cv::Mat image = ReadImageFile(path, cv::IMREAD_UNCHANGED, path);
-    if (image.channels() != 1 || (image.depth() != CV_8U && image.depth() != CV_16U)) {
-      throw InputError(path + ": ground truth must be one channel of 8 or 16 bits, got " +
-                       std::to_string(image.channels()) + " channel(s) of " +
-                       (image.depth() == CV_8U    ? "8"
-                        : image.depth() == CV_16U ? "16"
-                                                  : "other") +
-                       " bits");
-    }
-    image.convertTo(disparity, CV_32F);
-  }
-  if (scale != 1.0) disparity /= scale;
-  return disparity;
-}
-
-// Writes the map next to its destination and renames it into place, so that the destination
-// is either the complete new map or untouched.
-void WriteMapAtomically(const std::string& out, const cv::Mat& disparity) {
-  const fs::path path(out);
-  const fs::path parent = path.parent_path();
-  std::error_code error;
-  if (!parent.empty()) {
-    fs::create_directories(parent, error);
-    if (error) {
-      throw OutputError(parent.string() + ": cannot create the folder (" + error.message() + ")");
-    }
-  }
-  const fs::path temporary =
-      parent / ("." + path.filename().string() + ".tmp" + std::to_string(getpid()));
-  try {
-    WritePfm(temporary.string(), disparity);
-  } catch (const Error& e) {
-    fs::remove(temporary, error);
-    throw OutputError(out + ": cannot write the map (" + e.what() + ")");
-  }
-  fs::rename(temporary, path, error);
-  if (error) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw OutputError(out + ": cannot write the map (" + error.message() + ")");
-  }
-}
-
 int Disparity(const DisparityArguments& args, bool subpixel_given, bool lr_check_given) {
   if (Lowercase(fs::path(args.out).extension().string()) != ".pfm") {
     throw ConfigError("--out " + args.out + ": the map is written as PFM; name a .pfm file");
@@ -185,61 +108,14 @@ int Disparity(const DisparityArguments& args, bool subpixel_given, bool lr_check
   if (fs::is_directory(args.out, error)) {
     throw OutputError("--out " + args.out + ": is a folder; name a .pfm file");
   }
-  const DisparityOptions options = ResolveOptions(args, subpixel_given, lr_check_given);
-
-  // Every input is read and checked before anything is computed or written.
-  const cv::Mat left = ReadStereoImage(args.left);
-  const cv::Mat right = ReadStereoImage(args.right);
-  if (left.size() != right.size()) {
-    throw InputError(args.left + " is " + SizeText(left) + " but " + args.right + " is " +
-                     SizeText(right) + "; a stereo pair must have one size");
-  }
-  if (options.max_disparity >= left.cols) {
-    throw InputError(args.left + ": the images are " + SizeText(left) +
-                     "; the disparity range 0.." + std::to_string(options.max_disparity - 1) +
-                     " (max_disparity " + std::to_string(options.max_disparity) +
-                     ") must be below the width " + std::to_string(left.cols));
-  }
-  cv::Mat ground_truth;
-  if (!args.gt.empty()) {
-    ground_truth = ReadGroundTruth(args.gt, args.gt_scale);
-    if (ground_truth.size() != left.size()) {
-      throw InputError(args.gt + ": the ground truth is " + SizeText(ground_truth) + " but " +
-                       args.left + " is " + SizeText(left));
-    }
-  }
-
-  DisparityEstimator estimator(options);
-  cv::Mat disparity;
-  estimator.Compute(left, right, &disparity);
-  ATTEND_CHECK(disparity.type() == CV_32FC1 && disparity.size() == left.size())
-      << "the estimator returned type " << disparity.type() << " of " << SizeText(disparity);
-  WriteMapAtomically(args.out, disparity);
-
-  nlohmann::json report = {{"left", args.left},
-                           {"right", args.right},
-                           {"out", args.out},
-                           {"width", left.cols},
-                           {"height", left.rows},
-                           {"milliseconds", estimator.milliseconds()},
-                           {"buffer_bytes", estimator.buffer_bytes()},
-                           {"options",
-                            {{"max_disparity", options.max_disparity},
-                             {"window", options.window},
-                             {"subpixel", options.subpixel},
-                             {"left_right_check", options.left_right_check},
-                             {"lr_tolerance", options.lr_tolerance},
-                             {"smoothness", options.smoothness},
-                             {"jump_penalty", options.jump_penalty}}}};
-  if (!ground_truth.empty()) {
-    const BadPixelRates rates = EvaluateDisparity(disparity, ground_truth);
-    report["gt"] = args.gt;
-    report["gt_scale"] = args.gt_scale;
-    report["known_pixels"] = rates.known;
-    report["bad1"] = rates.bad1;
-    report["bad2"] = rates.bad2;
-  }
-  std::cout << JsonText(report, 2) << std::endl;
+  DisparityRequest request;
+  request.options = ResolveOptions(args, subpixel_given, lr_check_given);
+  request.left = args.left;
+  request.right = args.right;
+  request.out = args.out;
+  request.gt = args.gt;
+  request.gt_scale = args.gt_scale;
+  std::cout << JsonText(EstimateDisparity(request), 2) << std::endl;
   return 0;
 }
 

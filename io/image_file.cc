@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <opencv2/imgcodecs.hpp>
@@ -70,6 +71,19 @@ cv::Mat ReadImageFile(const std::string& path, int flags, const std::string& whe
     throw InputError(where + ": cannot be read or decoded as an image (corrupt or unsupported format)");
   }
   return image;
+}
+
+void WriteImageFile(const std::string& path, const cv::Mat& image) {
+  std::error_code error;
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent, error);
+  bool written = false;
+  try {
+    written = !error && cv::imwrite(path, image);
+  } catch (const cv::Exception&) {
+    written = false;
+  }
+  if (!written) throw OutputError(path + ": cannot write the image");
 }
 
 }  // namespace attend

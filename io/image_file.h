@@ -21,4 +21,8 @@ std::string IncompleteImage(const std::vector<uchar>& bytes);
 // (IncompleteImage) or not decodable.
 cv::Mat ReadImageFile(const std::string& path, int flags, const std::string& where);
 
+// Writes `image` with cv::imwrite (the format by the extension), creating the folders above it.
+// OutputError "PATH: cannot write the image" when that fails.
+void WriteImageFile(const std::string& path, const cv::Mat& image);
+
 }  // namespace attend
