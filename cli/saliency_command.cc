@@ -1,24 +1,18 @@
 // attend saliency: the pre-attentive stage on still images (issue 14, docs/FIXATIONS.md).
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <system_error>
 #include <vector>
 
+#include "app/saliency_maps.h"
 #include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "cli/home.h"
-#include "io/image_file.h"
-#include "io/pfm.h"
 #include "io/sequence.h"
 #include "pipeline/options_io.h"
-#include "pipeline/still_saliency.h"
 #include "util/error.h"
-#include "util/json_text.h"
 
 namespace attend {
 
@@ -56,88 +50,36 @@ std::vector<std::string> ListImages(const std::vector<std::string>& inputs) {
   return images;
 }
 
-void WritePreview(const std::string& path, const cv::Mat& map) {
-  cv::Mat preview;
-  map.convertTo(preview, CV_8U, 255.0);
-  if (!cv::imwrite(path, preview)) throw InputError(path + ": cannot be written");
-}
-
-void WriteMaps(const fs::path& folder, const std::string& stem, const cv::Mat& map) {
-  std::error_code error;
-  fs::create_directories(folder, error);
-  if (error) throw InputError(folder.string() + ": cannot create the folder: " + error.message());
-  WritePfm((folder / (stem + ".pfm")).string(), map);
-  WritePreview((folder / (stem + ".png")).string(), map);
-}
-
 int Saliency(const SaliencyArguments& args) {
-  const std::string config_path = args.config.empty() ? DefaultConfigPath() : args.config;
-  const AttendOptions options = LoadOptions(config_path, args.sets);
-  const std::vector<std::string> images = ListImages(args.inputs);
-  std::vector<std::string> dropped;
-  const StillSaliency still(options, AttendHome(), &dropped);
-  for (const std::string& name : dropped) {
+  SaliencyMapsRequest request;
+  request.config_path = args.config.empty() ? DefaultConfigPath() : args.config;
+  request.options = LoadOptions(request.config_path, args.sets);
+  request.images = ListImages(args.inputs);
+  request.out = args.out;
+  request.home = AttendHome();
+  request.features = args.features;
+  request.scanpath = args.scanpath;
+  request.command_line = args.command_line;
+  SaliencyMapsObserver observer;
+  observer.on_left_out = [&args](const std::string& name) {
     if (!args.quiet) {
       std::cerr << "attend: note: feature '" << name
                 << "' needs stereo and is left out for still images\n";
     }
-  }
-  const fs::path out(args.out);
-  nlohmann::json entries = nlohmann::json::array();
-  nlohmann::json scanpaths = nlohmann::json::object();
-  std::vector<std::string> failed;
-  for (const std::string& path : images) {
-    const std::string stem = fs::path(path).stem().string();
-    cv::Mat bgr;
-    try {
-      bgr = ReadImageFile(path, cv::IMREAD_COLOR, path);
-    } catch (const InputError& e) {
-      // Named, and the other images are still processed; the exit status says it at the end.
-      std::cerr << "attend: error: " << e.what() << "\n";
-      failed.push_back(path);
-      continue;
-    }
-    const StillMaps maps = still.Compute(bgr, args.features, args.scanpath);
-    WriteMaps(out, stem, maps.saliency);
-    for (size_t i = 0; i < maps.features.size(); ++i) {
-      WriteMaps(out / "features" / maps.feature_names[i], stem, maps.features[i]);
-    }
-    if (args.scanpath > 0) {
-      nlohmann::json path_json = nlohmann::json::array();
-      for (size_t i = 0; i < maps.scanpath.size(); ++i) {
-        const cv::Rect& box = maps.scanpath_boxes[i];
-        path_json.push_back({{"x", maps.scanpath[i].x},
-                             {"y", maps.scanpath[i].y},
-                             {"bbox", {box.x, box.y, box.width, box.height}}});
-      }
-      scanpaths[stem] = path_json;
-    }
-    entries.push_back({{"image", path},
-                       {"stem", stem},
-                       {"size", {maps.image_size.width, maps.image_size.height}},
-                       {"working_size", {maps.working_size.width, maps.working_size.height}}});
-  }
-  const nlohmann::json summary = {{"images", entries},
-                                  {"failed", failed},
-                                  {"features_left_out", dropped},
-                                  {"config", config_path},
-                                  {"command", args.command_line}};
-  std::error_code error;
-  fs::create_directories(out, error);
-  auto write_json = [&](const std::string& name, const nlohmann::json& value) {
-    const fs::path file_path = out / name;
-    std::ofstream file(file_path);
-    file << JsonText(value, 2) << "\n";
-    if (!file) throw InputError(file_path.string() + ": cannot be written");
   };
-  write_json("saliency.json", summary);
-  if (args.scanpath > 0) write_json("scanpath.json", scanpaths);
+  // Named, and the other images are still processed; the exit status says it at the end.
+  observer.on_unreadable = [](const InputError& e) {
+    std::cerr << "attend: error: " << e.what() << "\n";
+  };
+  const SaliencyMapsResult result = WriteSaliencyMaps(request, observer);
   if (!args.quiet) {
-    std::cout << entries.size() << " saliency maps in " << out.string();
-    if (!failed.empty()) std::cout << "; " << failed.size() << " images could not be read";
+    std::cout << result.written << " saliency maps in " << fs::path(args.out).string();
+    if (!result.failed.empty()) {
+      std::cout << "; " << result.failed.size() << " images could not be read";
+    }
     std::cout << std::endl;
   }
-  return failed.empty() ? 0 : static_cast<int>(ExitStatus::kBadInput);
+  return result.failed.empty() ? 0 : static_cast<int>(ExitStatus::kBadInput);
 }
 
 }  // namespace
