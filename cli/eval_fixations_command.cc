@@ -1,323 +1,50 @@
 // attend eval-fixations: saliency maps scored against human eye fixations (issue 14,
 // docs/FIXATIONS.md).
-#include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-#include <sstream>
 #include <string>
-#include <system_error>
 #include <vector>
 
+#include "app/evaluate_fixations.h"
 #include "cli/commands.h"
-#include "eval/fixation_data.h"
-#include "eval/fixation_metrics.h"
 #include "eval/saliency_baselines.h"
-#include "io/image_file.h"
-#include "io/pfm.h"
 #include "util/error.h"
-#include "util/json_text.h"
 
 namespace attend {
 
 namespace {
 
-namespace fs = std::filesystem;
-
-constexpr int kScanpathDepth = 5;
-
-struct EvalFixationsArguments {
-  std::vector<std::string> maps;  // [NAME=]FOLDER
-  std::string dataset;
-  std::string out;
-  std::vector<std::string> baselines;
-  double baseline_blur = 0.03;
-  double sigma = 0.0;  // px at the scored size; 0: 0.025 x the larger side
-  int max_side = 640;
-  int skip = 0;   // leave out the first N items (by id)
-  int first = 0;  // then score only the first N items; 0: all
-  bool quiet = false;
-  std::string command_line;
-};
-
-struct Method {
-  std::string name;
-  std::string folder;  // empty for a baseline
-  std::vector<std::vector<double>> values;  // per metric, per image
-  nlohmann::json scanpaths;                 // the folder's scanpath.json, or null
-  std::vector<std::vector<double>> scanpath_shares;  // per k, per image
-  std::vector<std::string> ids;
-};
-
-// The scale that brings `size` to at most `max_side` on its larger side (1 when it is smaller).
-double ScoringScale(cv::Size size, int max_side) {
-  const int side = std::max(size.width, size.height);
-  return max_side > 0 && side > max_side ? static_cast<double>(max_side) / side : 1.0;
-}
-
-cv::Mat ToSize(const cv::Mat& map, cv::Size size) {
-  if (map.size() == size) return map;
-  cv::Mat out;
-  cv::resize(map, out, size, 0, 0, map.cols > size.width ? cv::INTER_AREA : cv::INTER_LINEAR);
-  return out;
-}
-
-// The share of `fixations` inside the union of the first k boxes, k = 1..kScanpathDepth (a box
-// of fewer regions repeats the last share).
-std::vector<double> ScanpathShares(const nlohmann::json& path, double scale,
-                                   const std::vector<Fixation>& fixations) {
-  std::vector<cv::Rect2d> boxes;
-  for (const nlohmann::json& step : path) {
-    const nlohmann::json& b = step.at("bbox");
-    boxes.emplace_back(b.at(0).get<double>() * scale, b.at(1).get<double>() * scale,
-                       b.at(2).get<double>() * scale, b.at(3).get<double>() * scale);
-  }
-  std::vector<double> shares(kScanpathDepth, 0.0);
-  if (fixations.empty()) return shares;
-  for (int k = 1; k <= kScanpathDepth; ++k) {
-    int inside = 0;
-    for (const Fixation& f : fixations) {
-      for (int i = 0; i < std::min<int>(k, boxes.size()); ++i) {
-        if (boxes[i].contains({f.x, f.y})) {
-          ++inside;
-          break;
-        }
-      }
-    }
-    shares[k - 1] = static_cast<double>(inside) / fixations.size();
-  }
-  return shares;
-}
-
-std::string Table(const std::vector<Method>& methods) {
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(3);
-  out << "| method | images |";
-  for (const std::string& metric : FixationMetricNames()) out << " " << metric << " |";
-  out << "\n|---|---:|";
-  for (size_t i = 0; i < FixationMetricNames().size(); ++i) out << "---:|";
-  out << "\n";
-  for (const Method& method : methods) {
-    out << "| " << method.name << " | " << method.ids.size() << " |";
-    for (const std::vector<double>& values : method.values) {
-      const MeanInterval m = MeanWithInterval(values);
-      out << " " << m.mean << " +- " << (m.high - m.mean) << " |";
-    }
-    out << "\n";
-  }
-  return out.str();
-}
-
-int EvalFixations(const EvalFixationsArguments& args) {
-  const FixationDataset dataset = OpenFixationDataset(args.dataset);
-  std::vector<FixationItem> items = dataset.items;
-  items.erase(items.begin(), items.begin() + std::min<size_t>(args.skip, items.size()));
-  if (args.first > 0 && static_cast<int>(items.size()) > args.first) items.resize(args.first);
-
-  std::vector<Method> methods;
-  for (const std::string& spec : args.maps) {
-    Method method;
-    const size_t equals = spec.find('=');
-    method.folder = equals == std::string::npos ? spec : spec.substr(equals + 1);
-    method.name = equals == std::string::npos ? fs::path(method.folder).filename().string()
-                                              : spec.substr(0, equals);
-    if (method.name.empty()) method.name = fs::path(method.folder).parent_path().filename().string();
-    std::error_code error;
-    if (!fs::is_directory(method.folder, error)) {
-      throw InputError(method.folder + ": no such folder of saliency maps");
-    }
-    const fs::path scanpath = fs::path(method.folder) / "scanpath.json";
-    if (fs::exists(scanpath, error)) {
-      std::ifstream file(scanpath);
-      try {
-        method.scanpaths = nlohmann::json::parse(file);
-      } catch (const std::exception& e) {
-        throw InputError(scanpath.string() + ": not valid JSON: " + e.what());
-      }
-    }
-    methods.push_back(std::move(method));
-  }
-  for (const std::string& name : args.baselines) {
-    if (std::find(BaselineNames().begin(), BaselineNames().end(), name) == BaselineNames().end()) {
-      throw ConfigError("--baselines " + name + ": not one of centre, spectral_residual, fine_grained");
-    }
-    Method method;
-    method.name = name;
-    methods.push_back(std::move(method));
-  }
-  if (methods.empty()) throw ConfigError("eval-fixations: give MAPS folders or --baselines");
-  for (Method& method : methods) {
-    method.values.assign(FixationMetricNames().size(), {});
-    method.scanpath_shares.assign(kScanpathDepth, {});
-  }
-
-  // Every image's fixations (scored coordinates) and size, for the shuffled AUC's negatives.
-  struct Loaded {
-    cv::Mat stimulus;  // at the scored size
-    std::vector<Fixation> fixations;
-    double scale = 1.0;
+int EvalFixations(const EvalFixationsRequest& args) {
+  FixationEvaluationObserver observer;
+  observer.on_unreadable = [](const std::string& error) {
+    std::cerr << "attend: error: " << error << "\n";
   };
-  std::vector<std::vector<Fixation>> normalised(items.size());  // x / w, y / h
-  std::vector<std::string> failed;
-  // Empty with the reason when the stimulus cannot be used.
-  auto load = [&](const FixationItem& item, Loaded* loaded) -> std::string {
-    cv::Mat bgr;
-    try {
-      bgr = ReadImageFile(item.stimulus_path, cv::IMREAD_COLOR, item.stimulus_path);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    loaded->scale = ScoringScale(bgr.size(), args.max_side);
-    loaded->stimulus = ToSize(bgr, cv::Size(static_cast<int>(std::lround(bgr.cols * loaded->scale)),
-                                            static_cast<int>(std::lround(bgr.rows * loaded->scale))));
-    for (Fixation f : ReadFixationFile(item.fixations_path)) {
-      f.x *= loaded->scale;
-      f.y *= loaded->scale;
-      loaded->fixations.push_back(f);
-    }
-    return "";
-  };
-  // First pass: fixations only (cheap), for the shuffled negatives.
-  for (size_t i = 0; i < items.size(); ++i) {
-    const cv::Size size = [&] {
-      // The header alone would do; the decoder reads the whole image, once more below.
-      const cv::Mat bgr = cv::imread(items[i].stimulus_path, cv::IMREAD_REDUCED_GRAYSCALE_8);
-      return bgr.empty() ? cv::Size() : cv::Size(bgr.cols * 8, bgr.rows * 8);
-    }();
-    if (size.area() == 0) continue;
-    for (const Fixation& f : ReadFixationFile(items[i].fixations_path)) {
-      normalised[i].push_back({f.subject, f.x / size.width, f.y / size.height});
-    }
+  if (!args.quiet) {
+    observer.on_note = [](const std::string& note) {
+      std::cerr << "attend: note: " << note << "\n";
+    };
+    observer.on_progress = [](int done, int total) {
+      std::cerr << "[attend] " << done << "/" << total << " images scored\n";
+    };
   }
-
-  for (size_t i = 0; i < items.size(); ++i) {
-    const FixationItem& item = items[i];
-    Loaded loaded;
-    const std::string error = load(item, &loaded);
-    if (!error.empty()) {
-      std::cerr << "attend: error: " << error << "\n";
-      failed.push_back(item.stimulus_path);
-      continue;
-    }
-    const cv::Size size = loaded.stimulus.size();
-    std::vector<Fixation> others;
-    for (size_t j = 0; j < items.size(); ++j) {
-      if (j == i) continue;
-      for (const Fixation& f : normalised[j]) {
-        others.push_back({f.subject, f.x * size.width, f.y * size.height});
-      }
-    }
-    const double sigma = args.sigma > 0.0 ? args.sigma : 0.025 * std::max(size.width, size.height);
-    const cv::Mat density = FixationDensity(size, loaded.fixations, sigma);
-    const cv::Mat centre = CentreBias(size);
-    for (Method& method : methods) {
-      cv::Mat map;
-      if (method.folder.empty()) {
-        map = BaselineMap(method.name, loaded.stimulus, args.baseline_blur);
-      } else {
-        const fs::path path = fs::path(method.folder) / (item.id + ".pfm");
-        std::error_code error;
-        if (!fs::exists(path, error)) throw InputError(path.string() + ": no saliency map for image " + item.id);
-        map = ReadPfmOneChannel(path.string(), "a saliency map");
-        const cv::Size native(static_cast<int>(std::lround(size.width / loaded.scale)),
-                              static_cast<int>(std::lround(size.height / loaded.scale)));
-        if (map.size() != native && map.size() != size && !args.quiet) {
-          std::cerr << "attend: note: " << path.string() << " is " << map.cols << "x" << map.rows
-                    << ", its stimulus " << native.width << "x" << native.height
-                    << ": resized\n";
-        }
-        map = ToSize(map, size);
-        if (method.scanpaths.is_object() && method.scanpaths.contains(item.id)) {
-          const std::vector<double> shares =
-              ScanpathShares(method.scanpaths.at(item.id), loaded.scale, loaded.fixations);
-          for (int k = 0; k < kScanpathDepth; ++k) method.scanpath_shares[k].push_back(shares[k]);
-        }
-      }
-      const FixationScores scores = ScoreMap(map, loaded.fixations, others, density, centre);
-      for (size_t m = 0; m < FixationMetricNames().size(); ++m) {
-        method.values[m].push_back(Get(scores, FixationMetricNames()[m]));
-      }
-      method.ids.push_back(item.id);
-    }
-    if (!args.quiet && (i + 1) % 50 == 0) {
-      std::cerr << "[attend] " << (i + 1) << "/" << items.size() << " images scored\n";
-    }
-  }
-
-  nlohmann::json means = nlohmann::json::object();
-  for (const Method& method : methods) {
-    nlohmann::json entry = {{"images", method.ids.size()},
-                            {"maps", method.folder.empty() ? "baseline" : method.folder}};
-    for (size_t m = 0; m < FixationMetricNames().size(); ++m) {
-      const MeanInterval v = MeanWithInterval(method.values[m]);
-      entry[FixationMetricNames()[m]] = {{"mean", v.mean}, {"ci95", {v.low, v.high}}};
-    }
-    if (!method.scanpath_shares[0].empty()) {
-      nlohmann::json shares = nlohmann::json::array();
-      for (int k = 0; k < kScanpathDepth; ++k) {
-        shares.push_back(MeanWithInterval(method.scanpath_shares[k]).mean);
-      }
-      entry["scanpath_fixation_share"] = shares;  // k = 1..5
-    }
-    means[method.name] = entry;
-  }
-  const std::string table = Table(methods);
-  if (!args.out.empty()) {
-    const fs::path out(args.out);
-    std::error_code error;
-    fs::create_directories(out, error);
-    if (error) throw InputError(out.string() + ": cannot create the folder: " + error.message());
-    for (const Method& method : methods) {
-      const fs::path csv_path = out / (method.name + ".csv");
-      std::ofstream csv(csv_path);
-      csv << "id";
-      for (const std::string& metric : FixationMetricNames()) csv << "," << metric;
-      csv << "\n" << std::setprecision(6);
-      for (size_t r = 0; r < method.ids.size(); ++r) {
-        csv << method.ids[r];
-        for (const std::vector<double>& values : method.values) csv << "," << values[r];
-        csv << "\n";
-      }
-      if (!csv) throw InputError(csv_path.string() + ": cannot be written");
-    }
-    const nlohmann::json report = {{"dataset", args.dataset},
-                                   {"skipped", dataset.skipped},
-                                   {"failed", failed},
-                                   {"skip", args.skip},
-                                   {"first", args.first},
-                                   {"max_side", args.max_side},
-                                   {"sigma_px", args.sigma},
-                                   {"baseline_blur", args.baseline_blur},
-                                   {"command", args.command_line},
-                                   {"methods", means}};
-    const fs::path json_path = out / "fixations.json";
-    std::ofstream file(json_path);
-    file << JsonText(report, 2) << "\n";
-    if (!file) throw InputError(json_path.string() + ": cannot be written");
-  }
-  std::cout << table;
-  for (const Method& method : methods) {
-    if (method.scanpath_shares[0].empty()) continue;
-    std::cout << method.name << ": share of fixations in the first k attended regions, k = 1..5:";
-    for (int k = 0; k < kScanpathDepth; ++k) {
-      std::cout << " " << std::fixed << std::setprecision(3)
-                << MeanWithInterval(method.scanpath_shares[k]).mean;
+  const FixationEvaluation result = EvaluateFixations(args, observer);
+  std::cout << result.table;
+  for (const auto& [name, shares] : result.scanpath_shares) {
+    std::cout << name << ": share of fixations in the first k attended regions, k = 1..5:";
+    for (const double share : shares) {
+      std::cout << " " << std::fixed << std::setprecision(3) << share;
     }
     std::cout << "\n";
   }
-  return failed.empty() ? 0 : static_cast<int>(ExitStatus::kBadInput);
+  return result.failed.empty() ? 0 : static_cast<int>(ExitStatus::kBadInput);
 }
 
 }  // namespace
 
 void AddEvalFixationsCommand(CLI::App& app, const std::string& command_line,
                              CommandAction* action) {
-  auto args = std::make_shared<EvalFixationsArguments>();
+  auto args = std::make_shared<EvalFixationsRequest>();
   CLI::App* cmd = app.add_subcommand(
       "eval-fixations",
       "Score saliency maps (folders of <id>.pfm, as attend saliency writes them) against a "

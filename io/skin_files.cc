@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <system_error>
@@ -264,6 +265,75 @@ void ReadSkinImagePair(const std::string& image_path, const std::string& mask_pa
       sink(cv::Vec2f(pixel[col][0], pixel[col][1]), label[col] != 0);
     }
   }
+}
+
+namespace {
+
+// The regular, non-hidden files of a folder by stem. Two files with one stem are ambiguous.
+std::map<std::string, fs::path> FilesByStem(const fs::path& folder, const std::string& item) {
+  std::map<std::string, fs::path> files;
+  std::error_code error;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name[0] == '.' || !entry.is_regular_file(error)) continue;
+    const std::string stem = entry.path().stem().string();
+    const auto [it, inserted] = files.emplace(stem, entry.path());
+    if (!inserted) {
+      throw InputError(item + ": " + it->second.string() + " and " + entry.path().string() +
+                       " have the same stem '" + stem + "'; cannot tell which one to pair");
+    }
+  }
+  if (error)
+    throw InputError(folder.string() + ": cannot list the folder (" + error.message() + ")");
+  return files;
+}
+
+// A folder with images/ and masks/: every image with the mask of the same stem, in order of
+// the stems.
+void ReadSkinFolder(const std::string& item, const SkinSampleSink& sink) {
+  const fs::path images_folder = fs::path(item) / "images";
+  const fs::path masks_folder = fs::path(item) / "masks";
+  std::error_code error;
+  if (!fs::is_directory(images_folder, error) || !fs::is_directory(masks_folder, error)) {
+    throw InputError(item + ": a data folder needs the subfolders images/ and masks/");
+  }
+  const std::map<std::string, fs::path> images = FilesByStem(images_folder, item);
+  const std::map<std::string, fs::path> masks = FilesByStem(masks_folder, item);
+  if (images.empty()) throw InputError(images_folder.string() + ": holds no images");
+  for (const auto& [stem, image] : images) {
+    if (masks.count(stem) == 0) {
+      throw InputError(image.string() + ": no mask with the stem '" + stem + "' in " +
+                       masks_folder.string());
+    }
+  }
+  for (const auto& [stem, mask] : masks) {
+    if (images.count(stem) == 0) {
+      throw InputError(mask.string() + ": no image with the stem '" + stem + "' in " +
+                       images_folder.string());
+    }
+  }
+  for (const auto& [stem, image] : images) {
+    ReadSkinImagePair(image.string(), masks.at(stem).string(), sink);
+  }
+}
+
+}  // namespace
+
+void ReadSkinData(const std::string& item, const SkinSampleSink& sink) {
+  std::error_code error;
+  if (fs::is_directory(item, error)) return ReadSkinFolder(item, sink);
+  if (fs::exists(item, error)) return ReadSkinText(item, sink);
+  const size_t first_colon = item.find(':');
+  if (first_colon == std::string::npos) throw InputError(item + ": no such file or folder");
+  // Paths may hold colons themselves: split at the first colon that leaves an existing image.
+  size_t colon = first_colon;
+  for (size_t at = first_colon; at != std::string::npos; at = item.find(':', at + 1)) {
+    if (fs::exists(item.substr(0, at), error)) {
+      colon = at;
+      break;
+    }
+  }
+  ReadSkinImagePair(item.substr(0, colon), item.substr(colon + 1), sink);
 }
 
 }  // namespace attend

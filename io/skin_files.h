@@ -42,4 +42,10 @@ void ReadSkinImagePair(const std::string& image_path, const std::string& mask_pa
 void ReadSkinImagePair(const std::string& image_path, const std::string& mask_path,
                        const SkinSampleSink& sink);
 
+// One data item of `attend skin-train`: a folder with images/ and masks/ (every image with the
+// mask of the same stem, in order of the stems), a `B G R label` text file, or IMAGE:MASK (the
+// split at the first colon that leaves an existing image, so paths may hold colons).
+// InputError naming the item and the file.
+void ReadSkinData(const std::string& item, const SkinSampleSink& sink);
+
 }  // namespace attend

@@ -1,0 +1,149 @@
+#include "app/evaluate_run.h"
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgproc.hpp>
+
+#include "eval/disparity_scores.h"
+#include "eval/run_evaluation.h"
+#include "io/ground_truth.h"
+#include "io/pfm.h"
+#include "pipeline/options_io.h"
+#include "stereo/disparity.h"
+#include "util/error.h"
+#include "util/json_text.h"
+
+namespace attend {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Boxes in frames.jsonl are in input pixels (SPEC 3.3) since summary.json has "pixels". A run
+// written before, at a working size other than the input size, holds working pixels, which
+// would score against input-pixel ground truth as if nothing were attended: refuse it.
+void CheckRecordsInInputPixels(const fs::path& run) {
+  const fs::path path = run / "summary.json";
+  std::ifstream in(path);
+  if (!in) return;  // an interrupted run may lack it; its frames are still input pixels
+  nlohmann::json summary;
+  try {
+    summary = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    throw InputError(path.string() + ": not a run summary (" + e.what() + ")");
+  }
+  if (summary.contains("pixels")) {
+    const std::string records = summary["pixels"].value("records", "");
+    if (records != "input") {
+      throw InputError(path.string() + ": pixels.records is '" + records +
+                       "', but attend eval scores boxes in input pixels");
+    }
+    return;
+  }
+  if (!summary.contains("sequence")) return;
+  const nlohmann::json& sequence = summary["sequence"];
+  if (!sequence.contains("native_size") || !sequence.contains("size")) return;
+  if (sequence["native_size"] != sequence["size"]) {
+    throw InputError(path.string() + ": this run was written before attend recorded boxes in " +
+                     "input pixels; its boxes are in working pixels (" +
+                     JsonText(sequence["size"]) + ", input " + JsonText(sequence["native_size"]) +
+                     "), so it cannot be scored against the ground truth: run it again");
+  }
+}
+
+// The disparity maps dumped by the run (RUN/features/disparity/*.pfm, in [0, 1], at the
+// working size) against gt/disparity/*.pfm (input size and pixels): mean bad-pixel rates over
+// the frames that have both. A map at another size is resized to the ground truth's (nearest
+// neighbour) and its disparities scaled by the width ratio, so scores are in input pixels.
+nlohmann::ordered_json DisparityScores(const std::string& run, const std::string& gt,
+                                       const AttendOptions& options) {
+  const fs::path maps = fs::path(run) / "features" / "disparity";
+  const fs::path truth = fs::path(gt) / "disparity";
+  if (!fs::is_directory(maps) || !fs::is_directory(truth)) return nullptr;
+  int max_disparity = DisparityOptions{}.max_disparity;
+  for (const FeatureSpec& spec : options.features) {
+    if (spec.name == "disparity")
+      max_disparity = spec.params.GetInt("max_disparity", max_disparity);
+  }
+  double bad1 = 0.0, bad2 = 0.0;
+  int frames = 0;
+  for (const auto& entry : fs::directory_iterator(maps)) {
+    if (entry.path().extension() != ".pfm") continue;
+    const fs::path gt_path = truth / entry.path().filename();
+    if (!fs::exists(gt_path)) continue;
+    cv::Mat map = ReadPfmOneChannel(entry.path().string(), "a disparity map");
+    map *= static_cast<float>(max_disparity - 1);
+    const cv::Mat ground_truth = ReadPfmOneChannel(gt_path.string(), "disparity ground truth");
+    if (map.size() != ground_truth.size()) {
+      // Working and input sizes share the aspect ratio up to rounding (resize fit or native);
+      // a stretched run does not, and its disparity is not comparable pixel for pixel.
+      const double ratio_x = static_cast<double>(ground_truth.cols) / map.cols;
+      const double ratio_y = static_cast<double>(ground_truth.rows) / map.rows;
+      if (std::abs(ratio_x - ratio_y) > 0.02 * ratio_x) {
+        throw InputError(
+            gt_path.string() + ": ground truth of " + std::to_string(ground_truth.cols) + "x" +
+            std::to_string(ground_truth.rows) + " for a map of " + std::to_string(map.cols) + "x" +
+            std::to_string(map.rows) + " (another aspect ratio)");
+      }
+      cv::Mat resized;
+      cv::resize(map, resized, ground_truth.size(), 0, 0, cv::INTER_NEAREST);
+      map = resized * ratio_x;
+    }
+    const BadPixelRates rates = EvaluateDisparity(map, ground_truth);
+    bad1 += rates.bad1;
+    bad2 += rates.bad2;
+    ++frames;
+  }
+  if (frames == 0) return nullptr;
+  return {{"frames", frames}, {"mean_bad1", bad1 / frames}, {"mean_bad2", bad2 / frames}};
+}
+
+}  // namespace
+
+nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::string& gt_dir) {
+  const fs::path run(run_dir);
+  if (!fs::is_directory(run) || !fs::exists(run / "frames.jsonl")) {
+    throw InputError(run_dir + ": not a run folder (no frames.jsonl)");
+  }
+  const AttendOptions options = LoadOptions((run / "config.yaml").string(), {});
+  std::string gt = gt_dir;
+  if (gt.empty()) {
+    if (options.sequence.folder.empty()) {
+      throw ConfigError(run_dir + ": the run's source is not a sequence folder; give --gt");
+    }
+    gt = (fs::path(options.sequence.folder) / "gt").string();
+  }
+  const fs::path objects = fs::path(gt) / "objects.csv";
+  if (!fs::exists(objects)) throw InputError(objects.string() + ": no ground-truth objects");
+  CheckRecordsInInputPixels(run);
+  const std::vector<FrameRecord> frames = ReadFrameRecords((run / "frames.jsonl").string());
+  const AttentionScores scores = EvaluateAttention(frames, ReadObjectsCsv(objects.string()));
+
+  nlohmann::ordered_json per_object = nlohmann::ordered_json::array();
+  for (const ObjectScore& object : scores.per_object) {
+    per_object.push_back({{"id", object.id},
+                          {"kind", object.kind},
+                          {"first_visible", object.first_visible},
+                          {"first_attended", object.first_attended < 0
+                                                 ? nlohmann::ordered_json()
+                                                 : nlohmann::ordered_json(object.first_attended)},
+                          {"identity_switches", object.switches}});
+  }
+  nlohmann::ordered_json report = {{"run", run_dir},
+                                   {"gt", gt},
+                                   {"frames", scores.frames},
+                                   {"objects", scores.objects},
+                                   {"attended", scores.attended},
+                                   {"coverage", scores.coverage},
+                                   {"mean_latency", scores.mean_latency},
+                                   {"revisits", scores.revisits},
+                                   {"identity_switches", scores.identity_switches},
+                                   {"mean_iou", scores.mean_iou},
+                                   {"per_object", per_object}};
+  const nlohmann::ordered_json disparity = DisparityScores(run_dir, gt, options);
+  if (!disparity.is_null()) report["disparity"] = disparity;
+  return report;
+}
+
+
+}  // namespace attend

@@ -1,0 +1,17 @@
+// The controller of `attend eval` (SPEC 3.2, 4): the attention metrics of a run folder against
+// the ground truth of its sequence (or another gt/ folder), and the disparity scores when the
+// run dumped its disparity maps. The command only parses its arguments and prints the report.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace attend {
+
+// `gt`: a gt/ folder (objects.csv, optionally disparity/*.pfm); empty: the gt/ of the run's
+// sequence folder. Returns the report attend eval prints. InputError for a folder that is not
+// a run, missing ground truth or a run whose boxes are not in input pixels; ConfigError when
+// no gt/ folder is given and the run's source is not a sequence folder.
+nlohmann::ordered_json EvaluateRunFolder(const std::string& run, const std::string& gt);
+
+}  // namespace attend
