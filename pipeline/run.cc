@@ -66,30 +66,62 @@ nlohmann::ordered_json SummaryJson(const RunSummary& summary, const SequenceInfo
 }
 
 // The map dumps of SPEC 3.3 that output.dump asks for.
-void WriteDumps(const OutputOptions& output, const FramePipeline& pipeline, int frame,
-                RunFolder* folder) {
-  const bool pfm = output.WritesMapFormat("pfm");
-  const bool png = output.WritesMapFormat("png");
-  if (output.Dumps("regions")) {
-    folder->WriteImage("regions", frame, FalseColour(pipeline.context().Regions().labels));
-  }
-  if (output.Dumps("features")) {
-    for (size_t i = 0; i < pipeline.features().size(); ++i) {
-      const FeatureResult& feature = pipeline.features()[i];
-      folder->WriteMap("features/" + feature.name, frame, feature.map, pipeline.normalised()[i],
-                       pfm, png);
+class MapDumps final : public RunObserver {
+ public:
+  MapDumps(const OutputOptions& output, RunFolder* folder) : output_(output), folder_(folder) {}
+
+  void OnFrame(const StereoFrame& frame, const FramePipeline& pipeline,
+               const FrameRecord&) override {
+    const bool pfm = output_.WritesMapFormat("pfm");
+    const bool png = output_.WritesMapFormat("png");
+    if (output_.Dumps("regions")) {
+      folder_->WriteImage("regions", frame.index,
+                          FalseColour(pipeline.context().Regions().labels));
+    }
+    if (output_.Dumps("features")) {
+      for (size_t i = 0; i < pipeline.features().size(); ++i) {
+        const FeatureResult& feature = pipeline.features()[i];
+        folder_->WriteMap("features/" + feature.name, frame.index, feature.map,
+                          pipeline.normalised()[i], pfm, png);
+      }
+    }
+    if (output_.Dumps("saliency")) {
+      folder_->WriteMap("saliency", frame.index, pipeline.saliency(), pipeline.saliency(), pfm,
+                        png);
+    }
+    if (output_.Dumps("inhibition")) {
+      folder_->WriteMap("inhibition", frame.index, pipeline.inhibition(), pipeline.inhibition(),
+                        pfm, png);
+    }
+    if (output_.Dumps("inhibited")) {
+      folder_->WriteMap("inhibited", frame.index, pipeline.inhibited(), pipeline.inhibited(), pfm,
+                        png);
     }
   }
-  if (output.Dumps("saliency")) {
-    folder->WriteMap("saliency", frame, pipeline.saliency(), pipeline.saliency(), pfm, png);
+
+ private:
+  OutputOptions output_;
+  RunFolder* folder_;
+};
+
+// The overlay of each frame (SPEC 3.3), and with output.video the overlay video.
+class OverlayDump final : public RunObserver {
+ public:
+  OverlayDump(bool video, double fps, RunFolder* folder)
+      : video_(video), fps_(fps), folder_(folder) {}
+
+  void OnFrame(const StereoFrame& frame, const FramePipeline&,
+               const FrameRecord& record) override {
+    const cv::Mat overlay = DrawOverlay(frame.left, record);
+    folder_->WriteImage("overlay", frame.index, overlay);
+    if (video_) folder_->AppendVideoFrame("overlay", overlay, fps_);
   }
-  if (output.Dumps("inhibition")) {
-    folder->WriteMap("inhibition", frame, pipeline.inhibition(), pipeline.inhibition(), pfm, png);
-  }
-  if (output.Dumps("inhibited")) {
-    folder->WriteMap("inhibited", frame, pipeline.inhibited(), pipeline.inhibited(), pfm, png);
-  }
-}
+
+ private:
+  bool video_;
+  double fps_;
+  RunFolder* folder_;
+};
 
 }  // namespace
 
@@ -137,6 +169,13 @@ RunSummary RunSequence(const RunRequest& request) {
   folder.WriteConfig(OptionsToYaml(options));
   const std::string started = LocalTime("%Y-%m-%dT%H:%M:%S%z");
 
+  // The dumps output.dump asks for, then the caller's observers.
+  MapDumps map_dumps(options.output, &folder);
+  OverlayDump overlay_dump(options.output.video, info.fps, &folder);
+  std::vector<RunObserver*> observers = {&map_dumps};
+  if (options.output.Dumps("overlay")) observers.push_back(&overlay_dump);
+  observers.insert(observers.end(), request.observers.begin(), request.observers.end());
+
   RunSummary summary;
   summary.dir = folder.dir();
   StageTimes totals;
@@ -169,12 +208,7 @@ RunSummary RunSequence(const RunRequest& request) {
       pipeline.Process(frame, &record);
 
       stage.Restart();
-      WriteDumps(options.output, pipeline, frame.index, &folder);
-      if (options.output.Dumps("overlay")) {
-        const cv::Mat overlay = DrawOverlay(frame.left, record);
-        folder.WriteImage("overlay", frame.index, overlay);
-        if (options.output.video) folder.AppendVideoFrame("overlay", overlay, info.fps);
-      }
+      for (RunObserver* observer : observers) observer->OnFrame(frame, pipeline, record);
       record.timings.Add("write", stage.ElapsedMs());
       // The pipeline and the overlay work at the working size; the record is written in the
       // pixels of the input frames (SPEC 3.3).

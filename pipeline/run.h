@@ -6,6 +6,7 @@
 #include <atomic>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "pipeline/attend_options.h"
 #include "util/timer.h"
@@ -18,6 +19,22 @@ struct RunProgress {
   double fps = 0.0;  // frames finished per second of wall time so far
 };
 
+class FramePipeline;
+struct FrameRecord;
+struct StereoFrame;
+
+// Hears every frame of a run once the pipeline has processed it, before its record is
+// appended to frames.jsonl: the dumps that output.dump asks for (maps, overlays, the overlay
+// video) are such observers, and a caller can add its own (RunRequest::observers). The
+// record is at the working size. An exception stops the run as a bad frame does: the frames
+// done are kept and summary.json says why.
+class RunObserver {
+ public:
+  virtual ~RunObserver() = default;
+  virtual void OnFrame(const StereoFrame& frame, const FramePipeline& pipeline,
+                       const FrameRecord& record) = 0;
+};
+
 struct RunRequest {
   AttendOptions options;     // sequence source already resolved
   std::string out_dir;       // the run folder
@@ -27,6 +44,7 @@ struct RunRequest {
   std::string home;          // the folder of bundled files, for plugins' relative data paths
   const std::atomic<bool>* stop = nullptr;              // finish the frame, then stop
   std::function<void(const RunProgress&)> on_progress;  // after every frame
+  std::vector<RunObserver*> observers;  // after the dumps, every frame (not owned)
 };
 
 struct RunSummary {
