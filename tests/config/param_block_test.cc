@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tests/support/error_message.h"
 #include "tests/support/temp_dir.h"
 #include "util/error.h"
@@ -145,6 +147,25 @@ TEST(Range, DescribesAndContains) {
   EXPECT_FALSE(Range::Any().Contains(std::numeric_limits<double>::quiet_NaN()));
   EXPECT_EQ(Range::Closed(0, 1).Describe(), "must be in [0, 1]");
   EXPECT_EQ(Range::Above(0).Describe(), "must be > 0");
+}
+
+TEST(ParamBlock, FailCheckPutsAnOptionsErrorAtTheKeyItNames) {
+  const ParamBlock block = ParamBlock::Parse("a: 1\nwindow: 4\n", "c.yaml");
+  std::string message = ConfigErrorOf([&] { block.FailCheck("window must be odd"); });
+  EXPECT_EQ(message, "c.yaml:2: window: must be odd");
+  message = ConfigErrorOf([&] { block.FailCheck("scales: each must be in (0, 200]"); });
+  EXPECT_EQ(message, "c.yaml:1: scales: each must be in (0, 200]");  // no such key: the block
+}
+
+TEST(Range, DescribesTheBoundAValueBreaks) {
+  const Range range = Range::AboveUpTo(0, 1);
+  EXPECT_EQ(range.DescribeBreach(0.0), "must be > 0");
+  EXPECT_EQ(range.DescribeBreach(2.0), "must be <= 1");
+  EXPECT_EQ(Range::Closed(1, 5).DescribeBreach(0.0), "must be >= 1");
+  EXPECT_EQ(Range::Closed(1, 5).DescribeBreach(std::nan("")), "must be in [1, 5]");
+  // A float field's bounds, rounded to float: 0.01f is below 0.01.
+  EXPECT_TRUE(Range::Closed(0.01, 1).RoundedToFloat().Contains(static_cast<float>(0.01)));
+  EXPECT_FALSE(Range::Closed(0.01, 1).Contains(static_cast<float>(0.01)));
 }
 
 }  // namespace
