@@ -11,9 +11,9 @@
 namespace attend {
 
 struct DisparityRequest {
-  std::string left;   // read as 8-bit images (io/disparity_files.h ReadStereoImage)
+  std::string left;  // read as 8-bit images (io/disparity_files.h ReadStereoImage)
   std::string right;
-  std::string out;    // the .pfm to write; replaced only once the new map is complete
+  std::string out;           // the .pfm to write; replaced only once the new map is complete
   DisparityOptions options;  // valid (Check)
   std::string gt;            // optional ground truth of the left view
   double gt_scale = 1.0;     // its values are divided by this

@@ -27,9 +27,9 @@ namespace fs = std::filesystem;
 
 struct Method {
   std::string name;
-  std::string folder;  // empty for a baseline
-  std::vector<std::vector<double>> values;  // per metric, per image
-  nlohmann::json scanpaths;                 // the folder's scanpath.json, or null
+  std::string folder;                                // empty for a baseline
+  std::vector<std::vector<double>> values;           // per metric, per image
+  nlohmann::json scanpaths;                          // the folder's scanpath.json, or null
   std::vector<std::vector<double>> scanpath_shares;  // per k, per image
   std::vector<std::string> ids;
 };
@@ -95,21 +95,23 @@ std::string Table(const std::vector<Method>& methods) {
 
 }  // namespace
 
-FixationEvaluation EvaluateFixations(const EvalFixationsRequest& args,
+FixationEvaluation EvaluateFixations(const EvalFixationsRequest& request,
                                      const FixationEvaluationObserver& observer) {
-  const FixationDataset dataset = OpenFixationDataset(args.dataset);
+  const FixationDataset dataset = OpenFixationDataset(request.dataset);
   std::vector<FixationItem> items = dataset.items;
-  items.erase(items.begin(), items.begin() + std::min<size_t>(args.skip, items.size()));
-  if (args.first > 0 && static_cast<int>(items.size()) > args.first) items.resize(args.first);
+  items.erase(items.begin(), items.begin() + std::min<size_t>(request.skip, items.size()));
+  if (request.first > 0 && static_cast<int>(items.size()) > request.first)
+    items.resize(request.first);
 
   std::vector<Method> methods;
-  for (const std::string& spec : args.maps) {
+  for (const std::string& spec : request.maps) {
     Method method;
     const size_t equals = spec.find('=');
     method.folder = equals == std::string::npos ? spec : spec.substr(equals + 1);
     method.name = equals == std::string::npos ? fs::path(method.folder).filename().string()
                                               : spec.substr(0, equals);
-    if (method.name.empty()) method.name = fs::path(method.folder).parent_path().filename().string();
+    if (method.name.empty())
+      method.name = fs::path(method.folder).parent_path().filename().string();
     std::error_code error;
     if (!fs::is_directory(method.folder, error)) {
       throw InputError(method.folder + ": no such folder of saliency maps");
@@ -125,9 +127,10 @@ FixationEvaluation EvaluateFixations(const EvalFixationsRequest& args,
     }
     methods.push_back(std::move(method));
   }
-  for (const std::string& name : args.baselines) {
+  for (const std::string& name : request.baselines) {
     if (std::find(BaselineNames().begin(), BaselineNames().end(), name) == BaselineNames().end()) {
-      throw ConfigError("--baselines " + name + ": not one of centre, spectral_residual, fine_grained");
+      throw ConfigError("--baselines " + name +
+                        ": not one of centre, spectral_residual, fine_grained");
     }
     Method method;
     method.name = name;
@@ -155,9 +158,10 @@ FixationEvaluation EvaluateFixations(const EvalFixationsRequest& args,
     } catch (const InputError& e) {
       return e.what();
     }
-    loaded->scale = ScoringScale(bgr.size(), args.max_side);
-    loaded->stimulus = ToSize(bgr, cv::Size(static_cast<int>(std::lround(bgr.cols * loaded->scale)),
-                                            static_cast<int>(std::lround(bgr.rows * loaded->scale))));
+    loaded->scale = ScoringScale(bgr.size(), request.max_side);
+    loaded->stimulus =
+        ToSize(bgr, cv::Size(static_cast<int>(std::lround(bgr.cols * loaded->scale)),
+                             static_cast<int>(std::lround(bgr.rows * loaded->scale))));
     for (Fixation f : ReadFixationFile(item.fixations_path)) {
       f.x *= loaded->scale;
       f.y *= loaded->scale;
@@ -195,17 +199,19 @@ FixationEvaluation EvaluateFixations(const EvalFixationsRequest& args,
         others.push_back({f.subject, f.x * size.width, f.y * size.height});
       }
     }
-    const double sigma = args.sigma > 0.0 ? args.sigma : 0.025 * std::max(size.width, size.height);
+    const double sigma =
+        request.sigma > 0.0 ? request.sigma : 0.025 * std::max(size.width, size.height);
     const cv::Mat density = FixationDensity(size, loaded.fixations, sigma);
     const cv::Mat centre = CentreBias(size);
     for (Method& method : methods) {
       cv::Mat map;
       if (method.folder.empty()) {
-        map = BaselineMap(method.name, loaded.stimulus, args.baseline_blur);
+        map = BaselineMap(method.name, loaded.stimulus, request.baseline_blur);
       } else {
         const fs::path path = fs::path(method.folder) / (item.id + ".pfm");
         std::error_code error;
-        if (!fs::exists(path, error)) throw InputError(path.string() + ": no saliency map for image " + item.id);
+        if (!fs::exists(path, error))
+          throw InputError(path.string() + ": no saliency map for image " + item.id);
         map = ReadPfmOneChannel(path.string(), "a saliency map");
         const cv::Size native(static_cast<int>(std::lround(size.width / loaded.scale)),
                               static_cast<int>(std::lround(size.height / loaded.scale)));
@@ -251,8 +257,8 @@ FixationEvaluation EvaluateFixations(const EvalFixationsRequest& args,
     means[method.name] = entry;
   }
   const std::string table = Table(methods);
-  if (!args.out.empty()) {
-    const fs::path out(args.out);
+  if (!request.out.empty()) {
+    const fs::path out(request.out);
     std::error_code error;
     fs::create_directories(out, error);
     if (error) throw InputError(out.string() + ": cannot create the folder: " + error.message());
@@ -269,15 +275,15 @@ FixationEvaluation EvaluateFixations(const EvalFixationsRequest& args,
       }
       if (!csv) throw InputError(csv_path.string() + ": cannot be written");
     }
-    const nlohmann::json report = {{"dataset", args.dataset},
+    const nlohmann::json report = {{"dataset", request.dataset},
                                    {"skipped", dataset.skipped},
                                    {"failed", failed},
-                                   {"skip", args.skip},
-                                   {"first", args.first},
-                                   {"max_side", args.max_side},
-                                   {"sigma_px", args.sigma},
-                                   {"baseline_blur", args.baseline_blur},
-                                   {"command", args.command_line},
+                                   {"skip", request.skip},
+                                   {"first", request.first},
+                                   {"max_side", request.max_side},
+                                   {"sigma_px", request.sigma},
+                                   {"baseline_blur", request.baseline_blur},
+                                   {"command", request.command_line},
                                    {"methods", means}};
     const fs::path json_path = out / "fixations.json";
     std::ofstream file(json_path);

@@ -145,5 +145,4 @@ nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::
   return report;
 }
 
-
 }  // namespace attend

@@ -15,12 +15,11 @@
 namespace attend {
 
 FitWeightsResult FitFeatureWeights(const FitWeightsRequest& request) {
-  const FitWeightsRequest& args = request;
   const std::string& config_path = request.config_path;
   AttendOptions options = request.options;
-  const FixationDataset dataset = OpenFixationDataset(args.dataset);
+  const FixationDataset dataset = OpenFixationDataset(request.dataset);
   std::vector<FixationItem> items = dataset.items;
-  if (static_cast<int>(items.size()) > args.train) items.resize(args.train);
+  if (static_cast<int>(items.size()) > request.train) items.resize(request.train);
   const StillSaliency still(options, request.home);
 
   std::vector<FitSample> samples;
@@ -30,7 +29,8 @@ FitWeightsResult FitFeatureWeights(const FitWeightsRequest& request) {
     const StillMaps maps = still.Compute(bgr, true, 0);
     names = maps.feature_names;
     const int side = std::max(bgr.cols, bgr.rows);
-    const double scale = side > args.max_side ? static_cast<double>(args.max_side) / side : 1.0;
+    const double scale =
+        side > request.max_side ? static_cast<double>(request.max_side) / side : 1.0;
     const cv::Size size(std::max(1, static_cast<int>(std::lround(bgr.cols * scale))),
                         std::max(1, static_cast<int>(std::lround(bgr.rows * scale))));
     FitSample sample;
@@ -53,21 +53,20 @@ FitWeightsResult FitFeatureWeights(const FitWeightsRequest& request) {
 
   WeightFitOptions fit_options;
   fit_options.saliency = options.saliency;
-  fit_options.step = args.step;
+  fit_options.step = request.step;
   const WeightFit fit = FitWeights(samples, fit_options);
   for (FeatureSpec& spec : options.features) {
     const auto at = std::find(names.begin(), names.end(), spec.name);
     if (spec.enabled && at != names.end()) spec.weight = fit.weights[at - names.begin()];
   }
   {
-    std::ofstream file(args.out);
-    file << "# attend fit-weights --dataset " << args.dataset << " --config " << config_path
-         << " --train " << args.train << " --step " << args.step << " --max-side "
-         << args.max_side << "\n# images 1.." << items.size()
-         << " by id were used for fitting: score on the others (--skip " << items.size()
-         << ")\n"
+    std::ofstream file(request.out);
+    file << "# attend fit-weights --dataset " << request.dataset << " --config " << config_path
+         << " --train " << request.train << " --step " << request.step << " --max-side "
+         << request.max_side << "\n# images 1.." << items.size()
+         << " by id were used for fitting: score on the others (--skip " << items.size() << ")\n"
          << OptionsToYaml(options) << "\n";
-    if (!file) throw InputError(args.out + ": cannot be written");
+    if (!file) throw InputError(request.out + ": cannot be written");
   }
   return {names, fit, static_cast<int>(items.size())};
 }

@@ -12,14 +12,14 @@
 namespace attend {
 
 struct FitWeightsRequest {
-  std::string dataset;       // a fixation dataset folder (eval/fixation_data.h)
-  AttendOptions options;     // whose enabled features are weighed
-  std::string config_path;   // where `options` came from, for messages and the header
-  std::string home;          // the attend home (plugins' relative data paths)
-  int train = 100;           // the first images by id
-  double step = 0.1;         // of the weight grid
-  int max_side = 128;        // maps and fixations are scaled to at most this side
-  std::string out;           // the configuration to write
+  std::string dataset;      // a fixation dataset folder (eval/fixation_data.h)
+  AttendOptions options;    // whose enabled features are weighed
+  std::string config_path;  // where `options` came from, for messages and the header
+  std::string home;         // the attend home (plugins' relative data paths)
+  int train = 100;          // the first images by id
+  double step = 0.1;        // of the weight grid
+  int max_side = 128;       // maps and fixations are scaled to at most this side
+  std::string out;          // the configuration to write
 };
 
 struct FitWeightsResult {

@@ -18,11 +18,11 @@ struct SaliencyMapsRequest {
   std::vector<std::string> images;  // image files, their stems all different
   std::string out;                  // may hold other files: only these are written
   AttendOptions options;
-  std::string home;         // the attend home (plugins' relative data paths)
-  bool features = false;    // also every feature's normalised map
-  int scanpath = 0;         // also the first K attended regions of each image
-  std::string config_path;  // recorded in saliency.json
-  std::string command_line; // recorded in saliency.json
+  std::string home;          // the attend home (plugins' relative data paths)
+  bool features = false;     // also every feature's normalised map
+  int scanpath = 0;          // also the first K attended regions of each image
+  std::string config_path;   // recorded in saliency.json
+  std::string command_line;  // recorded in saliency.json
 };
 
 struct SaliencyMapsResult {

@@ -38,39 +38,39 @@ bool IsObjectsCsv(const std::string& path) {
   return false;
 }
 
-GroundTruth ReadGroundTruth(const ScoreTracksRequest& args) {
+GroundTruth ReadGroundTruth(const ScoreTracksRequest& request) {
   std::error_code error;
-  if (!fs::is_regular_file(args.gt, error)) throw InputError(args.gt + ": no such file");
+  if (!fs::is_regular_file(request.gt, error)) throw InputError(request.gt + ": no such file");
   GroundTruth truth;
-  if (!IsObjectsCsv(args.gt)) {
-    if (args.gt_id) {
-      throw ConfigError("--gt-id " + std::to_string(*args.gt_id) + ": " + args.gt +
+  if (!IsObjectsCsv(request.gt)) {
+    if (request.gt_id) {
+      throw ConfigError("--gt-id " + std::to_string(*request.gt_id) + ": " + request.gt +
                         " is an OTB box list of one object; --gt-id picks an object of an "
                         "`attend synth` gt/objects.csv");
     }
     truth.format = "otb";
-    truth.boxes = ReadOtbGroundTruth(args.gt);
+    truth.boxes = ReadOtbGroundTruth(request.gt);
     return truth;
   }
   truth.format = "objects.csv";
-  const std::vector<GtObject> objects = ReadObjectsCsv(args.gt);
+  const std::vector<GtObject> objects = ReadObjectsCsv(request.gt);
   std::set<int> ids;
   for (const GtObject& object : objects) ids.insert(object.id);
   std::vector<std::string> id_texts;
   for (const int id : ids) id_texts.push_back(std::to_string(id));
-  if (!args.gt_id) {
+  if (!request.gt_id) {
     if (ids.size() != 1) {
-      throw ConfigError(args.gt + " holds objects " + Join(id_texts, ", ") +
+      throw ConfigError(request.gt + " holds objects " + Join(id_texts, ", ") +
                         "; choose the one to score against with --gt-id");
     }
     truth.id = *ids.begin();
   } else {
-    if (ids.count(*args.gt_id) == 0) {
-      throw ConfigError("--gt-id " + std::to_string(*args.gt_id) + ": " + args.gt +
+    if (ids.count(*request.gt_id) == 0) {
+      throw ConfigError("--gt-id " + std::to_string(*request.gt_id) + ": " + request.gt +
                         " has no such object (it holds " +
                         (ids.empty() ? std::string("none") : Join(id_texts, ", ")) + ")");
     }
-    truth.id = *args.gt_id;
+    truth.id = *request.gt_id;
   }
   for (const GtObject& object : objects) {
     if (object.id != *truth.id) continue;
@@ -82,11 +82,11 @@ GroundTruth ReadGroundTruth(const ScoreTracksRequest& args) {
 
 }  // namespace
 
-nlohmann::json ScoreTracks(const ScoreTracksRequest& args) {
-  const bool has_range = args.has_range;
-  const std::vector<TrackRow> rows = ReadTracksCsv(args.tracks);
-  if (rows.empty()) throw InputError(args.tracks + ": no rows; nothing to score");
-  const GroundTruth truth = ReadGroundTruth(args);
+nlohmann::json ScoreTracks(const ScoreTracksRequest& request) {
+  const bool has_range = request.has_range;
+  const std::vector<TrackRow> rows = ReadTracksCsv(request.tracks);
+  if (rows.empty()) throw InputError(request.tracks + ": no rows; nothing to score");
+  const GroundTruth truth = ReadGroundTruth(request);
 
   // Each target's boxes by frame, whatever its state: a target not found keeps its last known
   // box, as the OTB toolkit carries a tracker's last result over the frames it fails in.
@@ -95,7 +95,7 @@ nlohmann::json ScoreTracks(const ScoreTracksRequest& args) {
   std::set<std::pair<int, int>> seen;  // (id, frame)
   for (const TrackRow& row : rows) {
     if (!seen.emplace(row.id, row.frame).second) {
-      throw InputError(args.tracks + ": target " + std::to_string(row.id) +
+      throw InputError(request.tracks + ": target " + std::to_string(row.id) +
                        " has two rows for frame " + std::to_string(row.frame));
     }
     std::vector<cv::Rect2d>& boxes = predicted[row.id];
@@ -107,14 +107,14 @@ nlohmann::json ScoreTracks(const ScoreTracksRequest& args) {
     if (row.state == "found") ++found_of[row.id];
   }
   std::vector<int> ids;
-  if (args.id) {
-    if (!predicted.count(*args.id)) {
+  if (request.id) {
+    if (!predicted.count(*request.id)) {
       std::vector<std::string> present;
       for (const auto& [id, boxes] : predicted) present.push_back(std::to_string(id));
-      throw ConfigError("--id " + std::to_string(*args.id) + ": " + args.tracks +
+      throw ConfigError("--id " + std::to_string(*request.id) + ": " + request.tracks +
                         " has no such target (it holds " + Join(present, ", ") + ")");
     }
-    ids.push_back(*args.id);
+    ids.push_back(*request.id);
   } else {
     for (const auto& [id, boxes] : predicted) ids.push_back(id);
   }
@@ -123,8 +123,9 @@ nlohmann::json ScoreTracks(const ScoreTracksRequest& args) {
   const int truth_last = static_cast<int>(truth.boxes.size()) - 1;
   for (const int id : ids) {
     // From the target's first frame (or FIRST) to the end of the ground truth (or LAST).
-    const int first = has_range ? args.first_frame : first_frame[id];
-    const int last = args.last_frame >= 0 ? std::min(args.last_frame, truth_last) : truth_last;
+    const int first = has_range ? request.first_frame : first_frame[id];
+    const int last =
+        request.last_frame >= 0 ? std::min(request.last_frame, truth_last) : truth_last;
     std::vector<cv::Rect2d> scored = truth.boxes;
     for (int f = 0; f < static_cast<int>(scored.size()); ++f) {
       if (f < first || f > last) scored[f] = cv::Rect2d();
@@ -141,13 +142,12 @@ nlohmann::json ScoreTracks(const ScoreTracksRequest& args) {
                        {"mean_iou", scores.mean_iou},
                        {"success", scores.success}});
   }
-  const nlohmann::json report = {{"tracks", args.tracks},
-                                 {"gt", args.gt},
+  const nlohmann::json report = {{"tracks", request.tracks},
+                                 {"gt", request.gt},
                                  {"gt_format", truth.format},
                                  {"gt_id", truth.id ? nlohmann::json(*truth.id) : nullptr},
                                  {"targets", targets}};
   return report;
 }
-
 
 }  // namespace attend

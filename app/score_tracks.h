@@ -10,13 +10,13 @@
 namespace attend {
 
 struct ScoreTracksRequest {
-  std::string tracks;         // a tracks.csv
-  std::string gt;             // an OTB box list or a gt/objects.csv
-  std::optional<int> id;      // score this target only (--id)
-  std::optional<int> gt_id;   // the object of an objects.csv (--gt-id)
-  bool has_range = false;     // score frames first_frame..last_frame only
+  std::string tracks;        // a tracks.csv
+  std::string gt;            // an OTB box list or a gt/objects.csv
+  std::optional<int> id;     // score this target only (--id)
+  std::optional<int> gt_id;  // the object of an objects.csv (--gt-id)
+  bool has_range = false;    // score frames first_frame..last_frame only
   int first_frame = 0;
-  int last_frame = -1;        // -1: to the end of the ground truth
+  int last_frame = -1;  // -1: to the end of the ground truth
 };
 
 // The report attend eval-tracking prints: per target its frames, rows, success AUC, precision

@@ -193,16 +193,15 @@ nlohmann::json TrackSequence(const TrackRequest& request,
   }
   WriteTracksCsv(tracks_path, rows);
 
-  const nlohmann::json summary = {
-      {"source", source_options.Describe()},
-      {"out", request.out},
-      {"tracker", tracker->name()},
-      {"first_frame", first_frame},
-      {"last_frame", last_frame},
-      {"frames", frames},
-      {"targets", boxes.size()},
-      {"lost", lost},
-      {"ms_per_frame", frames > 1 ? track_ms / (frames - 1) : 0.0}};
+  const nlohmann::json summary = {{"source", source_options.Describe()},
+                                  {"out", request.out},
+                                  {"tracker", tracker->name()},
+                                  {"first_frame", first_frame},
+                                  {"last_frame", last_frame},
+                                  {"frames", frames},
+                                  {"targets", boxes.size()},
+                                  {"lost", lost},
+                                  {"ms_per_frame", frames > 1 ? track_ms / (frames - 1) : 0.0}};
   // The same summary beside tracks.csv, so that the folder says which kind tracked.
   const std::string summary_path = (out / "track.json").string();
   std::ofstream summary_file(summary_path);

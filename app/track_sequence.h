@@ -20,12 +20,12 @@ struct TrackRequest {
   std::string sequence;  // a sequence folder (its left view) ...
   std::string images;    // ... or a plain folder of images
   int first_frame = 0;
-  int last_frame = -1;      // -1: to the end
-  std::string range_text;   // the range as the user gave it, for messages ("0:" when none)
-  std::vector<cv::Rect> boxes;          // one target each, ids 1, 2, ... in order
-  std::vector<std::string> box_texts;   // how each box was given, for messages
+  int last_frame = -1;          // -1: to the end
+  std::string range_text;       // the range as the user gave it, for messages ("0:" when none)
+  std::vector<cv::Rect> boxes;  // one target each, ids 1, 2, ... in order
+  std::vector<std::string> box_texts;  // how each box was given, for messages
   std::string out;
-  bool overwrite = false;   // replace a previous track output in `out`
+  bool overwrite = false;  // replace a previous track output in `out`
   TargetTrackerOptions options;
 };
 

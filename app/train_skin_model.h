@@ -16,10 +16,10 @@ struct SkinTrainRequest {
   std::vector<std::string> data;  // items io/skin_files.h ReadSkinData reads
   std::string out;                // the model file
   ThresholdRule rule;
-  double holdout = 0.2;           // share of the samples held out, [0, 1)
-  uint64_t seed = 1;              // of the split
-  bool overwrite = false;         // replace an existing model file
-  std::string command_line;       // recorded in the model's provenance
+  double holdout = 0.2;      // share of the samples held out, [0, 1)
+  uint64_t seed = 1;         // of the split
+  bool overwrite = false;    // replace an existing model file
+  std::string command_line;  // recorded in the model's provenance
 };
 
 // Returns the report attend skin-train prints: samples, mean, covariance, threshold, rule,

@@ -93,5 +93,4 @@ ReportResult WriteReport(const ReportRequest& request) {
   return result;
 }
 
-
 }  // namespace attend

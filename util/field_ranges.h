@@ -63,9 +63,8 @@ std::string CheckFieldRanges(const Options& options, const FieldRanges<Options>&
           const double value = static_cast<double>(options.*member);
           const Range range = internal::RangeForType<T>(field.range);
           if (!range.Contains(value)) {
-            error = std::string(field.name) + std::string(separator) +
-                    range.DescribeBreach(value) + ", got " +
-                    ShortestNumber(value);
+            error = std::string(field.name) + std::string(separator) + range.DescribeBreach(value) +
+                    ", got " + ShortestNumber(value);
           }
         },
         field.member);

@@ -25,8 +25,8 @@ TEST(WriteSaliencyMaps, TellsWhatIsLeftOutAndWhatCannotBeReadAndMapsTheRest) {
   request.images = {dir.File("broken.png"), dir.File("a.png")};
   request.out = dir.File("out");
   request.home = testing::ProjectRoot();
-  request.options = ReadOptions(ParamBlock::Parse(
-      "features: [{name: colour_contrast}, {name: disparity}]", "c.yaml"));
+  request.options = ReadOptions(
+      ParamBlock::Parse("features: [{name: colour_contrast}, {name: disparity}]", "c.yaml"));
   std::vector<std::string> left_out, unreadable;
   SaliencyMapsObserver observer;
   observer.on_left_out = [&](const std::string& name) { left_out.push_back(name); };

@@ -2,7 +2,6 @@
 // (util/field_ranges.h): for every listed field, a value just outside its range is refused
 // both by the configuration, naming the key and its line, and by the struct's Check().
 #include <gtest/gtest.h>
-
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -110,8 +109,8 @@ TEST(OptionRanges, EveryNumericKeyOfTheConfigurationHasARange) {
   int numeric = 0;
   const auto check = [&](const std::string& section, const std::string& key) {
     for (const std::string value : {"2000000000", "-2000000000"}) {
-      const std::string yaml = section.empty() ? key + ": " + value
-                                               : section + ": {" + key + ": " + value + "}";
+      const std::string yaml =
+          section.empty() ? key + ": " + value : section + ": {" + key + ": " + value + "}";
       const std::string path = section.empty() ? key : section + "." + key;
       const std::string message =
           testing::ConfigErrorOf([&] { ReadOptions(ParamBlock::Parse(yaml, "n.yaml")); });

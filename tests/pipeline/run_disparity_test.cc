@@ -37,7 +37,8 @@ TEST(RunDisparity, TheDisparityFeaturesEntryChoosesTheContextsOptions) {
 TEST(RunDisparity, WithoutTheFeatureOrWithItDisabledTheOptionsAreTheDefaults) {
   for (const std::string& features :
        {std::string("[{name: intensity_contrast}]"),
-        std::string("[{name: intensity_contrast}, {name: disparity, window: 9, enabled: false}]")}) {
+        std::string(
+            "[{name: intensity_contrast}, {name: disparity, window: 9, enabled: false}]")}) {
     const FramePipeline pipeline(WithFeatures(features), BuiltinFeatures(), StereoSetup());
     EXPECT_TRUE(pipeline.context().disparity_options() == DisparityOptions()) << features;
   }

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "pipeline/frame_pipeline.h"
 #include "io/ground_truth.h"
+#include "pipeline/frame_pipeline.h"
 #include "pipeline/frame_record.h"
 #include "pipeline/run.h"
 #include "tests/support/sequence_maker.h"
