@@ -21,15 +21,6 @@ namespace fs = std::filesystem;
 constexpr int kShiftVarianceWindow = 128;
 constexpr int kShiftVarianceMaxShift = 10;
 
-cv::Mat ReadStillImage(const std::string& path) {
-  std::error_code error;
-  if (!fs::is_regular_file(path, error)) {
-    throw InputError(path + ": no such image file");
-  }
-  // IMREAD_COLOR gives 8-bit BGR whatever the file holds: grey is replicated to three
-  // channels and 16-bit samples are scaled to 8 bits.
-  return ReadImageFile(path, cv::IMREAD_COLOR, path);
-}
 
 // The labels as a 16-bit PNG: region indices 0..R-1 must fit in 16 bits.
 cv::Mat SixteenBitLabels(const std::string& image_path, const Segmentation& segmentation) {
@@ -71,7 +62,9 @@ void SegmentImages(const SegmentRequest& request,
   Segmentation segmentation;
   for (size_t i = 0; i < request.images.size(); ++i) {
     const std::string& path = request.images[i];
-    const cv::Mat bgr = ReadStillImage(path);
+    // IMREAD_COLOR gives 8-bit BGR whatever the file holds: grey is replicated to three
+    // channels and 16-bit samples are scaled to 8 bits.
+    const cv::Mat bgr = ReadNamedImageFile(path, cv::IMREAD_COLOR);
     segmenter.Segment(bgr, &segmentation);
 
     const std::string stem = (out / request.stems[i]).string();

@@ -53,10 +53,10 @@ cv::Mat DrawTrackOverlay(const cv::Mat& frame, int index, const std::vector<Targ
   const double font_scale = OverlayFontScale(frame.cols);
   for (const TargetView& view : views) {
     const cv::Scalar colour = TargetColour(view.id);
-    const bool found = view.state == "found";
+    const bool found = view.state == TrackState::kFound;
     if (!view.roi.empty()) cv::rectangle(overlay, view.roi, colour, 1, cv::LINE_4);
     cv::rectangle(overlay, view.box, colour, found ? 2 : 1, cv::LINE_8);
-    DrawTargetLabel(&overlay, view.id, view.box, found ? "" : " (" + view.state + ")", font_scale);
+    DrawTargetLabel(&overlay, view.id, view.box, found ? "" : std::string(" (") + TrackStateName(view.state) + ")", font_scale);
   }
   DrawCaption(&overlay, "frame " + std::to_string(index), font_scale);
   return overlay;
@@ -159,7 +159,7 @@ nlohmann::json TrackSequence(const TrackRequest& request,
     const cv::Mat mask = tracker->Mask(id).clone();
     const cv::Rect box = cv::boundingRect(mask);
     rows.push_back({frame.index, id, cv::Rect2d(box), "found"});
-    views.push_back({id, "found", box, cv::Rect(), mask});
+    views.push_back({id, TrackState::kFound, box, cv::Rect(), mask});
   }
   tell(views);
 
@@ -177,12 +177,12 @@ nlohmann::json TrackSequence(const TrackRequest& request,
       last_frame = frame.index;
       views.clear();
       for (const TrackResult& result : results) {
-        const std::string state = TrackStateName(result.state);
-        rows.push_back({frame.index, result.id, cv::Rect2d(result.box), state});
+        rows.push_back({frame.index, result.id, cv::Rect2d(result.box),
+                        TrackStateName(result.state)});
         if (result.state == TrackState::kLost) lost.push_back(result.id);
         const cv::Mat mask =
             result.state == TrackState::kFound ? tracker->Mask(result.id) : cv::Mat();
-        views.push_back({result.id, state, result.box, result.roi, mask});
+        views.push_back({result.id, result.state, result.box, result.roi, mask});
       }
       tell(views);
     }

@@ -32,7 +32,7 @@ struct TrackRequest {
 // One target in one frame, as written and drawn.
 struct TargetView {
   int id = 0;
-  std::string state;  // found, occluded or lost (SPEC's names)
+  TrackState state = TrackState::kFound;
   cv::Rect box;
   cv::Rect roi;  // empty on the first frame
   cv::Mat mask;  // empty when not found

@@ -33,15 +33,12 @@ nlohmann::ordered_json RunJson(const RunData& run) {
 }
 
 void WriteText(const fs::path& path, const std::string& text) {
-  const fs::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary);
+  ReplaceFile(path.string(), "", [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
     out << text;
-    if (!out) throw OutputError(path.string() + ": cannot write");
-  }
-  std::error_code error;
-  fs::rename(partial, path, error);
-  if (error) throw OutputError(path.string() + ": cannot write (" + error.message() + ")");
+    out.close();
+    return static_cast<bool>(out);
+  });
 }
 
 }  // namespace

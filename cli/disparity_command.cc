@@ -39,12 +39,6 @@ struct DisparityArguments {
   std::vector<std::string> sets;
 };
 
-std::string Lowercase(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
 // The options: DisparityOptions' defaults, then the `disparity.*` keys of --set, then the
 // flags. A key set both ways is a usage error rather than a silent choice of one of them.
 DisparityOptions ResolveOptions(const DisparityArguments& args, bool subpixel_given,

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "util/error.h"
+#include "util/strings.h"
 
 namespace attend {
 
@@ -20,12 +21,6 @@ namespace fs = std::filesystem;
 // The extensions a stimulus may have (compared in lower case).
 const std::vector<std::string> kStimulusExtensions = {".jpg", ".jpeg", ".png",
                                                       ".ppm", ".pgm",  ".bmp"};
-
-std::string Lower(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
 
 // Parses the whole token, so that "12abc" or "1.5" (as an integer) is rejected.
 template <typename T>
@@ -69,7 +64,7 @@ std::map<std::string, fs::path> FilesByStem(const fs::path& folder,
   std::map<std::string, fs::path> files;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
     if (!entry.is_regular_file()) continue;
-    const std::string extension = Lower(entry.path().extension().string());
+    const std::string extension = Lowercase(entry.path().extension().string());
     if (std::find(extensions.begin(), extensions.end(), extension) == extensions.end()) continue;
     const std::string stem = entry.path().stem().string();
     const auto [it, inserted] = files.emplace(stem, entry.path());

@@ -1,7 +1,5 @@
 #include "io/disparity_files.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -11,6 +9,8 @@
 #include "io/image_file.h"
 #include "io/pfm.h"
 #include "util/error.h"
+#include "util/output_folder.h"
+#include "util/strings.h"
 
 namespace attend {
 
@@ -19,18 +19,13 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string LowercaseExtension(const std::string& path) {
-  std::string text = fs::path(path).extension().string();
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
+  return Lowercase(fs::path(path).extension().string());
 }
 
 }  // namespace
 
 cv::Mat ReadStereoImage(const std::string& path) {
-  std::error_code error;
-  if (!fs::is_regular_file(path, error)) throw InputError(path + ": no such image file");
-  return ReadImageFile(path, cv::IMREAD_ANYCOLOR, path);
+  return ReadNamedImageFile(path, cv::IMREAD_ANYCOLOR);
 }
 
 cv::Mat ReadDisparityGroundTruth(const std::string& path, double scale) {
@@ -44,9 +39,7 @@ cv::Mat ReadDisparityGroundTruth(const std::string& path, double scale) {
     }
     disparity = map;
   } else {
-    std::error_code error;
-    if (!fs::is_regular_file(path, error)) throw InputError(path + ": no such ground-truth file");
-    const cv::Mat image = ReadImageFile(path, cv::IMREAD_UNCHANGED, path);
+    const cv::Mat image = ReadNamedImageFile(path, cv::IMREAD_UNCHANGED, "ground-truth");
     if (image.channels() != 1 || (image.depth() != CV_8U && image.depth() != CV_16U)) {
       throw InputError(path + ": ground truth must be one channel of 8 or 16 bits, got " +
                        std::to_string(image.channels()) + " channel(s) of " +
@@ -71,20 +64,10 @@ void WriteDisparityMap(const std::string& out, const cv::Mat& disparity) {
       throw OutputError(parent.string() + ": cannot create the folder (" + error.message() + ")");
     }
   }
-  const fs::path temporary =
-      parent / ("." + path.filename().string() + ".tmp" + std::to_string(getpid()));
-  try {
-    WritePfm(temporary.string(), disparity);
-  } catch (const Error& e) {
-    fs::remove(temporary, error);
-    throw OutputError(out + ": cannot write the map (" + e.what() + ")");
-  }
-  fs::rename(temporary, path, error);
-  if (error) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw OutputError(out + ": cannot write the map (" + error.message() + ")");
-  }
+  ReplaceFile(out, "the map", [&](const std::string& temporary) {
+    WritePfm(temporary, disparity);
+    return true;
+  });
 }
 
 }  // namespace attend

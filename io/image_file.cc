@@ -73,6 +73,14 @@ cv::Mat ReadImageFile(const std::string& path, int flags, const std::string& whe
   return image;
 }
 
+cv::Mat ReadNamedImageFile(const std::string& path, int flags, const std::string& what) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    throw InputError(path + ": no such " + what + " file");
+  }
+  return ReadImageFile(path, flags, path);
+}
+
 void WriteImageFile(const std::string& path, const cv::Mat& image) {
   std::error_code error;
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();

@@ -21,6 +21,10 @@ std::string IncompleteImage(const std::vector<uchar>& bytes);
 // (IncompleteImage) or not decodable.
 cv::Mat ReadImageFile(const std::string& path, int flags, const std::string& where);
 
+// ReadImageFile of a file the user named: InputError "PATH: no such WHAT file" when `path` is
+// not a regular file, otherwise as ReadImageFile with the path as `where`.
+cv::Mat ReadNamedImageFile(const std::string& path, int flags, const std::string& what = "image");
+
 // Writes `image` with cv::imwrite (the format by the extension), creating the folders above it.
 // OutputError "PATH: cannot write the image" when that fails.
 void WriteImageFile(const std::string& path, const cv::Mat& image);

@@ -449,9 +449,7 @@ std::vector<std::string> ListFrameFiles(const std::string& folder, const std::st
   try {
     for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
       if (!entry.is_regular_file()) continue;
-      std::string extension = entry.path().extension().string();
-      std::transform(extension.begin(), extension.end(), extension.begin(),
-                     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      const std::string extension = Lowercase(entry.path().extension().string());
       if (std::find(extensions.begin(), extensions.end(), extension) != extensions.end()) {
         paths.push_back(entry.path().string());
       }

@@ -1,6 +1,5 @@
 #include "io/skin_files.h"
 
-#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -21,6 +20,7 @@
 #include "config/param_block.h"
 #include "io/image_file.h"
 #include "util/error.h"
+#include "util/output_folder.h"
 #include "util/strings.h"
 
 namespace attend {
@@ -56,11 +56,6 @@ uint64_t GetCount(const ParamBlock& block, const std::string& key, uint64_t max)
   return value;
 }
 
-cv::Mat ReadTrainingImage(const std::string& path, int flags, const char* what) {
-  std::error_code error;
-  if (!fs::is_regular_file(path, error)) throw InputError(path + ": no such " + what + " file");
-  return ReadImageFile(path, flags, path);
-}
 
 // One line of text for a message: at most 60 characters, unprintable bytes shown as '?'.
 std::string Excerpt(const char* begin, const char* end) {
@@ -150,27 +145,12 @@ void SaveSkinModel(const SkinModel& model, const std::string& path) {
   }
 
   // Written beside the target and renamed over it: a reader sees the old file or the new one.
-  const fs::path target(path);
-  std::ostringstream temporary_name;
-  temporary_name << "." << target.filename().string() << ".tmp-" << getpid();
-  const fs::path temporary = target.parent_path() / temporary_name.str();
-  {
+  ReplaceFile(path, "the model file", [&](const std::string& temporary) {
     std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
     file << text.str();
     file.close();
-    if (!file) {
-      std::error_code ignored;
-      fs::remove(temporary, ignored);
-      throw OutputError(path + ": cannot write the model file");
-    }
-  }
-  std::error_code error;
-  fs::rename(temporary, target, error);
-  if (error) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw OutputError(path + ": cannot write the model file (" + error.message() + ")");
-  }
+    return static_cast<bool>(file);
+  });
 }
 
 void ReadSkinText(const std::string& path, SkinSamples* samples) {
@@ -246,9 +226,9 @@ void ReadSkinImagePair(const std::string& image_path, const std::string& mask_pa
                        const SkinSampleSink& sink) {
   // IMREAD_COLOR gives 8-bit BGR whatever the file holds. The mask is read as grey at its own
   // depth, so that a 16-bit mask with small values is not scaled to zero.
-  const cv::Mat bgr = ReadTrainingImage(image_path, cv::IMREAD_COLOR, "image");
+  const cv::Mat bgr = ReadNamedImageFile(image_path, cv::IMREAD_COLOR, "image");
   const cv::Mat mask =
-      ReadTrainingImage(mask_path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH, "mask");
+      ReadNamedImageFile(mask_path, cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH, "mask");
   if (mask.size() != bgr.size()) {
     throw InputError(mask_path + ": the mask is " + std::to_string(mask.cols) + "x" +
                      std::to_string(mask.rows) + " but its image " + image_path + " is " +

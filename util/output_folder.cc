@@ -1,5 +1,7 @@
 #include "util/output_folder.h"
 
+#include <unistd.h>
+
 #include <filesystem>
 
 #include "util/error.h"
@@ -40,6 +42,29 @@ void PrepareOutputFolder(const std::string& folder, bool overwrite, const Output
   }
   fs::create_directories(folder, error);
   if (error) throw OutputError(folder + ": cannot create the output folder: " + error.message());
+}
+
+void ReplaceFile(const std::string& path, const std::string& what,
+                 const std::function<bool(const std::string& temporary)>& write) {
+  const fs::path target(path);
+  const fs::path temporary =
+      target.parent_path() / ("." + target.filename().string() + ".tmp-" + std::to_string(getpid()));
+  const auto fail = [&](const std::string& reason) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw OutputError(path + ": cannot write" + (what.empty() ? "" : " " + what) +
+                      (reason.empty() ? "" : " (" + reason + ")"));
+  };
+  bool written = false;
+  try {
+    written = write(temporary.string());
+  } catch (const Error& e) {
+    fail(e.what());
+  }
+  if (!written) fail("");
+  std::error_code error;
+  fs::rename(temporary, target, error);
+  if (error) fail(error.message());
 }
 
 }  // namespace attend

@@ -20,4 +20,12 @@ struct OutputFolderRules {
 // `own_entries` are removed; other files stay. An empty path is an OutputError.
 void PrepareOutputFolder(const std::string& folder, bool overwrite, const OutputFolderRules& rules);
 
+// Writes a file so that `path` holds either its old content or the whole new one: `write`
+// fills a temporary file beside it (.NAME.tmp-PID), returning false or throwing an attend
+// Error when it cannot, and the temporary is then renamed over `path`. On failure the
+// temporary is removed and OutputError "PATH: cannot write WHAT" is thrown, with the reason
+// in parentheses when there is one. The folder must exist.
+void ReplaceFile(const std::string& path, const std::string& what,
+                 const std::function<bool(const std::string& temporary)>& write);
+
 }  // namespace attend

@@ -33,6 +33,9 @@ size_t NonPrintableAt(std::string_view text);
 // The shortest text that reads back as exactly `value` (std::to_chars).
 std::string ShortestNumber(double value);
 
+// `text` with ASCII letters in lower case (file extensions, case-blind names).
+std::string Lowercase(std::string text);
+
 // Joins with a separator.
 std::string Join(const std::vector<std::string>& parts, std::string_view separator);
 

@@ -39,14 +39,20 @@ class Recorder : public TrackObserver {
   std::vector<cv::Rect> boxes;
 };
 
-TEST(TrackSequence, TellsObserversEveryFrameAndWritesTheTracks) {
-  testing::TempDir dir;
+// One target from `box` on the moving square's frames, written to DIR/out.
+TrackRequest Request(const testing::TempDir& dir, const cv::Rect& box) {
   TrackRequest request;
   request.images = MovingSquare(dir);
   request.range_text = "0:";
-  request.boxes = {cv::Rect(8, 18, 20, 20)};
+  request.boxes = {box};
   request.box_texts = {"box 1"};
   request.out = dir.File("out");
+  return request;
+}
+
+TEST(TrackSequence, TellsObserversEveryFrameAndWritesTheTracks) {
+  testing::TempDir dir;
+  const TrackRequest request = Request(dir, cv::Rect(8, 18, 20, 20));
   Recorder recorder;
   const std::unique_ptr<TrackObserver> overlays = MakeOverlayDump(request.out);
   const nlohmann::json summary = TrackSequence(request, {&recorder, overlays.get()});
@@ -68,12 +74,7 @@ TEST(TrackSequence, TellsObserversEveryFrameAndWritesTheTracks) {
 
 TEST(TrackSequence, ABoxOutsideTheFrameIsAConfigurationErrorBeforeAnythingIsWritten) {
   testing::TempDir dir;
-  TrackRequest request;
-  request.images = MovingSquare(dir);
-  request.range_text = "0:";
-  request.boxes = {cv::Rect(80, 18, 20, 20)};
-  request.box_texts = {"box 1"};
-  request.out = dir.File("out");
+  const TrackRequest request = Request(dir, cv::Rect(80, 18, 20, 20));
   Recorder recorder;
   try {
     TrackSequence(request, {&recorder});

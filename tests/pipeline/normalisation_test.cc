@@ -9,24 +9,15 @@
 #include "pipeline/frame_pipeline.h"
 #include "saliency/saliency.h"
 #include "tests/support/error_message.h"
+#include "tests/support/pipeline_options.h"
 #include "tests/support/temp_dir.h"
 
 namespace attend {
 namespace {
 
-AttendOptions WithFeatures(const std::string& features) {
-  AttendOptions options;
-  options.features =
-      ReadFeatureList(ParamBlock::Parse("features: " + features, "test.yaml"), "features");
-  return options;
-}
+using testing::WithFeatures;
 
-FeatureSetup MonocularSetup() {
-  FeatureSetup setup;
-  setup.stereo = false;
-  setup.home = testing::ProjectRoot();
-  return setup;
-}
+FeatureSetup MonocularSetup() { return testing::SetupFor(false); }
 
 // A grey frame with a bright square and three coloured ones: several local maxima of contrast,
 // so local_maxima and minmax differ.

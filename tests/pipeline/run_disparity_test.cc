@@ -4,24 +4,14 @@
 
 #include "features/builtin.h"
 #include "pipeline/frame_pipeline.h"
-#include "tests/support/temp_dir.h"
+#include "tests/support/pipeline_options.h"
 
 namespace attend {
 namespace {
 
-AttendOptions WithFeatures(const std::string& features) {
-  AttendOptions options;
-  options.features =
-      ReadFeatureList(ParamBlock::Parse("features: " + features, "test.yaml"), "features");
-  return options;
-}
+using testing::WithFeatures;
 
-FeatureSetup StereoSetup() {
-  FeatureSetup setup;
-  setup.stereo = true;
-  setup.home = testing::ProjectRoot();
-  return setup;
-}
+FeatureSetup StereoSetup() { return testing::SetupFor(true); }
 
 TEST(RunDisparity, TheDisparityFeaturesEntryChoosesTheContextsOptions) {
   const FramePipeline pipeline(
