@@ -3,8 +3,11 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <vector>
 
 #include "eval/disparity_scores.h"
+#include "eval/mot_metrics.h"
 #include "eval/run_evaluation.h"
 #include "io/ground_truth.h"
 #include "io/pfm.h"
@@ -98,6 +101,49 @@ nlohmann::ordered_json DisparityScores(const std::string& run, const std::string
   return {{"frames", frames}, {"mean_bad1", bad1 / frames}, {"mean_bad2", bad2 / frames}};
 }
 
+// The MOTChallenge measures at one threshold, under the devkit's names (SPEC 4).
+nlohmann::ordered_json MotJson(const MotScores& s) {
+  return {{"match_iou", s.match_iou},
+          {"objects", s.objects},
+          {"objects_attended_whole", s.objects_attended_whole},
+          {"attended_whole_fraction", s.attended_whole_fraction},
+          {"targets_started", s.targets_started},
+          {"ids_per_attended_object", s.ids_per_attended_object},
+          {"purity", s.purity},
+          {"IDF1", s.idf1},
+          {"IDP", s.idp},
+          {"IDR", s.idr},
+          {"IDTP", s.idtp},
+          {"IDFP", s.idfp},
+          {"IDFN", s.idfn},
+          {"MOTA", s.mota},
+          {"MOTP", s.motp},
+          {"GT", s.gt},
+          {"FP", s.false_positives},
+          {"FN", s.false_negatives},
+          {"IDSW", s.id_switches},
+          {"MT", s.mostly_tracked},
+          {"PT", s.partly_tracked},
+          {"ML", s.mostly_lost},
+          {"Frag", s.fragmentations},
+          {"ignored", s.ignored}};
+}
+
+// MOTChallenge's match (0.5) and attend eval's own (EvaluationOptions::match_iou, 0.3), keyed
+// "iou_0.5" and "iou_0.3".
+nlohmann::ordered_json MotReport(const std::vector<FrameRecord>& frames,
+                                 const std::vector<GtObject>& truth) {
+  nlohmann::ordered_json mot = nlohmann::ordered_json::object();
+  for (const double match_iou : {0.5, EvaluationOptions{}.match_iou}) {
+    MotOptions options;
+    options.match_iou = match_iou;
+    std::ostringstream key;
+    key << "iou_" << match_iou;
+    mot[key.str()] = MotJson(EvaluateMot(frames, truth, options));
+  }
+  return mot;
+}
+
 }  // namespace
 
 nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::string& gt_dir) {
@@ -117,7 +163,8 @@ nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::
   if (!fs::exists(objects)) throw InputError(objects.string() + ": no ground-truth objects");
   CheckRecordsInInputPixels(run);
   const std::vector<FrameRecord> frames = ReadFrameRecords((run / "frames.jsonl").string());
-  const AttentionScores scores = EvaluateAttention(frames, ReadObjectsCsv(objects.string()));
+  const std::vector<GtObject> truth = ReadObjectsCsv(objects.string());
+  const AttentionScores scores = EvaluateAttention(frames, truth);
 
   nlohmann::ordered_json per_object = nlohmann::ordered_json::array();
   for (const ObjectScore& object : scores.per_object) {
@@ -139,6 +186,7 @@ nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::
                                    {"revisits", scores.revisits},
                                    {"identity_switches", scores.identity_switches},
                                    {"mean_iou", scores.mean_iou},
+                                   {"mot", MotReport(frames, truth)},
                                    {"per_object", per_object}};
   const nlohmann::ordered_json disparity = DisparityScores(run_dir, gt, options);
   if (!disparity.is_null()) report["disparity"] = disparity;

@@ -1,6 +1,7 @@
 // The controller of `attend eval` (SPEC 3.2, 4): the attention metrics of a run folder against
-// the ground truth of its sequence (or another gt/ folder), and the disparity scores when the
-// run dumped its disparity maps. The command only parses its arguments and prints the report.
+// the ground truth of its sequence (or another gt/ folder), the MOTChallenge measures at IoU 0.5
+// and 0.3 ("mot"), and the disparity scores when the run dumped its disparity maps. The command
+// only parses its arguments and prints the report.
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -16,9 +16,9 @@
 // SIM and KL are undefined (NaN) when a map sums to zero. NaN metrics are written as null and
 // left out of means.
 //
-// Targets are matched frame by frame: every target of run A that is new or tracked in a frame
-// with every such target of run B, pairs with box IoU >= 0.5 taken greedily by decreasing IoU,
-// one to one. Over the run, a target of A is matched with the target of B it was paired with
+// Targets are matched frame by frame: every target of run A that is new, tracked or resumed in
+// a frame with every such target of run B, pairs with box IoU >= 0.5 taken greedily by
+// decreasing IoU, one to one. Over the run, a target of A is matched with the target of B it was paired with
 // most often (again greedily, one to one); the others are only in one run.
 #pragma once
 

@@ -4,17 +4,9 @@
 #include <map>
 #include <set>
 
+#include "util/box.h"
+
 namespace attend {
-
-namespace {
-
-double Iou(const cv::Rect2d& a, const cv::Rect2d& b) {
-  const double inter = (a & b).area();
-  const double uni = a.area() + b.area() - inter;
-  return uni > 0.0 ? inter / uni : 0.0;
-}
-
-}  // namespace
 
 AttentionScores EvaluateAttention(const std::vector<FrameRecord>& frames,
                                   const std::vector<GtObject>& truth,
@@ -61,7 +53,7 @@ AttentionScores EvaluateAttention(const std::vector<FrameRecord>& frames,
     for (const TargetRecord& target : record.targets) {
       if (!Visible(target.state)) continue;
       for (const GtObject* object : visible) {
-        const double iou = Iou(cv::Rect2d(target.bbox), object->box);
+        const double iou = BoxIou(cv::Rect2d(target.bbox), object->box);
         if (iou >= options.match_iou) pairs.push_back({iou, &target, object});
       }
     }
@@ -90,7 +82,7 @@ AttentionScores EvaluateAttention(const std::vector<FrameRecord>& frames,
       const GtObject* best = nullptr;
       double best_iou = options.match_iou;
       for (const GtObject* object : visible) {
-        const double iou = Iou(cv::Rect2d(target.bbox), object->box);
+        const double iou = BoxIou(cv::Rect2d(target.bbox), object->box);
         if (iou >= best_iou) best = object, best_iou = iou;
       }
       if (best != nullptr && active_objects.count(best->id) > 0) ++scores.revisits;

@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include "util/box.h"
+
 namespace attend {
 
 namespace {
@@ -16,13 +18,6 @@ bool IsEmpty(const cv::Rect2d& box) { return !(box.width > 0.0) || !(box.height 
 
 // Intersection over union of two non-empty boxes, as areas of continuous rectangles (the OTB
 // toolkit's calcRectInt gives the same value for its 1-based inclusive pixel boxes).
-double Iou(const cv::Rect2d& a, const cv::Rect2d& b) {
-  const double w = std::min(a.x + a.width, b.x + b.width) - std::max(a.x, b.x);
-  const double h = std::min(a.y + a.height, b.y + b.height) - std::max(a.y, b.y);
-  if (w <= 0.0 || h <= 0.0) return 0.0;
-  const double intersection = w * h;
-  return intersection / (a.area() + b.area() - intersection);
-}
 
 double CentreDistance(const cv::Rect2d& a, const cv::Rect2d& b) {
   return std::hypot((a.x + 0.5 * a.width) - (b.x + 0.5 * b.width),
@@ -43,7 +38,7 @@ TrackingScores ScoreTracking(const std::vector<cv::Rect2d>& predicted,
     double iou = 0.0;
     double error = std::numeric_limits<double>::infinity();
     if (frame < predicted.size() && !IsEmpty(predicted[frame])) {
-      iou = Iou(predicted[frame], truth[frame]);
+      iou = BoxIou(predicted[frame], truth[frame]);
       error = CentreDistance(predicted[frame], truth[frame]);
     }
     for (int k = 0; k < kThresholds; ++k) {

@@ -3,6 +3,7 @@
 #include "features/centre_bias.h"
 #include "features/centre_surround.h"
 #include "features/contrast.h"
+#include "features/detectors.h"
 #include "features/disparity_feature.h"
 #include "features/motion.h"
 #include "features/skin.h"
@@ -34,6 +35,14 @@ FeatureRegistry BuiltinFeatures() {
                "Lab colour and lightness contrast at several scales, as centre-surround "
                "differences of Gaussians (Itti et al. 1998; not in the thesis; issue 14)",
                &CreateCentreSurroundFeature);
+  registry.Add("people",
+               "boxes of the people OpenCV's HOG pedestrian detector finds, where attention looks "
+               "or in the whole frame (top-down; not in the thesis)",
+               &CreatePeopleFeature);
+  registry.Add("faces",
+               "boxes of the faces a cascade classifier finds, where attention looks or in the "
+               "whole frame (top-down; not in the thesis)",
+               &CreateFacesFeature);
   return registry;
 }
 

@@ -28,6 +28,15 @@ struct SequenceStart {
   int first_frame = 0;  // the index of its first frame
 };
 
+// What a top-down channel recognised in a frame: a box in the frame's pixels (the object
+// itself, not the detector's window), its label ("person", "face") and the detector's
+// confidence mapped to (0, 1].
+struct Detection {
+  cv::Rect box;
+  std::string label;
+  float confidence = 0.f;
+};
+
 class FeatureMap {
  public:
   virtual ~FeatureMap() = default;
@@ -43,6 +52,13 @@ class FeatureMap {
   // True for features that need the right image; enabling one on a monocular source is a
   // configuration error (SPEC 3.1).
   virtual bool NeedsStereo() const { return false; }
+  // A top-down channel's detections in the frame of the last Compute (features/detectors.h);
+  // the attention stage labels its targets with them and may seed targets from them
+  // (select.seed: detection). Empty for bottom-up features.
+  virtual const std::vector<Detection>& detections() const {
+    static const std::vector<Detection> none;
+    return none;
+  }
 };
 
 // What a factory may need to know about the run besides its own parameters.

@@ -68,6 +68,7 @@ void FeatureSet::Compute(const FrameContext& context, bool concurrent) {
     members_[i].feature->Compute(context, &results_[i].map);
     results_[i].milliseconds = stopwatch.ElapsedMs();
     CheckFeatureOutput(members_[i].entry, results_[i].map, context.size());
+    results_[i].detections = members_[i].feature->detections();
   });
 }
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "colour/skin_model.h"
 #include "pyramid/regions.h"
@@ -50,6 +51,12 @@ class FrameContext {
   // enables it, else DisparityOptions's defaults. Disparity(disparity_options()) is the map
   // that feature uses.
   virtual const DisparityOptions& disparity_options() const = 0;
+  // Where attention looks in this frame, in the frame's pixels: a box around each target the
+  // attention stage follows (where it was last seen, or where its object file predicts it) and
+  // around each candidate it weighed in the previous frame, clipped to the frame. A top-down
+  // channel gated by attention (`gate: attended`, features/detectors.h) looks only here.
+  // Empty on a sequence's first frame and for still images.
+  virtual const std::vector<cv::Rect>& AttentionRegions() const = 0;
 
  protected:
   FrameContext() = default;

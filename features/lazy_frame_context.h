@@ -48,6 +48,12 @@ class LazyFrameContext final : public FrameContext {
   // each options (each keeps its estimator and buffers between frames).
   const cv::Mat& Disparity(const DisparityOptions& options) const override;
   const DisparityOptions& disparity_options() const override { return disparity_options_; }
+  // Where attention looks (FrameContext::AttentionRegions); Reset keeps them, the pipeline
+  // sets them for each frame before its features run.
+  const std::vector<cv::Rect>& AttentionRegions() const override { return attention_regions_; }
+  void set_attention_regions(std::vector<cv::Rect> regions) {
+    attention_regions_ = std::move(regions);
+  }
 
  private:
   // One lazily computed value: `ready` is guarded by `mutex`.
@@ -57,6 +63,7 @@ class LazyFrameContext final : public FrameContext {
   };
 
   int frame_index_ = -1;
+  std::vector<cv::Rect> attention_regions_;
   cv::Mat left_;
   cv::Mat right_;
 

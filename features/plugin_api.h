@@ -17,12 +17,13 @@
 // CylinderColour (colour/colour.h), DisparityOptions (stereo/disparity.h), ParamBlock
 // (config/param_block.h) and Range (util/range.h). Nothing of the pyramid or the pipeline is in that list.
 // Version 2: the context became an interface, and FeatureMap got BeginSequence and
-// EndSequence. Version 3: the context gives the disparity.
+// EndSequence. Version 3: the context gives the disparity. Version 4: the context gives where
+// attention looks (AttentionRegions), and a FeatureMap may report detections (Detection).
 #pragma once
 
 #include "features/feature_map.h"
 
-#define ATTEND_PLUGIN_ABI_VERSION 3
+#define ATTEND_PLUGIN_ABI_VERSION 4
 
 extern "C" {
 

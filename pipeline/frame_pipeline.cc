@@ -104,6 +104,8 @@ FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry
 
 void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   context_.Reset(frame.index, frame.left, frame.right);
+  // Where attention looked in the previous frame is where gated top-down channels look now.
+  context_.set_attention_regions(attention_.look_regions());
 
   Stopwatch stage;
   context_.Regions();
@@ -168,8 +170,12 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   SmoothSaliency(options_.saliency, &saliency_);
   record->timings.Add("saliency", stage.ElapsedMs());
 
+  detections_.clear();
+  for (const FeatureResult& result : results) {
+    detections_.insert(detections_.end(), result.detections.begin(), result.detections.end());
+  }
   attention_.Select(frame.left, context_.SkinDistance(attention_.skin_model()), tracked_, saliency_,
-                    context_.Regions(), &attended_);
+                    context_.Regions(), &attended_, detections_);
   record->timings.Add("track", attended_.track_ms);
   record->timings.Add("inhibit", attended_.inhibit_ms);
   record->timings.Add("select", attended_.select_ms);
@@ -187,6 +193,8 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
     out.similarity = !bip ? "appearance" : target.skin ? "skin" : "hsv";
     out.tracker = attention_.tracker_name();
     out.reason = target.reason;
+    out.absent_frames = target.absent_frames;
+    out.label = target.label;
     record->targets.push_back(out);
   }
   record->new_ids = attended_.new_ids;

@@ -69,6 +69,7 @@ class FramePipeline {
   cv::Mat saliency_;
   AttentionStage attention_;
   TrackedTargets tracked_;  // what attention_ tracked in this frame
+  std::vector<Detection> detections_;  // the top-down channels' detections in this frame
   AttentionFrame attended_;
 };
 

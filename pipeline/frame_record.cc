@@ -78,6 +78,8 @@ std::string FrameRecordToJson(const FrameRecord& record) {
                                      {"similarity", t.similarity},
                                      {"tracker", t.tracker}};
     if (t.reason != ReleaseReason::kNone) target["reason"] = ReleaseReasonName(t.reason);
+    if (t.state == TargetState::kResumed) target["absent_frames"] = t.absent_frames;
+    if (!t.label.empty()) target["label"] = t.label;
     targets.push_back(target);
   }
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
@@ -136,6 +138,10 @@ std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
         }
         target.kind = t.at("kind").get<std::string>();
         target.similarity = t.at("similarity").get<std::string>();
+        if (t.contains("absent_frames")) {
+          target.absent_frames = IntIn(t.at("absent_frames"), "absent_frames", 0, kMaxFrameNumber);
+        }
+        if (t.contains("label")) target.label = t.at("label").get<std::string>();
         record.targets.push_back(target);
       }
       record.new_ids = json.at("new").get<std::vector<int>>();

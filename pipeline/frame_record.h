@@ -24,6 +24,10 @@ struct TargetRecord {
   std::string similarity = "hsv";
   std::string tracker = "bip";  // the tracker kind that follows it: bip, kcf or csrt
   ReleaseReason reason = ReleaseReason::kNone;  // why it was released (state released only)
+  // State resumed only: the frames its object file was remembered without being seen.
+  int absent_frames = 0;
+  // What a top-down channel recognised it as ("person", "face"), "" when none did.
+  std::string label;
 };
 
 struct FrameRecord {

@@ -76,6 +76,11 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Choice("seed", &o->attention.select.seed, SelectOptions::Seeds());
   v.Field("seed_share", &o->attention.select.seed_share);
   v.Field("seed_level", &o->attention.select.seed_level);
+  v.Field("detection_taken", &o->attention.select.detection_taken);
+  v.Field("detected_only", &o->attention.select.detected_only);
+  v.Field("reanchor_min_iou", &o->attention.select.reanchor_min_iou);
+  v.Field("reanchor_max_iou", &o->attention.select.reanchor_max_iou);
+  v.Field("label_overlap", &o->attention.label_overlap);
   v.Field("skin_fraction", &o->attention.skin_fraction);
   v.Field("skin_model", &o->attention.skin_model);
   v.Field("skin_check", &o->attention.skin_check);
@@ -93,6 +98,7 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("min_saliency", &o->attention.drop.min_saliency);
   v.Field("frames", &o->attention.drop.frames);
   v.Field("max_shared", &o->attention.drop.max_shared);
+  v.Field("unrecognised_frames", &o->attention.drop.unrecognised_frames);
   v.EndSection([o] { return o->attention.Check(); });
 
   v.BeginSection("inhibition");
@@ -100,6 +106,15 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("margin", &o->attention.inhibition.margin);
   v.Field("keep_occluded", &o->attention.inhibition.keep_occluded);
   v.Field("occluded_search", &o->attention.inhibition.occluded_search);
+  v.EndSection([o] { return o->attention.Check(); });
+
+  v.BeginSection("attention");
+  v.Ranges(&o->attention.memory, ObjectFileOptions::Ranges());
+  v.Field("memory_frames", &o->attention.memory.memory_frames);
+  v.Field("memory_gate", &o->attention.memory.gate);
+  v.Field("memory_max_size_ratio", &o->attention.memory.max_size_ratio);
+  v.Field("memory_min_similarity", &o->attention.memory.min_similarity);
+  v.Field("memory_velocity_decay", &o->attention.memory.velocity_decay);
   v.EndSection([o] { return o->attention.Check(); });
 
   v.BeginSection("tracker");

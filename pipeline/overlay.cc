@@ -42,11 +42,16 @@ cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record) {
   const double font_scale = OverlayFontScale(left.cols);
   for (const TargetRecord& target : record.targets) {
     const bool visible = Visible(target.state);
-    const int thickness = target.state == TargetState::kNew ? 3 : (visible ? 2 : 1);
+    const int thickness =
+        target.state == TargetState::kNew || target.state == TargetState::kResumed ? 3
+                                                                                    : (visible ? 2 : 1);
     cv::rectangle(overlay, target.bbox, TargetColour(target.id), thickness,
                   visible ? cv::LINE_8 : cv::LINE_4);
     std::string suffix = target.kind == "skin" ? " skin" : "";
-    if (!visible) suffix.append(" (").append(TargetStateName(target.state)).append(")");
+    if (!target.label.empty()) suffix.append(" ").append(target.label);
+    if (!visible || target.state == TargetState::kResumed) {
+      suffix.append(" (").append(TargetStateName(target.state)).append(")");
+    }
     DrawTargetLabel(&overlay, target.id, target.bbox, suffix, font_scale);
   }
   DrawCaption(&overlay,

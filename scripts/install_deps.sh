@@ -9,6 +9,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libjs-chart.js  # the charts of attend compare's report, inlined (docs/COMPARE.md)
   chromium        # renders the report in its test (tests/cli/compare_cli_test.cc)
+  opencv-data     # the cascade models of the faces channel (features/detectors.h)
 )
 
 missing=()

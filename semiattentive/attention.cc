@@ -6,19 +6,30 @@
 
 #include "features/skin.h"
 #include "pyramid/similarity.h"
+#include "util/box.h"
 #include "util/error.h"
 #include "util/timer.h"
 
 namespace attend {
 
 struct AttentionStage::Active {
-  int id = 0;
+  int id = 0;          // the target's id in the records
+  int tracker_id = 0;  // its id in the tracker
   bool skin = false;
-  int low_frames = 0;  // consecutive frames below drop.min_saliency
+  int low_frames = 0;    // consecutive frames below drop.min_saliency
+  int unseen = 0;        // consecutive frames not found (occluded)
+  int unrecognised = 0;  // consecutive frames with detections, none on it
+  int since_kept = 0;    // frames since last_box was last updated
+  std::string label;     // from the top-down channels, once given
+  // For its object file (object files enabled only): where it was last found and kept, how
+  // fast it moved, and what it looked like.
+  cv::Rect last_box;
+  cv::Point2f velocity;
+  ObjectAppearance appearance;
 };
 
 const std::vector<std::string>& SelectOptions::Seeds() {
-  static const std::vector<std::string> seeds = {"region", "object"};
+  static const std::vector<std::string> seeds = {"region", "object", "detection"};
   return seeds;
 }
 
@@ -33,7 +44,10 @@ const FieldRanges<SelectOptions>& SelectOptions::Ranges() {
       {"max_inhibited_fraction", &O::max_inhibited_fraction, Range::Closed(0.001, 1)},
       {"saliency_t_max", &O::saliency_t_max, Range::Closed(0.001, 1000)},
       {"seed_share", &O::seed_share, Range::Closed(0.01, 1)},
-      {"seed_level", &O::seed_level, Range::Closed(0.01, 1)}};
+      {"seed_level", &O::seed_level, Range::Closed(0.01, 1)},
+      {"detection_taken", &O::detection_taken, Range::Closed(0, 1)},
+      {"reanchor_min_iou", &O::reanchor_min_iou, Range::Closed(0, 1)},
+      {"reanchor_max_iou", &O::reanchor_max_iou, Range::Closed(0, 1)}};
   return ranges;
 }
 
@@ -41,7 +55,8 @@ const FieldRanges<DropOptions>& DropOptions::Ranges() {
   static const FieldRanges<DropOptions> ranges = {
       {"min_saliency", &DropOptions::min_saliency, Range::Closed(0, 1)},
       {"frames", &DropOptions::frames, Range::Closed(1, 1e6)},
-      {"max_shared", &DropOptions::max_shared, Range::Closed(0, 1)}};
+      {"max_shared", &DropOptions::max_shared, Range::Closed(0, 1)},
+      {"unrecognised_frames", &DropOptions::unrecognised_frames, Range::Closed(0, 1e6)}};
   return ranges;
 }
 
@@ -53,7 +68,8 @@ const FieldRanges<InhibitionOptions>& InhibitionOptions::Ranges() {
 
 const FieldRanges<AttentionOptions>& AttentionOptions::Ranges() {
   static const FieldRanges<AttentionOptions> ranges = {
-      {"skin_fraction", &AttentionOptions::skin_fraction, Range::Closed(0, 1)}};
+      {"skin_fraction", &AttentionOptions::skin_fraction, Range::Closed(0, 1)},
+      {"label_overlap", &AttentionOptions::label_overlap, Range::Closed(0, 1)}};
   return ranges;
 }
 
@@ -62,7 +78,7 @@ std::string AttentionOptions::Check() const {
   if (!error.empty()) return "select." + error;
   if (std::find(SelectOptions::Seeds().begin(), SelectOptions::Seeds().end(), select.seed) ==
       SelectOptions::Seeds().end()) {
-    return "select.seed must be region or object";
+    return "select.seed must be region, object or detection";
   }
   error = CheckFieldRanges(drop, DropOptions::Ranges());
   if (!error.empty()) return "drop." + error;
@@ -74,11 +90,13 @@ std::string AttentionOptions::Check() const {
   if (!error.empty()) return "select.skin_region: " + error;
   error = tracker.Check();
   if (!error.empty()) return "tracker." + error;
+  error = memory.Check();
+  if (!error.empty()) return "attention." + error;
   return "";
 }
 
 AttentionStage::AttentionStage(const AttentionOptions& options, SkinModel skin_model)
-    : options_(options), skin_model_(std::move(skin_model)) {
+    : options_(options), skin_model_(std::move(skin_model)), files_(options.memory) {
   const std::string error = options_.Check();
   if (!error.empty()) throw ConfigError(error);
   tracker_ = TargetTracker::Create(options_.tracker);
@@ -101,7 +119,74 @@ double MeanOver(const cv::Mat& map, const cv::Mat& mask) {
   return cv::countNonZero(mask) > 0 ? cv::mean(map, mask)[0] : 0.0;
 }
 
+cv::Point2f Centre(const cv::Rect& box) {
+  return {box.x + 0.5f * box.width, box.y + 0.5f * box.height};
+}
+
+// How fast a target's velocity follows its latest displacement.
+constexpr float kVelocityRate = 0.3f;
+// How fast its remembered appearance follows what it looks like now.
+constexpr float kAppearanceRate = 0.2f;
+
 }  // namespace
+
+int AttentionStage::SeedFromBox(const Segmentation& segmentation, const cv::Rect& box_in) {
+  const cv::Mat& colour = segmentation.labels;
+  const cv::Rect box = box_in & cv::Rect(0, 0, colour.cols, colour.rows);
+  seed_mask_.create(colour.size(), CV_8UC1);
+  seed_mask_.setTo(0);
+  if (box.empty()) return 0;
+  std::map<int, int> inside;
+  for (int y = box.y; y < box.y + box.height; ++y) {
+    const int* region = colour.ptr<int>(y);
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      if (region[x] >= 0) ++inside[region[x]];
+    }
+  }
+  member_.assign(segmentation.regions.size(), 0);
+  for (const auto& [region, pixels] : inside) {
+    if (pixels >= options_.select.seed_share * segmentation.regions[region].area) {
+      member_[region] = 1;
+    }
+  }
+  int area = 0;
+  for (int y = box.y; y < box.y + box.height; ++y) {
+    const int* region = colour.ptr<int>(y);
+    uchar* out = seed_mask_.ptr<uchar>(y);
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      if (region[x] >= 0 && member_[region[x]]) out[x] = 255, ++area;
+    }
+  }
+  return area;
+}
+
+void AttentionStage::Forget(const Active& active) {
+  if (!files_.enabled() || active.last_box.empty()) return;
+  ObjectFile file;
+  file.id = active.id;
+  file.box = active.last_box;
+  file.velocity = active.velocity;
+  file.absent = active.since_kept;
+  file.appearance = active.appearance;
+  file.skin = active.skin;
+  file.label = active.label;
+  files_.Remember(std::move(file));
+}
+
+std::string AttentionStage::LabelOf(const cv::Rect& box,
+                                    const std::vector<Detection>& detections) const {
+  std::string label;
+  double best = options_.label_overlap;
+  for (const Detection& detection : detections) {
+    // Of both boxes: a target on half a person is labelled by the person's detection, a box
+    // on the pavement that one detection crosses is not.
+    const int larger = std::max(box.area(), detection.box.area());
+    const double overlap =
+        larger > 0 ? static_cast<double>((box & detection.box).area()) / larger : 0.0;
+    if (overlap >= best && !detection.label.empty()) best = overlap, label = detection.label;
+  }
+  return label;
+}
 
 ReleaseReason AttentionStage::WhyReleased(const AttendedTarget& target, int low_frames,
                                           double shared, const cv::Rect& image) const {
@@ -120,11 +205,13 @@ ReleaseReason AttentionStage::WhyReleased(const AttendedTarget& target, int low_
 
 void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
                             const TrackedTargets& tracked, const cv::Mat& saliency,
-                            const Segmentation& segmentation, AttentionFrame* frame) {
+                            const Segmentation& segmentation, AttentionFrame* frame,
+                            const std::vector<Detection>& detections) {
   frame->targets.clear();
   frame->new_ids.clear();
   frame->track_ms = tracked.milliseconds;
   const cv::Rect image(0, 0, bgr.cols, bgr.rows);
+  files_.Age();
 
   // The states of the targets tracked this frame, their saliency and the drop rule.
   Stopwatch stage;
@@ -135,7 +222,8 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
   const int margin = options_.inhibition.margin;
   const cv::Mat kernel =
       cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * margin + 1, 2 * margin + 1));
-  std::vector<int> removed;
+  std::vector<int> removed;  // tracker ids
+  detection_used_.assign(detections.size(), 0);
   // The pixels of the targets found and kept so far this frame, in id order: a younger
   // target most of whose mask an older one already holds is a duplicate (drop.max_shared).
   const bool duplicates = options_.drop.max_shared < 1.f;
@@ -145,10 +233,10 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
   }
   for (const TrackResult& result : tracked.results) {
     auto active = std::find_if(active_.begin(), active_.end(),
-                               [&](const Active& a) { return a.id == result.id; });
+                               [&](const Active& a) { return a.tracker_id == result.id; });
     if (active == active_.end()) continue;
     AttendedTarget target;
-    target.id = result.id;
+    target.id = active->id;
     target.box = result.box & image;
     target.skin = active->skin;
     const cv::Mat mask = result.state == TrackState::kFound ? tracker_->Mask(result.id) : cv::Mat();
@@ -162,10 +250,45 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
                                 ? static_cast<double>(cv::countNonZero(held_ & mask)) / result.area
                                 : 0.0;
       target.reason = WhyReleased(target, active->low_frames, shared, image);
+      cv::Mat own = mask;
+      if (target.reason == ReleaseReason::kNone && !detections.empty() && !active->skin) {
+        // The detection this target is on, if any (each detection serves one target, the
+        // oldest first).
+        const double min_iou =
+            options_.select.reanchor_min_iou > 0.f ? options_.select.reanchor_min_iou : 0.3;
+        int on = -1;
+        double on_iou = min_iou;
+        for (size_t d = 0; d < detections.size(); ++d) {
+          const double iou = BoxIou(target.box, detections[d].box);
+          if (!detection_used_[d] && iou >= on_iou) on = static_cast<int>(d), on_iou = iou;
+        }
+        if (on >= 0) {
+          detection_used_[on] = 1;
+          active->unrecognised = 0;
+          if (options_.select.reanchor_min_iou > 0.f && on_iou < options_.select.reanchor_max_iou &&
+              SeedFromBox(segmentation, detections[on].box) >= options_.select.min_area) {
+            const int restarted =
+                tracker_->StartFromMask(bgr, seed_mask_, TrackSimilarity::kColour, tracked.skin);
+            if (restarted >= 0) {
+              tracker_->Remove(result.id);
+              active->tracker_id = restarted;
+              own = tracker_->Mask(restarted);
+              target.box = cv::boundingRect(own) & image;
+              target.area = cv::countNonZero(own);
+            }
+          }
+        } else if (!active->label.empty() && options_.drop.unrecognised_frames > 0 &&
+                   ++active->unrecognised >= options_.drop.unrecognised_frames) {
+          target.reason = ReleaseReason::kUnrecognised;
+        }
+      }
       // Released targets inhibit nothing, from the frame they are released in.
       if (target.reason != ReleaseReason::kNone) {
         target.state = TargetState::kReleased;
-        removed.push_back(result.id);
+        removed.push_back(active->tracker_id);
+        // A duplicate's object is another target's; any other release ends the object's
+        // tracking, not the object (its file keeps the last box it was kept with).
+        if (target.reason != ReleaseReason::kDuplicate) Forget(*active);
       } else {
         // Inhibit the mask, dilated, within its box plus the margin.
         const cv::Rect around =
@@ -173,13 +296,32 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
                      target.box.height + 2 * margin) &
             image;
         cv::Mat grown;
-        cv::dilate(mask(around), grown, kernel);
+        cv::dilate(own(around), grown, kernel);
         inhibition_(around).setTo(1.f, grown);
-        covered_.setTo(255, mask);
-        if (duplicates) held_.setTo(255, mask);
+        covered_.setTo(255, own);
+        if (duplicates) held_.setTo(255, own);
+        // Its file remembers it as it was last seen on its object: with top-down channels, a
+        // labelled target only in the frames a detection is on it (its tracker may drift in
+        // the others).
+        ++active->since_kept;
+        const bool recognised =
+            detections.empty() || active->label.empty() || active->unrecognised == 0;
+        if (files_.enabled() && recognised) {
+          if (!active->last_box.empty()) {
+            const cv::Point2f moved = Centre(target.box) - Centre(active->last_box);
+            const float steps = static_cast<float>(active->since_kept);
+            active->velocity += kVelocityRate * (moved / steps - active->velocity);
+          }
+          active->last_box = target.box;
+          active->since_kept = 0;
+          active->appearance.Blend(ObjectAppearance::Of(bgr, own, target.box), kAppearanceRate);
+        }
+        active->unseen = 0;
       }
     } else if (result.state == TrackState::kOccluded) {
       target.state = TargetState::kOccluded;
+      ++active->unseen;
+      ++active->since_kept;
       target.saliency = target.box.empty() ? 0.0 : cv::mean(saliency(target.box))[0];
       if (options_.inhibition.keep_occluded && !target.box.empty()) {
         const cv::Rect area = options_.inhibition.occluded_search && !result.roi.empty()
@@ -190,16 +332,21 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
       }
     } else {
       target.state = TargetState::kLost;
+      ++active->unseen;
+      ++active->since_kept;
       removed.push_back(result.id);
+      Forget(*active);
     }
     frame->targets.push_back(target);
   }
   for (const int id : removed) {
     tracker_->Remove(id);
     active_.erase(std::remove_if(active_.begin(), active_.end(),
-                                 [id](const Active& a) { return a.id == id; }),
+                                 [id](const Active& a) { return a.tracker_id == id; }),
                   active_.end());
   }
+  // A remembered object's inhibition follows its predicted box and fades.
+  files_.Inhibit(&inhibition_);
   cv::subtract(cv::Scalar(1.f), inhibition_, inhibited_);
   cv::multiply(saliency, inhibited_, inhibited_);
   const int inhibited_pixels = cv::countNonZero(inhibition_);
@@ -208,6 +355,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
 
   // Candidates: regions of homogeneous inhibited saliency (a BIP over the saliency map).
   stage.Restart();
+  std::vector<cv::Rect> looked;  // the boxes of the candidates weighed, best first
   const int free_slots = options_.select.max_targets - static_cast<int>(active_.size());
   if (free_slots > 0) {
     cv::Mat scaled, features;
@@ -222,14 +370,18 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
     std::vector<int> area(count, 0);
     std::vector<cv::Point> peak(count);  // each region's most salient pixel
     std::vector<float> peak_value(count, -1.f);
+    std::vector<cv::Point> low(count, {labels.cols, labels.rows}), high(count, {-1, -1});
     for (int y = 0; y < labels.rows; ++y) {
       const int* label = labels.ptr<int>(y);
       const float* s = inhibited_.ptr<float>(y);
       for (int x = 0; x < labels.cols; ++x) {
-        if (label[x] < 0) continue;
-        sum[label[x]] += s[x];
-        ++area[label[x]];
-        if (s[x] > peak_value[label[x]]) peak_value[label[x]] = s[x], peak[label[x]] = {x, y};
+        const int r = label[x];
+        if (r < 0) continue;
+        sum[r] += s[x];
+        ++area[r];
+        if (s[x] > peak_value[r]) peak_value[r] = s[x], peak[r] = {x, y};
+        low[r] = {std::min(low[r].x, x), std::min(low[r].y, y)};
+        high[r] = {std::max(high[r].x, x), std::max(high[r].y, y)};
       }
     }
     std::vector<std::pair<double, int>> ranked;  // (mean * area, region)
@@ -241,6 +393,10 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
     }
     std::stable_sort(ranked.begin(), ranked.end(),
                      [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (size_t k = 0; k < ranked.size() && k < kLookCandidates; ++k) {
+      const int r = ranked[k].second;
+      looked.push_back(cv::Rect(low[r], high[r] + cv::Point(1, 1)));
+    }
 
     if (!ranked.empty()) {
       // The colour regions under each candidate, and those an active target covers.
@@ -268,7 +424,17 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
       // nothing (each new region counts with its own area).
       double inhibited_area = inhibited_pixels;
       const double max_inhibited = options_.select.max_inhibited_fraction * bgr.total();
-      const bool object_seed = options_.select.seed == "object";
+      const bool detection_seed = options_.select.seed == "detection";
+      const bool object_seed = options_.select.seed == "object" || detection_seed;
+      // The boxes of the targets followed now: a detection they already cover is attended.
+      std::vector<cv::Rect> followed;
+      if (detection_seed) {
+        for (const AttendedTarget& t : frame->targets) {
+          if (t.state == TargetState::kTracked || t.state == TargetState::kOccluded) {
+            followed.push_back(t.box);
+          }
+        }
+      }
       int started = 0;
       for (size_t k = 0; k < ranked.size(); ++k) {
         if (started >= std::min(options_.select.max_new, free_slots)) break;
@@ -277,13 +443,44 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
           if (pixels > best_count) best = region, best_count = pixels;
         }
         if (best < 0 || taken[best] || segmentation.regions[best].area > max_area) continue;
+        const int r = ranked[k].second;
+        // The detection under the candidate's most salient pixel, if any (the most confident).
+        const Detection* under = nullptr;
+        int under_index = -1;
+        if (detection_seed) {
+          for (size_t d = 0; d < detections.size(); ++d) {
+            const Detection& detection = detections[d];
+            if (detection.box.contains(peak[r]) &&
+                (under == nullptr || detection.confidence > under->confidence)) {
+              under = &detection, under_index = static_cast<int>(d);
+            }
+          }
+        }
+        // A detection a target is on (or was started on this frame) is attended already.
+        if (under != nullptr && detection_used_[under_index]) continue;
+        if (detection_seed && under == nullptr && options_.select.detected_only) continue;
+        if (under != nullptr) {
+          // Part of an object already followed (the legs of a person whose upper body is a
+          // target): inhibited, as the object is.
+          bool attended = false;
+          for (const cv::Rect& box : followed) {
+            const int shared = (box & under->box).area();
+            attended |= shared > 0 && shared >= options_.select.detection_taken * under->box.area();
+          }
+          if (attended) continue;
+        }
         // The seed: the best region alone, or with the regions mostly inside the candidate.
         std::vector<int> members = {best};
         double seed_area = segmentation.regions[best].area;
-        if (object_seed) {
+        std::map<int, int> inside;  // colour region -> its pixels in the proto-object
+        if (under != nullptr) {
+          // A whole object: the colour regions mostly inside the detection's box, clipped to
+          // it (the pavement under a person's feet stays out).
+          seed_area = SeedFromBox(segmentation, under->box);
+          if (seed_area < options_.select.min_area || seed_area > max_area) continue;
+        } else if (object_seed) {
           // The proto-object: the connected pixels around the candidate's most salient one
           // whose inhibited saliency is at least seed_level times the candidate's mean.
-          const int r = ranked[k].second;
           const float level =
               static_cast<float>(options_.select.seed_level * sum[r] / std::max(1, area[r]));
           fill_mask_.create(inhibited_.rows + 2, inhibited_.cols + 2, CV_8UC1);
@@ -293,7 +490,6 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
           cv::floodFill(inhibited_, fill_mask_, peak[r], cv::Scalar(), &filled,
                         cv::Scalar(peak_value[r] - from), cv::Scalar(1e6),
                         4 | cv::FLOODFILL_FIXED_RANGE | cv::FLOODFILL_MASK_ONLY | (255 << 8));
-          std::map<int, int> inside;  // colour region -> its pixels in the proto-object
           for (int y = filled.y; y < filled.y + filled.height; ++y) {
             const int* region = colour.ptr<int>(y);
             const uchar* in = fill_mask_.ptr<uchar>(y + 1) + 1;
@@ -301,6 +497,8 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
               if (in[x] && region[x] >= 0) ++inside[region[x]];
             }
           }
+        }
+        if (object_seed && under == nullptr) {
           for (const auto& [region, pixels] : inside) {
             const int region_area = segmentation.regions[region].area;
             if (region == best || taken[region] || region_area > max_area ||
@@ -328,11 +526,18 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
         if (skin) members.resize(1), seed_area = segmentation.regions[best].area;
         inhibited_area += seed_area;
         for (const int region : members) taken[region] = 1;
-        int id = -1;
-        if (members.size() == 1) {
-          id = tracker_->StartFromRegion(bgr, colour, best,
-                                         skin ? TrackSimilarity::kSkin : TrackSimilarity::kColour,
-                                         tracked.skin);
+        int tracker_id = -1;
+        if (under != nullptr && !skin) {
+          for (int region = 0; region < static_cast<int>(member_.size()); ++region) {
+            if (member_[region]) taken[region] = 1;
+          }
+          detection_used_[under_index] = 1;
+          tracker_id =
+              tracker_->StartFromMask(bgr, seed_mask_, TrackSimilarity::kColour, tracked.skin);
+        } else if (members.size() == 1) {
+          tracker_id = tracker_->StartFromRegion(
+              bgr, colour, best, skin ? TrackSimilarity::kSkin : TrackSimilarity::kColour,
+              tracked.skin);
         } else {
           member_.assign(segmentation.regions.size(), 0);
           for (const int region : members) member_[region] = 1;
@@ -344,28 +549,77 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
               out[x] = region[x] >= 0 && member_[region[x]] ? 255 : 0;
             }
           }
-          id = tracker_->StartFromMask(bgr, seed_mask_, TrackSimilarity::kColour, tracked.skin);
+          tracker_id =
+              tracker_->StartFromMask(bgr, seed_mask_, TrackSimilarity::kColour, tracked.skin);
         }
-        if (id < 0) continue;
-        active_.push_back({id, skin, 0});
-        ++attended_;
+        if (tracker_id < 0) continue;
         ++started;
+        const cv::Mat own = tracker_->Mask(tracker_id);
         AttendedTarget target;
-        target.id = id;
-        const cv::Mat own = tracker_->Mask(id);
         target.box = cv::boundingRect(own);
         target.area = cv::countNonZero(own);
         target.saliency = MeanOver(saliency, own);
         target.state = TargetState::kNew;
         target.skin = skin;
+        Active active;
+        active.tracker_id = tracker_id;
+        active.skin = skin;
+        if (files_.enabled()) {
+          // A remembered object attended again resumes its id, its label and its motion.
+          active.last_box = target.box;
+          active.appearance = ObjectAppearance::Of(bgr, own, target.box);
+          const int file = files_.Match(target.box, active.appearance, skin);
+          if (file >= 0) {
+            ObjectFile resumed = files_.Take(file);
+            active.id = resumed.id;
+            active.label = resumed.label;
+            active.velocity = resumed.velocity;
+            resumed.appearance.Blend(active.appearance, kAppearanceRate);
+            active.appearance = resumed.appearance;
+            target.state = TargetState::kResumed;
+            // Its file counts the frames since it was last seen, this one included.
+            target.absent_frames = resumed.absent - 1;
+          }
+        }
+        if (target.state == TargetState::kNew) {
+          active.id = next_id_++;
+          ++attended_;
+          frame->new_ids.push_back(active.id);
+        }
+        target.id = active.id;
+        active_.push_back(active);
         frame->targets.push_back(target);
-        frame->new_ids.push_back(id);
       }
     }
+  }
+  // Labels from the top-down channels: once given, a target keeps its label.
+  if (!detections.empty()) {
+    for (AttendedTarget& target : frame->targets) {
+      if (!Visible(target.state)) continue;
+      auto active = std::find_if(active_.begin(), active_.end(),
+                                 [&](const Active& a) { return a.id == target.id; });
+      if (active == active_.end() || !active->label.empty()) continue;
+      active->label = LabelOf(target.box, detections);
+    }
+  }
+  for (AttendedTarget& target : frame->targets) {
+    auto active = std::find_if(active_.begin(), active_.end(),
+                               [&](const Active& a) { return a.id == target.id; });
+    if (active != active_.end()) target.label = active->label;
   }
   std::sort(frame->targets.begin(), frame->targets.end(),
             [](const AttendedTarget& a, const AttendedTarget& b) { return a.id < b.id; });
   frame->select_ms = stage.ElapsedMs();
+
+  // Where attention looked: the targets followed, the objects remembered, the candidates.
+  look_regions_.clear();
+  for (const AttendedTarget& target : frame->targets) {
+    if ((Visible(target.state) || target.state == TargetState::kOccluded) && !target.box.empty()) {
+      look_regions_.push_back(target.box);
+    }
+  }
+  for (const cv::Rect& box : files_.PredictedBoxes(image)) look_regions_.push_back(box);
+  look_regions_.insert(look_regions_.end(), looked.begin(), looked.end());
 }
 
 }  // namespace attend

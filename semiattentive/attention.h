@@ -31,7 +31,9 @@
 
 #include "colour/skin_model.h"
 #include "features/skin.h"
+#include "features/feature_map.h"
 #include "pyramid/segmentation.h"
+#include "semiattentive/object_files.h"
 #include "semiattentive/target_state.h"
 #include "tracker/target_tracker.h"
 
@@ -57,7 +59,23 @@ struct SelectOptions {
   // or "object", that region together with every colour region of which at least
   // `seed_share` lies inside the candidate's salient region (an object of several colours,
   // such as a person's coat, trousers and head). The object's area is bounded as a region's.
+  // "detection": where the candidate's most salient pixel lies in a top-down channel's
+  // detection box (features/detectors.h), the colour regions of which at least `seed_share`
+  // lies inside that box (a whole person), and a candidate inside a detection that an active
+  // target already covers by `detection_taken` of its box is part of that target, not a new
+  // one; elsewhere as "object".
   std::string seed = "region";
+  float detection_taken = 0.3f;
+  // "detection" only: a candidate under no detection starts nothing (the channels are told
+  // where it is, through the look regions, and recognise it in the next frames), so that
+  // every target is a recognised object; false: it starts as an "object" seed.
+  bool detected_only = false;
+  // Recognition keeps a target on its object: a found target whose box and a detection's
+  // overlap with IoU in [reanchor_min_iou, reanchor_max_iou) starts again from that
+  // detection's colour regions, under its own id (its tracker had slid off part of the
+  // object). 0: never.
+  float reanchor_min_iou = 0.f;
+  float reanchor_max_iou = 0.75f;
   float seed_share = 0.5f;
   // object: the candidate's salient region is the connected area around its most salient
   // pixel where the inhibited saliency is at least this times the candidate's mean.
@@ -75,6 +93,10 @@ struct DropOptions {
   // already hold is a duplicate and is released ("duplicate"): a tracker that slid onto
   // another target's object. 1: never (the thesis's stage).
   float max_shared = 0.5f;
+  // A labelled target that no detection has overlapped (IoU >= select.reanchor_min_iou, or
+  // 0.3 when that is 0) for this many frames in a row while the channels reported detections
+  // is released ("unrecognised"): its tracker has left the object. 0: never.
+  int unrecognised_frames = 0;
   static const FieldRanges<DropOptions>& Ranges();
 };
 
@@ -100,9 +122,15 @@ struct AttentionOptions {
   // target (false: the thesis's rule, the share alone), and the bounds of that test.
   bool skin_check = true;
   SkinRegionOptions skin_region;
+  // Object files: the memory of objects that ended (semiattentive/object_files.h); off when
+  // memory.memory_frames is 0.
+  ObjectFileOptions memory;
+  // A target takes the label of a top-down detection ("person", "face") whose box and its own
+  // overlap by at least this share of the larger of the two.
+  float label_overlap = 0.5f;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-  // The ranges of this struct's own numeric fields (skin_fraction).
+  // The ranges of this struct's own numeric fields (skin_fraction, label_overlap).
   static const FieldRanges<AttentionOptions>& Ranges();
 };
 
@@ -116,6 +144,8 @@ struct AttendedTarget {
   // Why a released target was released (kNone in every other state).
   ReleaseReason reason = ReleaseReason::kNone;
   bool skin = false;
+  int absent_frames = 0;  // state resumed: the frames its object file was remembered unseen
+  std::string label;      // from a top-down channel's detections; "" when none
 };
 
 struct AttentionFrame {
@@ -148,9 +178,17 @@ class AttentionStage {
              const cv::Mat& cylinder = cv::Mat());
   // From the targets `tracked` in this frame: builds the inhibition, inhibits `saliency`,
   // selects and starts new targets on the colour regions of `segmentation`, and fills
-  // `frame`.
+  // `frame`. `detections`: the top-down channels' detections in this frame, which label the
+  // targets and seed them with select.seed: detection.
   void Select(const cv::Mat& bgr, const cv::Mat& skin_distance, const TrackedTargets& tracked,
-              const cv::Mat& saliency, const Segmentation& segmentation, AttentionFrame* frame);
+              const cv::Mat& saliency, const Segmentation& segmentation, AttentionFrame* frame,
+              const std::vector<Detection>& detections = {});
+  // Where attention looked in the last frame Select saw: the boxes of the targets it follows,
+  // of its object files' predictions and of the candidates it weighed (at most
+  // kLookCandidates, best first); FrameContext::AttentionRegions of the next frame.
+  const std::vector<cv::Rect>& look_regions() const { return look_regions_; }
+  static constexpr int kLookCandidates = 8;
+  const ObjectFiles& object_files() const { return files_; }
 
   const cv::Mat& inhibition() const { return inhibition_; }  // CV_32FC1, 0 or 1
   const cv::Mat& inhibited() const { return inhibited_; }    // CV_32FC1
@@ -164,6 +202,14 @@ class AttentionStage {
   // and the size rules above.
   ReleaseReason WhyReleased(const AttendedTarget& target, int low_frames, double shared,
                             const cv::Rect& image) const;
+  // The seed of a detected object: the colour regions of `segmentation` of which at least
+  // select.seed_share lies inside `box`, clipped to the box, into seed_mask_ (frame size).
+  // Returns the seed's area.
+  int SeedFromBox(const Segmentation& segmentation, const cv::Rect& box);
+  // Leaves an object file for a target that ends.
+  void Forget(const Active& active);
+  // The label of the detection that overlaps `box` most (label_overlap), "" when none does.
+  std::string LabelOf(const cv::Rect& box, const std::vector<Detection>& detections) const;
 
   AttentionOptions options_;
   SkinModel skin_model_;
@@ -175,8 +221,12 @@ class AttentionStage {
   cv::Mat seed_mask_;            // an object seed's pixels
   cv::Mat fill_mask_;            // the flood fill of an object seed's salient region
   std::vector<uint8_t> member_;  // per colour region: in the object seed
+  std::vector<uint8_t> detection_used_;  // per detection of the frame: a target is on it
   BipBuilder saliency_builder_;
   int attended_ = 0;
+  int next_id_ = 1;  // the id the next new target gets (the tracker's own ids are internal)
+  ObjectFiles files_;
+  std::vector<cv::Rect> look_regions_;
 };
 
 }  // namespace attend

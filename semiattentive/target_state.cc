@@ -7,21 +7,23 @@ namespace attend {
 
 namespace {
 
-constexpr std::array<std::pair<TargetState, const char*>, 5> kStateNames = {{
+constexpr std::array<std::pair<TargetState, const char*>, 6> kStateNames = {{
     {TargetState::kNew, "new"},
     {TargetState::kTracked, "tracked"},
     {TargetState::kOccluded, "occluded"},
     {TargetState::kLost, "lost"},
     {TargetState::kReleased, "released"},
+    {TargetState::kResumed, "resumed"},
 }};
 
-constexpr std::array<std::pair<ReleaseReason, const char*>, 6> kReasonNames = {{
+constexpr std::array<std::pair<ReleaseReason, const char*>, 7> kReasonNames = {{
     {ReleaseReason::kNone, ""},
     {ReleaseReason::kTooLarge, "too_large"},
     {ReleaseReason::kSpansImage, "spans_image"},
     {ReleaseReason::kTooSmall, "too_small"},
     {ReleaseReason::kLowSaliency, "low_saliency"},
     {ReleaseReason::kDuplicate, "duplicate"},
+    {ReleaseReason::kUnrecognised, "unrecognised"},
 }};
 
 template <typename Enum, size_t N>

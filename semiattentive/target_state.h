@@ -9,24 +9,36 @@
 namespace attend {
 
 // new (the frame it starts) -> tracked (found) / occluded (not found) -> lost; or released.
-enum class TargetState { kNew, kTracked, kOccluded, kLost, kReleased };
+// resumed: the frame a remembered object (an object file, semiattentive/object_files.h) is
+// attended again under its old id; it is tracked from the next frame on.
+enum class TargetState { kNew, kTracked, kOccluded, kLost, kReleased, kResumed };
 
 // Why a found target was released (semiattentive/attention.h); kNone in every other state.
-enum class ReleaseReason { kNone, kTooLarge, kSpansImage, kTooSmall, kLowSaliency, kDuplicate };
+enum class ReleaseReason {
+  kNone,
+  kTooLarge,
+  kSpansImage,
+  kTooSmall,
+  kLowSaliency,
+  kDuplicate,
+  kUnrecognised
+};
 
-// "new", "tracked", "occluded", "lost", "released".
+// "new", "tracked", "occluded", "lost", "released", "resumed".
 const char* TargetStateName(TargetState state);
 // The state called `name`; false when there is none.
 bool TargetStateFromName(const std::string& name, TargetState* state);
-// "" (kNone), "too_large", "spans_image", "too_small", "low_saliency", "duplicate".
+// "" (kNone), "too_large", "spans_image", "too_small", "low_saliency", "duplicate",
+// "unrecognised".
 const char* ReleaseReasonName(ReleaseReason reason);
 // The reason called `name` ("" is kNone); false when there is none.
 bool ReleaseReasonFromName(const std::string& name, ReleaseReason* reason);
 
-// Whether a target in this state was seen in its frame (new or tracked): it has a box there
-// and counts as attended, for overlays, evaluation and comparison.
+// Whether a target in this state was seen in its frame (new, tracked or resumed): it has a box
+// there and counts as attended, for overlays, evaluation and comparison.
 inline bool Visible(TargetState state) {
-  return state == TargetState::kNew || state == TargetState::kTracked;
+  return state == TargetState::kNew || state == TargetState::kTracked ||
+         state == TargetState::kResumed;
 }
 
 // For test messages and logs: the names above.

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/temp_dir.h"
+
 namespace attend {
 namespace {
 
@@ -59,6 +61,39 @@ TEST(InputFromWorking, EnlargedInputKeepsNonEmptyBoxesAndAreas) {
   EXPECT_EQ(InputFromWorking(record, 4.0, 4.0, {80, 60}).targets[0].area, 1);
   // An empty box stays empty.
   EXPECT_TRUE(InputFromWorkingBox({5, 5, 0, 0}, 4.0, 4.0, {80, 60}).empty());
+}
+
+// A resumed target's absent frames and a top-down label are written and read back; a target
+// without them has neither key (SPEC 3.3: fields may be added).
+TEST(FrameRecordJson, AResumedTargetsAbsentFramesAndALabelReadBack) {
+  FrameRecord record;
+  record.frame = 4;
+  TargetRecord resumed;
+  resumed.id = 2;
+  resumed.bbox = {1, 2, 3, 4};
+  resumed.state = TargetState::kResumed;
+  resumed.absent_frames = 17;
+  resumed.label = "person";
+  TargetRecord plain;
+  plain.id = 3;
+  plain.state = TargetState::kTracked;
+  record.targets = {resumed, plain};
+  const std::string line = FrameRecordToJson(record);
+  EXPECT_NE(line.find("\"state\":\"resumed\""), std::string::npos) << line;
+  EXPECT_NE(line.find("\"absent_frames\":17"), std::string::npos) << line;
+  EXPECT_NE(line.find("\"label\":\"person\""), std::string::npos) << line;
+  EXPECT_EQ(line.find("absent_frames", line.find("\"id\":3")), std::string::npos) << line;
+  const testing::TempDir dir;
+  const std::string path = dir.Write("frames.jsonl", line + "\n");
+  const std::vector<FrameRecord> read = ReadFrameRecords(path);
+  ASSERT_EQ(read.size(), 1u);
+  ASSERT_EQ(read[0].targets.size(), 2u);
+  EXPECT_EQ(read[0].targets[0].state, TargetState::kResumed);
+  EXPECT_TRUE(Visible(read[0].targets[0].state));
+  EXPECT_EQ(read[0].targets[0].absent_frames, 17);
+  EXPECT_EQ(read[0].targets[0].label, "person");
+  EXPECT_EQ(read[0].targets[1].absent_frames, 0);
+  EXPECT_EQ(read[0].targets[1].label, "");
 }
 
 }  // namespace

@@ -93,6 +93,8 @@ TEST(OptionRanges, EveryRangedKeyIsRefusedOutsideItsRangeByTheFileAndByCheck) {
   ExpectRangesAppliedBothWays<InhibitionOptions, AttentionOptions>(
       "inhibition.", InhibitionOptions::Ranges(),
       [](AttentionOptions* o) { return &o->inhibition; });
+  ExpectRangesAppliedBothWays<ObjectFileOptions, AttentionOptions>(
+      "attention.", ObjectFileOptions::Ranges(), [](AttentionOptions* o) { return &o->memory; });
   ExpectRangesAppliedBothWays<TrackerOptions, AttentionOptions>(
       "tracker.", TrackerOptions::Ranges(), [](AttentionOptions* o) { return &o->tracker.bip; });
   ExpectRangesAppliedBothWays<OpenCvTrackerOptions, TargetTrackerOptions>(
@@ -136,9 +138,9 @@ TEST(OptionRanges, EveryNumericKeyOfTheConfigurationHasARange) {
       check("", name);
     }
   }
-  // sequence 5, segmentation 2, saliency 2, select 17, drop 3, inhibition 1, tracker 21,
-  // threads: so that a writer change that hid the numbers fails here.
-  EXPECT_EQ(numeric, 52);
+  // sequence 5, segmentation 2, saliency 2, select 21, drop 4, inhibition 1, attention 5,
+  // tracker 21, threads: so that a writer change that hid the numbers fails here.
+  EXPECT_EQ(numeric, 62);
 }
 
 }  // namespace

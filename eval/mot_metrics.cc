@@ -1,0 +1,362 @@
+#include "eval/mot_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <utility>
+
+#include "util/box.h"
+#include "util/error.h"
+
+namespace attend {
+
+namespace {
+
+double Ratio(double numerator, double denominator) {
+  return denominator > 0.0 ? numerator / denominator : 0.0;
+}
+
+// Rows no longer than columns (the caller transposes otherwise). Potentials u (rows) and v
+// (columns) keep cost - u - v >= 0 with equality on the assigned cells; each row is added by a
+// shortest augmenting path over the reduced costs. Index 0 is a virtual column, so rows and
+// columns count from 1 inside.
+std::vector<int> AssignRowsToColumns(const std::vector<std::vector<double>>& cost) {
+  const int n = static_cast<int>(cost.size());
+  const int m = static_cast<int>(cost[0].size());
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  std::vector<double> u(n + 1, 0.0), v(m + 1, 0.0);
+  std::vector<int> row_of(m + 1, 0), way(m + 1, 0);
+  for (int i = 1; i <= n; ++i) {
+    row_of[0] = i;
+    int j0 = 0;
+    std::vector<double> min_reduced(m + 1, kInfinity);
+    std::vector<bool> used(m + 1, false);
+    do {
+      used[j0] = true;
+      const int i0 = row_of[j0];
+      double delta = kInfinity;
+      int j1 = 0;
+      for (int j = 1; j <= m; ++j) {
+        if (used[j]) continue;
+        const double reduced = cost[i0 - 1][j - 1] - u[i0] - v[j];
+        if (reduced < min_reduced[j]) min_reduced[j] = reduced, way[j] = j0;
+        if (min_reduced[j] < delta) delta = min_reduced[j], j1 = j;
+      }
+      ATTEND_CHECK(j1 > 0) << "no free column for row " << i;
+      for (int j = 0; j <= m; ++j) {
+        if (used[j]) {
+          u[row_of[j]] += delta;
+          v[j] -= delta;
+        } else {
+          min_reduced[j] -= delta;
+        }
+      }
+      j0 = j1;
+    } while (row_of[j0] != 0);
+    do {
+      const int j1 = way[j0];
+      row_of[j0] = row_of[j1];
+      j0 = j1;
+    } while (j0 != 0);
+  }
+  std::vector<int> column_of(n, -1);
+  for (int j = 1; j <= m; ++j) {
+    if (row_of[j] != 0) column_of[row_of[j] - 1] = j - 1;
+  }
+  return column_of;
+}
+
+// The one-to-one pairs (index in `a`, index in `b`) with IoU >= `threshold` that the
+// minimum-cost assignment on 1 - IoU picks. A pair below the threshold costs more than any
+// assignment of valid pairs can (each costs < 1, at most min(|a|, |b|) of them), so the
+// assignment takes as many valid pairs as there can be, then the least summed 1 - IoU.
+std::vector<std::pair<int, int>> MatchAtThreshold(const std::vector<cv::Rect2d>& a,
+                                                  const std::vector<cv::Rect2d>& b,
+                                                  double threshold) {
+  std::vector<std::pair<int, int>> pairs;
+  if (a.empty() || b.empty()) return pairs;
+  const double forbidden = static_cast<double>(std::min(a.size(), b.size())) + 1.0;
+  std::vector<std::vector<double>> cost(a.size(), std::vector<double>(b.size(), forbidden));
+  std::vector<std::vector<double>> iou(a.size(), std::vector<double>(b.size(), 0.0));
+  bool any = false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      iou[i][j] = BoxIou(a[i], b[j]);
+      if (iou[i][j] >= threshold) cost[i][j] = 1.0 - iou[i][j], any = true;
+    }
+  }
+  if (!any) return pairs;
+  const std::vector<int> column = MinimumCostAssignment(cost);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (column[i] >= 0 && iou[i][column[i]] >= threshold) {
+      pairs.emplace_back(static_cast<int>(i), column[i]);
+    }
+  }
+  return pairs;
+}
+
+// What one object accumulates over the run.
+struct ObjectTally {
+  int counted_frames = 0;
+  int matched_frames = 0;
+  int streaks = 0;            // runs of matched frames among its counted frames
+  bool matched_last = false;  // at its last counted frame
+  std::set<int> target_ids;   // matched to it
+  int last_target = -1;       // at its last match
+};
+
+}  // namespace
+
+const FieldRanges<MotOptions>& MotOptions::Ranges() {
+  static const FieldRanges<MotOptions> ranges = {
+      {"match_iou", &MotOptions::match_iou, Range::AboveUpTo(0, 1)},
+      {"min_visible", &MotOptions::min_visible, Range::Closed(0, 1)},
+      {"min_area", &MotOptions::min_area, Range::AtLeast(0)},
+      {"mostly_tracked", &MotOptions::mostly_tracked, Range::Closed(0, 1)},
+      {"mostly_lost", &MotOptions::mostly_lost, Range::Closed(0, 1)}};
+  return ranges;
+}
+
+std::string MotOptions::Check() const {
+  const std::string error = CheckFieldRanges(*this, Ranges());
+  if (!error.empty()) return error;
+  if (mostly_lost > mostly_tracked) return "mostly_lost must be <= mostly_tracked";
+  return "";
+}
+
+std::vector<int> MinimumCostAssignment(const std::vector<std::vector<double>>& cost) {
+  if (cost.empty() || cost[0].empty()) return std::vector<int>(cost.size(), -1);
+  const std::size_t columns = cost[0].size();
+  for (const std::vector<double>& row : cost) {
+    ATTEND_CHECK(row.size() == columns) << "rows of " << row.size() << " and " << columns;
+    for (const double value : row) ATTEND_CHECK(std::isfinite(value)) << "cost " << value;
+  }
+  if (cost.size() <= columns) return AssignRowsToColumns(cost);
+  std::vector<std::vector<double>> transposed(columns, std::vector<double>(cost.size()));
+  for (std::size_t i = 0; i < cost.size(); ++i) {
+    for (std::size_t j = 0; j < columns; ++j) transposed[j][i] = cost[i][j];
+  }
+  const std::vector<int> row_of_column = AssignRowsToColumns(transposed);
+  std::vector<int> column_of_row(cost.size(), -1);
+  for (std::size_t j = 0; j < columns; ++j) column_of_row[row_of_column[j]] = static_cast<int>(j);
+  return column_of_row;
+}
+
+MotScores EvaluateMot(const std::vector<FrameRecord>& frames, const std::vector<GtObject>& truth,
+                      const MotOptions& options) {
+  const std::string error = options.Check();
+  ATTEND_CHECK(error.empty()) << error;
+  std::map<int, std::vector<const GtObject*>> by_frame;
+  for (const GtObject& object : truth) by_frame[object.frame].push_back(&object);
+
+  MotScores scores;
+  scores.match_iou = options.match_iou;
+  scores.frames = static_cast<int>(frames.size());
+  std::map<int, ObjectTally> objects;                  // by object id
+  std::map<int, std::map<int, int>> frames_on_object;  // target id -> object id -> frames
+  std::map<int, int> target_frames;                    // target id -> frames scored
+  std::map<std::pair<int, int>, int> overlap_frames;   // (object, target) -> IDTP if paired
+  std::set<int> started;
+  std::map<int, int> previous;  // object id -> target id, last frame
+  double iou_sum = 0.0;
+  const std::vector<const GtObject*> no_objects;
+  for (const FrameRecord& record : frames) {
+    const auto found = by_frame.find(record.frame);
+    const std::vector<const GtObject*>& present =
+        found != by_frame.end() ? found->second : no_objects;
+    std::vector<const GtObject*> counted, uncounted;
+    std::set<int> seen_objects;
+    for (const GtObject* object : present) {
+      if (!seen_objects.insert(object->id).second) continue;  // one box an object a frame
+      const bool visible =
+          object->visible_fraction >= options.min_visible && object->box.area() >= options.min_area;
+      (visible ? counted : uncounted).push_back(object);
+    }
+    std::vector<const TargetRecord*> targets;
+    std::set<int> seen_targets;
+    for (const TargetRecord& target : record.targets) {
+      started.insert(target.id);
+      if (Visible(target.state) && seen_targets.insert(target.id).second) {
+        targets.push_back(&target);
+      }
+    }
+    scores.gt += static_cast<int>(counted.size());
+    std::vector<cv::Rect2d> object_boxes, target_boxes;
+    for (const GtObject* object : counted) object_boxes.push_back(object->box);
+    for (const TargetRecord* target : targets) target_boxes.emplace_back(target->bbox);
+
+    // The previous frame's pairs that still reach the threshold, then the rest by assignment.
+    std::vector<std::pair<int, int>> pairs;  // (object index, target index)
+    std::vector<bool> object_used(counted.size(), false), target_used(targets.size(), false);
+    for (std::size_t i = 0; i < counted.size(); ++i) {
+      const auto kept = previous.find(counted[i]->id);
+      if (kept == previous.end()) continue;
+      for (std::size_t j = 0; j < targets.size(); ++j) {
+        if (targets[j]->id != kept->second) continue;
+        if (BoxIou(object_boxes[i], target_boxes[j]) >= options.match_iou) {
+          pairs.emplace_back(static_cast<int>(i), static_cast<int>(j));
+          object_used[i] = target_used[j] = true;
+        }
+      }
+    }
+    std::vector<int> free_objects, free_targets;
+    std::vector<cv::Rect2d> free_object_boxes, free_target_boxes;
+    for (std::size_t i = 0; i < counted.size(); ++i) {
+      if (object_used[i]) continue;
+      free_objects.push_back(static_cast<int>(i));
+      free_object_boxes.push_back(object_boxes[i]);
+    }
+    for (std::size_t j = 0; j < targets.size(); ++j) {
+      if (target_used[j]) continue;
+      free_targets.push_back(static_cast<int>(j));
+      free_target_boxes.push_back(target_boxes[j]);
+    }
+    for (const auto& [i, j] :
+         MatchAtThreshold(free_object_boxes, free_target_boxes, options.match_iou)) {
+      pairs.emplace_back(free_objects[i], free_targets[j]);
+      object_used[free_objects[i]] = target_used[free_targets[j]] = true;
+    }
+
+    std::map<int, int> current;
+    for (const auto& [i, j] : pairs) {
+      const int object_id = counted[i]->id;
+      const int target_id = targets[j]->id;
+      ++scores.matches;
+      iou_sum += BoxIou(object_boxes[i], target_boxes[j]);
+      ObjectTally& tally = objects[object_id];
+      if (tally.last_target >= 0 && tally.last_target != target_id) ++scores.id_switches;
+      tally.last_target = target_id;
+      tally.target_ids.insert(target_id);
+      ++frames_on_object[target_id][object_id];
+      current[object_id] = target_id;
+    }
+    previous = std::move(current);
+    for (std::size_t i = 0; i < counted.size(); ++i) {
+      ObjectTally& tally = objects[counted[i]->id];
+      ++tally.counted_frames;
+      if (object_used[i]) {
+        ++tally.matched_frames;
+        if (!tally.matched_last) ++tally.streaks;
+      }
+      tally.matched_last = object_used[i];
+    }
+    scores.false_negatives += static_cast<int>(counted.size() - pairs.size());
+
+    // Unmatched targets on an object that is present but not counted are left out.
+    std::vector<int> unmatched;
+    std::vector<cv::Rect2d> unmatched_boxes, uncounted_boxes;
+    for (std::size_t j = 0; j < targets.size(); ++j) {
+      if (target_used[j]) continue;
+      unmatched.push_back(static_cast<int>(j));
+      unmatched_boxes.push_back(target_boxes[j]);
+    }
+    for (const GtObject* object : uncounted) uncounted_boxes.push_back(object->box);
+    std::vector<bool> ignored(targets.size(), false);
+    int ignored_here = 0;
+    for (const std::pair<int, int>& pair :
+         MatchAtThreshold(unmatched_boxes, uncounted_boxes, options.match_iou)) {
+      ignored[unmatched[pair.first]] = true;
+      ++ignored_here;
+    }
+    scores.ignored += ignored_here;
+    scores.false_positives += static_cast<int>(unmatched.size()) - ignored_here;
+
+    // The trajectories of the identity measures, and every overlap a pairing of them would
+    // count.
+    for (std::size_t j = 0; j < targets.size(); ++j) {
+      if (ignored[j]) continue;
+      ++target_frames[targets[j]->id];
+      for (std::size_t i = 0; i < counted.size(); ++i) {
+        if (BoxIou(object_boxes[i], target_boxes[j]) >= options.match_iou) {
+          ++overlap_frames[{counted[i]->id, targets[j]->id}];
+        }
+      }
+    }
+  }
+
+  // CLEAR MOT and the attention measures, per object.
+  int ids_matched = 0;
+  for (const auto& [id, tally] : objects) {
+    ++scores.objects;
+    const double tracked = Ratio(tally.matched_frames, tally.counted_frames);
+    if (tracked >= options.mostly_tracked) {
+      ++scores.mostly_tracked;
+    } else if (tracked < options.mostly_lost) {
+      ++scores.mostly_lost;
+    } else {
+      ++scores.partly_tracked;
+    }
+    if (tally.streaks > 1) scores.fragmentations += tally.streaks - 1;
+    if (tally.matched_frames > 0) {
+      ++scores.objects_attended_whole;
+      ids_matched += static_cast<int>(tally.target_ids.size());
+    }
+  }
+  scores.mota = scores.gt > 0
+                    ? 1.0 - static_cast<double>(scores.false_negatives + scores.false_positives +
+                                                scores.id_switches) /
+                                scores.gt
+                    : 0.0;
+  scores.motp = Ratio(iou_sum, scores.matches);
+  scores.attended_whole_fraction = Ratio(scores.objects_attended_whole, scores.objects);
+  scores.ids_per_attended_object = Ratio(ids_matched, scores.objects_attended_whole);
+  int purest = 0;
+  for (const auto& [target, on] : frames_on_object) {
+    int most = 0;
+    for (const auto& [object, count] : on) most = std::max(most, count);
+    purest += most;
+  }
+  scores.purity = Ratio(purest, scores.matches);
+  scores.targets_started = static_cast<int>(started.size());
+
+  // Identity: objects (rows 0..G-1) and targets (columns 0..T-1) padded so that either may go
+  // unpaired. Object i with target j costs its IDFN + IDFP, (n_i - tp) + (n_j - tp); object i
+  // unpaired (column T + i) costs n_i, target j unpaired (row G + j) n_j, two paddings 0; any
+  // other padding cell more than the whole of either trajectory set.
+  std::vector<int> object_ids, target_ids;
+  std::vector<int> object_length, target_length;
+  for (const auto& [id, tally] : objects) {
+    object_ids.push_back(id);
+    object_length.push_back(tally.counted_frames);
+  }
+  int target_detections = 0;
+  for (const auto& [id, count] : target_frames) {
+    target_ids.push_back(id);
+    target_length.push_back(count);
+    target_detections += count;
+  }
+  const int g = static_cast<int>(object_ids.size());
+  const int t = static_cast<int>(target_ids.size());
+  if (g > 0 && t > 0) {
+    const double forbidden = static_cast<double>(scores.gt + target_detections) + 1.0;
+    std::vector<std::vector<double>> cost(g + t, std::vector<double>(t + g, forbidden));
+    for (int i = 0; i < g; ++i) {
+      for (int j = 0; j < t; ++j) {
+        const auto overlap = overlap_frames.find({object_ids[i], target_ids[j]});
+        const int tp = overlap != overlap_frames.end() ? overlap->second : 0;
+        cost[i][j] = object_length[i] + target_length[j] - 2.0 * tp;
+      }
+      cost[i][t + i] = object_length[i];
+    }
+    for (int j = 0; j < t; ++j) {
+      cost[g + j][j] = target_length[j];
+      for (int i = 0; i < g; ++i) cost[g + j][t + i] = 0.0;
+    }
+    const std::vector<int> column = MinimumCostAssignment(cost);
+    for (int i = 0; i < g; ++i) {
+      if (column[i] >= t) continue;
+      const auto overlap = overlap_frames.find({object_ids[i], target_ids[column[i]]});
+      if (overlap != overlap_frames.end()) scores.idtp += overlap->second;
+    }
+  }
+  scores.idfn = scores.gt - scores.idtp;
+  scores.idfp = target_detections - scores.idtp;
+  scores.idf1 = Ratio(2.0 * scores.idtp, 2.0 * scores.idtp + scores.idfp + scores.idfn);
+  scores.idp = Ratio(scores.idtp, scores.idtp + scores.idfp);
+  scores.idr = Ratio(scores.idtp, scores.idtp + scores.idfn);
+  return scores;
+}
+
+}  // namespace attend

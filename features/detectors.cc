@@ -1,0 +1,450 @@
+#include "features/detectors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/objdetect.hpp>
+
+namespace attend {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Boxes of one object found in overlapping crops (or at neighbouring scales that the
+// detector's own grouping kept apart) overlap by more than this.
+constexpr double kMergeIou = 0.5;
+
+const char* const kOpencvDataHint =
+    "the cascades come with Debian's package opencv-data (scripts/install_deps.sh installs it)";
+
+double Iou(const cv::Rect& a, const cv::Rect& b) {
+  const double overlap = (a & b).area();
+  const double united = a.area() + b.area() - overlap;
+  return united > 0 ? overlap / united : 0.0;
+}
+
+// The object box inside a detection window: `width` and `height` shares of it, centred.
+cv::Rect ObjectInWindow(const cv::Rect& window, double width, double height) {
+  const double w = window.width * width, h = window.height * height;
+  const double x = window.x + 0.5 * (window.width - w), y = window.y + 0.5 * (window.height - h);
+  return cv::Rect(cvRound(x), cvRound(y), std::max(1, cvRound(w)), std::max(1, cvRound(h)));
+}
+
+// The pyramid levels (OpenCV's nlevels) whose window holds objects of at most
+// `max_object_height` px: level k holds objects of object_height x scale^k.
+int LevelsUpTo(double max_object_height, double object_height, double scale) {
+  if (max_object_height <= 0.0) return cv::HOGDescriptor::DEFAULT_NLEVELS;
+  if (max_object_height < object_height) return 0;
+  const double levels = std::floor(std::log(max_object_height / object_height) / std::log(scale));
+  return std::min<int>(cv::HOGDescriptor::DEFAULT_NLEVELS, static_cast<int>(levels) + 1);
+}
+
+class HogPeopleSearch {
+ public:
+  explicit HogPeopleSearch(const HogPeopleOptions& options) : options_(options) {
+    if (options_.model == "daimler") {
+      hog_ =
+          cv::HOGDescriptor(cv::Size(48, 96), cv::Size(16, 16), cv::Size(8, 8), cv::Size(8, 8), 9);
+      hog_.setSVMDetector(cv::HOGDescriptor::getDaimlerPeopleDetector());
+    } else {
+      hog_.setSVMDetector(cv::HOGDescriptor::getDefaultPeopleDetector());
+    }
+  }
+
+  void Run(const cv::Mat& image, double max_object_height, std::vector<Detection>* found) {
+    found->clear();
+    if (image.cols < hog_.winSize.width || image.rows < hog_.winSize.height) return;
+    hog_.nlevels =
+        LevelsUpTo(max_object_height, hog_.winSize.height * options_.box_height, options_.scale);
+    if (hog_.nlevels == 0) return;
+    hog_.detectMultiScale(image, windows_, weights_, options_.hit_threshold,
+                          cv::Size(options_.stride, options_.stride), cv::Size(), options_.scale,
+                          options_.min_neighbours, false);
+    for (size_t i = 0; i < windows_.size(); ++i) {
+      found->push_back({ObjectInWindow(windows_[i], options_.box_width, options_.box_height),
+                        "person", ScoreToConfidence(weights_[i])});
+    }
+  }
+
+ private:
+  HogPeopleOptions options_;
+  cv::HOGDescriptor hog_;
+  std::vector<cv::Rect> windows_;
+  std::vector<double> weights_;
+};
+
+class CascadeSearch {
+ public:
+  CascadeSearch(cv::CascadeClassifier cascade, const FaceCascadeOptions& options)
+      : cascade_(std::move(cascade)), options_(options) {}
+
+  void Run(const cv::Mat& image, double max_object_height, std::vector<Detection>* found) {
+    found->clear();
+    const cv::Size window = cascade_.getOriginalWindowSize();
+    if (image.cols < window.width || image.rows < window.height) return;
+    if (image.channels() == 3) {
+      cv::cvtColor(image, grey_, cv::COLOR_BGR2GRAY);
+    } else {
+      image.copyTo(grey_);
+    }
+    cv::equalizeHist(grey_, grey_);
+    cv::Size max_size;
+    if (max_object_height > 0.0) {
+      if (max_object_height < window.height) return;
+      const double grow = max_object_height / window.height;
+      max_size = cv::Size(cvFloor(window.width * grow), cvFloor(max_object_height));
+    }
+    cascade_.detectMultiScale(grey_, boxes_, levels_, weights_, options_.scale,
+                              options_.min_neighbours, 0, window, max_size, true);
+    for (size_t i = 0; i < boxes_.size(); ++i) {
+      found->push_back({boxes_[i], "face", ScoreToConfidence(weights_[i])});
+    }
+  }
+
+ private:
+  cv::CascadeClassifier cascade_;
+  FaceCascadeOptions options_;
+  cv::Mat grey_;
+  std::vector<cv::Rect> boxes_;
+  std::vector<int> levels_;
+  std::vector<double> weights_;
+};
+
+class ObjectFeature final : public FeatureMap {
+ public:
+  explicit ObjectFeature(std::unique_ptr<ObjectChannel> channel) : channel_(std::move(channel)) {}
+  void BeginSequence(const SequenceStart&) override { channel_->Restart(); }
+  void Compute(const FrameContext& context, cv::Mat* out) override {
+    channel_->Compute(context.left(), context.AttentionRegions(), out);
+  }
+  const std::vector<Detection>& detections() const override { return channel_->detections(); }
+
+ private:
+  std::unique_ptr<ObjectChannel> channel_;
+};
+
+// In the order of DetectorGate.
+const std::vector<std::string>& GateNames() {
+  static const std::vector<std::string> names = {"attended", "frame"};
+  return names;
+}
+
+// The keys both channels share; `defaults` are the channel's own.
+ObjectChannelOptions ReadChannelOptions(const ParamBlock& params,
+                                        const ObjectChannelOptions& defaults) {
+  ObjectChannelOptions options = defaults;
+  const FieldRanges<ObjectChannelOptions>& ranges = ObjectChannelOptions::Ranges();
+  options.gate =
+      params.GetChoice("gate", GateNames()[static_cast<int>(defaults.gate)], GateNames()) == "frame"
+          ? DetectorGate::kFrame
+          : DetectorGate::kAttended;
+  options.margin = params.GetDouble("margin", options.margin, RangeOf(ranges, "margin"));
+  options.every = params.GetInt("every", options.every, RangeOf(ranges, "every"));
+  options.min_height =
+      params.GetInt("min_height", options.min_height, RangeOf(ranges, "min_height"));
+  options.max_height =
+      params.GetInt("max_height", options.max_height, RangeOf(ranges, "max_height"));
+  options.blur = params.GetDouble("blur", options.blur, RangeOf(ranges, "blur"));
+  const std::string error = options.Check();
+  if (!error.empty()) params.FailCheck(error);
+  return options;
+}
+
+}  // namespace
+
+const FieldRanges<ObjectChannelOptions>& ObjectChannelOptions::Ranges() {
+  static const FieldRanges<ObjectChannelOptions> ranges = {
+      {"margin", &ObjectChannelOptions::margin, Range::Closed(0, 4)},
+      {"every", &ObjectChannelOptions::every, Range::Closed(1, 1000)},
+      {"min_height", &ObjectChannelOptions::min_height, Range::Closed(4, 10000)},
+      {"max_height", &ObjectChannelOptions::max_height, Range::Closed(0, 10000)},
+      {"blur", &ObjectChannelOptions::blur, Range::Closed(0, 1)}};
+  return ranges;
+}
+
+std::string ObjectChannelOptions::Check() const {
+  const std::string error = CheckFieldRanges(*this, Ranges());
+  if (!error.empty()) return error;
+  if (max_height != 0 && max_height < min_height) {
+    return "max_height must be 0 or at least min_height (" + std::to_string(min_height) + ")";
+  }
+  return "";
+}
+
+const FieldRanges<HogPeopleOptions>& HogPeopleOptions::Ranges() {
+  static const FieldRanges<HogPeopleOptions> ranges = {
+      {"hit_threshold", &HogPeopleOptions::hit_threshold, Range::Closed(-10, 10)},
+      {"min_neighbours", &HogPeopleOptions::min_neighbours, Range::Closed(0, 100)},
+      {"scale", &HogPeopleOptions::scale, Range::AboveUpTo(1, 2)},
+      {"stride", &HogPeopleOptions::stride, Range::Closed(8, 64)},
+      {"box_width", &HogPeopleOptions::box_width, Range::AboveUpTo(0, 2)},
+      {"box_height", &HogPeopleOptions::box_height, Range::AboveUpTo(0, 2)}};
+  return ranges;
+}
+
+const std::vector<std::string>& HogPeopleOptions::Models() {
+  static const std::vector<std::string> models = {"default", "daimler"};
+  return models;
+}
+
+HogPeopleOptions HogPeopleOptions::ForModel(const std::string& model) {
+  HogPeopleOptions options;
+  options.model = model;
+  if (model == "daimler") {
+    options.box_width = 0.65;
+    options.box_height = 0.97;
+  }
+  return options;
+}
+
+std::string HogPeopleOptions::Check() const {
+  const std::string error = CheckFieldRanges(*this, Ranges());
+  if (!error.empty()) return error;
+  if (std::find(Models().begin(), Models().end(), model) == Models().end()) {
+    return "model must be default or daimler, got " + model;
+  }
+  // OpenCV's HOG moves the window in steps of its block stride, 8 px.
+  if (stride % 8 != 0) return "stride must be a multiple of 8";
+  return "";
+}
+
+const FieldRanges<FaceCascadeOptions>& FaceCascadeOptions::Ranges() {
+  static const FieldRanges<FaceCascadeOptions> ranges = {
+      {"min_neighbours", &FaceCascadeOptions::min_neighbours, Range::Closed(0, 100)},
+      {"scale", &FaceCascadeOptions::scale, Range::AboveUpTo(1, 2)}};
+  return ranges;
+}
+
+std::string FaceCascadeOptions::Check() const { return CheckFieldRanges(*this, Ranges()); }
+
+ObjectChannel::ObjectChannel(const ObjectChannelOptions& options, const DetectorGeometry& geometry,
+                             std::string label, ObjectSearch search)
+    : options_(options), geometry_(geometry), label_(std::move(label)), search_(std::move(search)) {
+  const std::string error = options_.Check();
+  ATTEND_CHECK(error.empty()) << error;
+  ATTEND_CHECK(geometry_.window.width > 0 && geometry_.window.height > 0 &&
+               geometry_.object_height > 0.0);
+}
+
+void ObjectChannel::Restart() {
+  frames_since_search_ = -1;
+  detections_.clear();
+}
+
+void ObjectChannel::Search(const cv::Mat& image, const cv::Rect& crop, double min_object,
+                           double max_object, std::vector<Detection>* found) {
+  // Scaled so that the smallest object wanted fills the window: the pyramid only shrinks.
+  const double scale = geometry_.object_height / min_object;
+  const cv::Size size(cvRound(crop.width * scale), cvRound(crop.height * scale));
+  if (size.width < geometry_.window.width || size.height < geometry_.window.height) return;
+  cv::resize(image(crop), scaled_, size, 0, 0, scale < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
+  ++last_searches_;
+  last_searched_pixels_ += static_cast<double>(size.area());
+  search_(scaled_, max_object > 0.0 ? max_object * scale : 0.0, &scaled_found_);
+  const cv::Rect frame(0, 0, image.cols, image.rows);
+  for (const Detection& detection : scaled_found_) {
+    const cv::Rect& box = detection.box;
+    const cv::Rect box_in_frame =
+        cv::Rect(cvRound(crop.x + box.x / scale), cvRound(crop.y + box.y / scale),
+                 cvRound(box.width / scale), cvRound(box.height / scale)) &
+        frame;
+    if (box_in_frame.empty()) continue;
+    found->push_back({box_in_frame, label_, detection.confidence});
+  }
+}
+
+void ObjectChannel::Compute(const cv::Mat& bgr, const std::vector<cv::Rect>& regions,
+                            cv::Mat* map) {
+  CV_Assert(!bgr.empty() && bgr.depth() == CV_8U);
+  if (bgr.size() != last_size_) Restart();
+  last_size_ = bgr.size();
+  last_searches_ = 0;
+  last_searched_pixels_ = 0.0;
+  const double max_object = options_.max_height;
+  if (options_.gate == DetectorGate::kFrame) {
+    const bool due = frames_since_search_ < 0 || frames_since_search_ + 1 >= options_.every;
+    if (due) {
+      detections_.clear();
+      Search(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), options_.min_height, max_object,
+             &detections_);
+      SuppressOverlaps(kMergeIou, &detections_);
+      frames_since_search_ = 0;
+    } else {
+      ++frames_since_search_;
+    }
+  } else {
+    detections_.clear();
+    searched_.clear();
+    const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
+    for (const cv::Rect& region : regions) {
+      const cv::Rect seen = region & frame;
+      if (seen.empty()) continue;
+      const cv::Rect crop = GateCrop(seen, options_.margin, geometry_.window, bgr.size());
+      // The region is about the object: it is at least the region's height shrunk by the
+      // margins (the region may be the object's box grown by attention's own margin).
+      const double min_object =
+          std::max<double>(options_.min_height, seen.height / (1.0 + 2.0 * options_.margin));
+      if (max_object > 0.0 && min_object > max_object) continue;
+      // A target and its object file's prediction often give the same region.
+      const bool repeated = std::any_of(searched_.begin(), searched_.end(), [&](const auto& done) {
+        return done.first == crop && done.second == min_object;
+      });
+      if (repeated) continue;
+      searched_.emplace_back(crop, min_object);
+      Search(bgr, crop, min_object, max_object, &detections_);
+    }
+    SuppressOverlaps(kMergeIou, &detections_);
+  }
+  PaintDetections(detections_, options_.blur, bgr.size(), map);
+}
+
+cv::Rect GateCrop(const cv::Rect& region, double margin, cv::Size window, cv::Size frame) {
+  double w = region.width * (1.0 + 2.0 * margin);
+  const double h = region.height * (1.0 + 2.0 * margin);
+  // Wide enough for the window of an object as tall as the crop; never taller than the region
+  // says: a wide, low region (a strip of a building's edge) holds no tall object, and
+  // heightening it would search most of the frame.
+  const double aspect = static_cast<double>(window.width) / window.height;
+  if (w < h * aspect) w = h * aspect;
+  const double cx = region.x + 0.5 * region.width, cy = region.y + 0.5 * region.height;
+  const cv::Rect grown(cvRound(cx - 0.5 * w), cvRound(cy - 0.5 * h), cvRound(w), cvRound(h));
+  return grown & cv::Rect(0, 0, frame.width, frame.height);
+}
+
+void SuppressOverlaps(double max_iou, std::vector<Detection>* detections) {
+  std::stable_sort(
+      detections->begin(), detections->end(),
+      [](const Detection& a, const Detection& b) { return a.confidence > b.confidence; });
+  std::vector<Detection> kept;
+  kept.reserve(detections->size());
+  for (Detection& candidate : *detections) {
+    bool overlaps = false;
+    for (const Detection& other : kept) {
+      if (other.label == candidate.label && Iou(other.box, candidate.box) > max_iou) {
+        overlaps = true;
+        break;
+      }
+    }
+    if (!overlaps) kept.push_back(std::move(candidate));
+  }
+  *detections = std::move(kept);
+}
+
+void PaintDetections(const std::vector<Detection>& detections, double blur, cv::Size size,
+                     cv::Mat* map) {
+  map->create(size, CV_32FC1);
+  map->setTo(0.f);
+  const cv::Rect frame(0, 0, size.width, size.height);
+  for (const Detection& detection : detections) {
+    const cv::Rect box = detection.box & frame;
+    if (box.empty()) continue;
+    cv::Mat inside = (*map)(box);
+    cv::max(inside, static_cast<double>(detection.confidence), inside);
+  }
+  if (blur > 0.0 && !detections.empty()) {
+    const double sigma = blur * std::max(size.width, size.height);
+    cv::GaussianBlur(*map, *map, cv::Size(), sigma, sigma, cv::BORDER_CONSTANT);
+  }
+}
+
+float ScoreToConfidence(double score) {
+  // 1 / (1 + e^-s) rounds to 1 for large s in float, still in (0, 1]; it never reaches 0 for
+  // the scores a detector keeps, but clamp the float so that no box paints a 0.
+  const float confidence = static_cast<float>(1.0 / (1.0 + std::exp(-score)));
+  return std::max(confidence, std::numeric_limits<float>::min());
+}
+
+ObjectSearch MakeHogPeopleSearch(const HogPeopleOptions& options) {
+  const std::string error = options.Check();
+  ATTEND_CHECK(error.empty()) << error;
+  auto search = std::make_shared<HogPeopleSearch>(options);
+  return [search](const cv::Mat& image, double max_object_height, std::vector<Detection>* found) {
+    search->Run(image, max_object_height, found);
+  };
+}
+
+DetectorGeometry HogPeopleGeometry(const HogPeopleOptions& options) {
+  const cv::Size window = options.model == "daimler" ? cv::Size(48, 96) : cv::Size(64, 128);
+  return {window, window.height * options.box_height};
+}
+
+ObjectSearch MakeFaceCascadeSearch(const FaceCascadeOptions& options, const ParamBlock& params,
+                                   const std::string& key, DetectorGeometry* geometry) {
+  const std::string error = options.Check();
+  ATTEND_CHECK(error.empty()) << error;
+  // OpenCV reports a folder or an unreadable file as an empty cascade; say which it is.
+  if (fs::is_directory(options.model)) {
+    params.Fail(key, options.model + ": is a folder, not a cascade file; " + kOpencvDataHint);
+  }
+  if (!std::ifstream(options.model).good()) {
+    params.Fail(key, options.model + ": cannot be read; " + kOpencvDataHint);
+  }
+  cv::CascadeClassifier cascade;
+  bool loaded = false;
+  try {
+    loaded = cascade.load(options.model);
+  } catch (const cv::Exception& e) {
+    params.Fail(
+        key, options.model + ": not a cascade classifier file (" + e.err + "); " + kOpencvDataHint);
+  }
+  if (!loaded || cascade.empty()) {
+    params.Fail(key, options.model + ": not a cascade classifier file; " + kOpencvDataHint);
+  }
+  const cv::Size window = cascade.getOriginalWindowSize();
+  *geometry = {window, static_cast<double>(window.height)};
+  auto search = std::make_shared<CascadeSearch>(std::move(cascade), options);
+  return [search](const cv::Mat& image, double max_object_height, std::vector<Detection>* found) {
+    search->Run(image, max_object_height, found);
+  };
+}
+
+std::unique_ptr<FeatureMap> CreatePeopleFeature(const ParamBlock& params, const FeatureSetup&) {
+  const ObjectChannelOptions channel = ReadChannelOptions(params, ObjectChannelOptions());
+  HogPeopleOptions hog = HogPeopleOptions::ForModel(
+      params.GetChoice("model", HogPeopleOptions().model, HogPeopleOptions::Models()));
+  const FieldRanges<HogPeopleOptions>& ranges = HogPeopleOptions::Ranges();
+  hog.hit_threshold =
+      params.GetDouble("hit_threshold", hog.hit_threshold, RangeOf(ranges, "hit_threshold"));
+  hog.min_neighbours =
+      params.GetInt("min_neighbours", hog.min_neighbours, RangeOf(ranges, "min_neighbours"));
+  hog.scale = params.GetDouble("scale", hog.scale, RangeOf(ranges, "scale"));
+  hog.stride = params.GetInt("stride", hog.stride, RangeOf(ranges, "stride"));
+  hog.box_width = params.GetDouble("box_width", hog.box_width, RangeOf(ranges, "box_width"));
+  hog.box_height = params.GetDouble("box_height", hog.box_height, RangeOf(ranges, "box_height"));
+  const std::string error = hog.Check();
+  if (!error.empty()) params.FailCheck(error);
+  return std::make_unique<ObjectFeature>(std::make_unique<ObjectChannel>(
+      channel, HogPeopleGeometry(hog), "person", MakeHogPeopleSearch(hog)));
+}
+
+std::unique_ptr<FeatureMap> CreateFacesFeature(const ParamBlock& params,
+                                               const FeatureSetup& setup) {
+  ObjectChannelOptions defaults;
+  defaults.min_height = 16;
+  const ObjectChannelOptions channel = ReadChannelOptions(params, defaults);
+  FaceCascadeOptions cascade;
+  const FieldRanges<FaceCascadeOptions>& ranges = FaceCascadeOptions::Ranges();
+  const std::string model = params.GetString("model", kDefaultFaceCascade);
+  if (model.empty()) params.Fail("model", "must not be empty");
+  cascade.model = setup.FindPath(model);
+  if (cascade.model.empty()) {
+    const std::string places =
+        fs::path(model).is_absolute() ? "" : " (looked in " + setup.PlacesSearched() + ")";
+    params.Fail("model", "no such file: " + model + places + "; " + kOpencvDataHint);
+  }
+  cascade.min_neighbours =
+      params.GetInt("min_neighbours", cascade.min_neighbours, RangeOf(ranges, "min_neighbours"));
+  cascade.scale = params.GetDouble("scale", cascade.scale, RangeOf(ranges, "scale"));
+  const std::string error = cascade.Check();
+  if (!error.empty()) params.FailCheck(error);
+  DetectorGeometry geometry;
+  ObjectSearch search = MakeFaceCascadeSearch(cascade, params, "model", &geometry);
+  return std::make_unique<ObjectFeature>(
+      std::make_unique<ObjectChannel>(channel, geometry, "face", std::move(search)));
+}
+
+}  // namespace attend

@@ -1,0 +1,171 @@
+// The top-down object channels (not in the thesis, whose pre-attentive stage is bottom-up
+// only): `people`, OpenCV's HOG pedestrian detector (Dalal and Triggs 2005), and `faces`, a
+// cascade classifier (Viola and Jones 2001). Each is an ordinary feature plugin: its map is
+// its detections' boxes filled with their confidence, and it reports the detections
+// themselves (FeatureMap::detections) for the attention stage to label and seed targets with.
+//
+// Where the detector looks (`gate`):
+//   frame     the whole frame, scaled so that the smallest object asked for (`min_height`)
+//             fills the detector's window; every `every` frames, the last detections reused in
+//             between;
+//   attended  only crops around the frame context's AttentionRegions, each grown by `margin`
+//             times its width and height on every side and widened to the window's aspect. An
+//             object in a crop is taken to be at most the crop's height and at least the
+//             region's height / (1 + 2 margin) (a region is about the object attention looks
+//             at; a crop too low for the window of its smallest object is not searched), so
+//             each crop is scaled for its smallest object to fill the window and the
+//             pyramid stops at the crop's height: a few levels on a small image instead of the
+//             whole frame's many. Detections from overlapping crops are merged (non-maximum
+//             suppression). Nothing on a sequence's first frame and on still images, which
+//             have no regions.
+// A frame or a (scaled) crop smaller than the detector's window is not searched.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "features/feature_map.h"
+#include "util/field_ranges.h"
+
+namespace attend {
+
+enum class DetectorGate { kAttended, kFrame };
+
+// What both channels share: where the detector looks and how its detections become a map.
+struct ObjectChannelOptions {
+  DetectorGate gate = DetectorGate::kAttended;
+  // A region's crop grows by this times its width on the left and on the right, and times its
+  // height above and below.
+  double margin = 0.25;
+  int every = 1;        // frame gate: search every this many frames, reuse in between
+  int min_height = 40;  // smallest object searched for, px of the frame
+  int max_height = 0;   // largest object searched for, px of the frame; 0: no bound
+  double blur = 0.0;    // sigma of a Gaussian on the map, share of the larger side; 0: none
+  // "" when valid; otherwise names the field and the broken constraint.
+  std::string Check() const;
+  // The numeric fields' ranges (util/field_ranges.h), which Check and the configuration apply.
+  static const FieldRanges<ObjectChannelOptions>& Ranges();
+};
+
+// The HOG pedestrian detector of the `people` channel.
+struct HogPeopleOptions {
+  std::string model = "default";  // "default": 64x128 (INRIA); "daimler": 48x96
+  double hit_threshold = 0.0;     // SVM margin a window needs to count as a hit
+  // A detection needs more than this many overlapping hit windows (OpenCV's groupThreshold);
+  // 0: every hit window is a detection.
+  int min_neighbours = 2;
+  double scale = 1.05;  // step between pyramid levels
+  int stride = 8;       // window stride, px of the scaled image; a multiple of 8
+  // The person inside a detection window: this share of the window's width and of its height,
+  // centred. Measured on TUD-Campus and TUD-Stadtmitte (docs/PERFORMANCE.md, "Top-down
+  // channels"); the default model's window has a margin of background around the person,
+  // Daimler's is about as tall as the person (ForModel).
+  double box_width = 0.52;
+  double box_height = 0.8;
+  std::string Check() const;
+  static const FieldRanges<HogPeopleOptions>& Ranges();
+  static const std::vector<std::string>& Models();
+  // The defaults with `model` and its box shares.
+  static HogPeopleOptions ForModel(const std::string& model);
+};
+
+// The cascade classifier of the `faces` channel.
+struct FaceCascadeOptions {
+  std::string model;       // the cascade file (resolved)
+  int min_neighbours = 3;  // a detection needs more than this many overlapping hits
+  double scale = 1.1;      // step between pyramid levels
+  std::string Check() const;
+  static const FieldRanges<FaceCascadeOptions>& Ranges();
+};
+
+// The default model of `faces`: the frontal-face Haar cascade of Debian's opencv-data.
+inline constexpr const char* kDefaultFaceCascade =
+    "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
+
+// What the gate needs to know about a detector: its window, and the height of the object
+// filling it (the window's height times the share of it the object takes).
+struct DetectorGeometry {
+  cv::Size window;
+  double object_height = 0.0;
+};
+
+// One search of an image at its own scale and up: the objects found, with their boxes (the
+// objects, not the windows) in the image's pixels and confidences in (0, 1]. The image is at
+// least the window's size; objects taller than `max_object_height` px (0: any) are not wanted.
+using ObjectSearch = std::function<void(const cv::Mat& image, double max_object_height,
+                                        std::vector<Detection>* found)>;
+
+// The gate, the `every` schedule and the map around one search function; usable without a
+// FrameContext (the tests give it a fake search).
+class ObjectChannel {
+ public:
+  ObjectChannel(const ObjectChannelOptions& options, const DetectorGeometry& geometry,
+                std::string label, ObjectSearch search);
+  // Forgets the last detections and starts the `every` schedule afresh (a new sequence).
+  void Restart();
+  // `bgr`: the frame (8-bit); `regions`: where attention looks, in its pixels. Fills `map`
+  // (CV_32FC1, the frame's size) and detections().
+  void Compute(const cv::Mat& bgr, const std::vector<cv::Rect>& regions, cv::Mat* map);
+  const std::vector<Detection>& detections() const { return detections_; }
+  // The images the last Compute searched (for tests and benchmarks): how many, and their
+  // pixels summed.
+  int last_searches() const { return last_searches_; }
+  double last_searched_pixels() const { return last_searched_pixels_; }
+
+ private:
+  void Search(const cv::Mat& image, const cv::Rect& crop, double min_object, double max_object,
+              std::vector<Detection>* found);
+
+  ObjectChannelOptions options_;
+  DetectorGeometry geometry_;
+  std::string label_;
+  ObjectSearch search_;
+  int frames_since_search_ = -1;  // -1: no search yet in this sequence
+  cv::Size last_size_;
+  std::vector<Detection> detections_, scaled_found_;
+  std::vector<std::pair<cv::Rect, double>> searched_;  // this frame's crops and smallest objects
+  cv::Mat scaled_;
+  int last_searches_ = 0;
+  double last_searched_pixels_ = 0.0;
+};
+
+// The crop of `region` the attended gate searches: grown by `margin` times its size on every
+// side, widened about its centre to at least `window`'s aspect ratio (never heightened: the
+// region's height bounds the object's), clipped to `frame`.
+cv::Rect GateCrop(const cv::Rect& region, double margin, cv::Size window, cv::Size frame);
+
+// Greedy non-maximum suppression: the most confident first, then each box whose IoU with a
+// kept box of the same label exceeds `max_iou` is dropped. Keeps the order of confidence.
+void SuppressOverlaps(double max_iou, std::vector<Detection>* detections);
+
+// The map of `detections`: each box filled with its confidence (the maximum where boxes
+// overlap), 0 elsewhere, then blurred by a Gaussian of `blur` times the larger side (0: none).
+void PaintDetections(const std::vector<Detection>& detections, double blur, cv::Size size,
+                     cv::Mat* map);
+
+// A monotone map of a detector's score (an SVM margin, a cascade's final stage sum) into
+// (0, 1]: the logistic function, 0.5 at a score of 0.
+float ScoreToConfidence(double score);
+
+// The HOG people search (OpenCV's HOGDescriptor) and its geometry.
+ObjectSearch MakeHogPeopleSearch(const HogPeopleOptions& options);
+DetectorGeometry HogPeopleGeometry(const HogPeopleOptions& options);
+
+// The cascade search, from a file: ConfigError at params' `key` when it is missing,
+// unreadable or not a cascade, naming the file and the package opencv-data.
+ObjectSearch MakeFaceCascadeSearch(const FaceCascadeOptions& options, const ParamBlock& params,
+                                   const std::string& key, DetectorGeometry* geometry);
+
+// Parameters: the fields of ObjectChannelOptions (`gate`: attended | frame) and of
+// HogPeopleOptions (`model`: default | daimler) under their names. Label "person".
+std::unique_ptr<FeatureMap> CreatePeopleFeature(const ParamBlock& params,
+                                                const FeatureSetup& setup);
+// Parameters: the fields of ObjectChannelOptions and of FaceCascadeOptions (`model`: a cascade
+// file, default kDefaultFaceCascade). Label "face".
+std::unique_ptr<FeatureMap> CreateFacesFeature(const ParamBlock& params, const FeatureSetup& setup);
+
+}  // namespace attend
