@@ -119,8 +119,6 @@ int ObjectFiles::Match(const cv::Rect& box, const ObjectAppearance& appearance, 
       continue;
     }
     const double similarity = appearance.Similarity(file.appearance);
-    fprintf(stderr, "file %d absent %d sim %.3f box %d,%d %dx%d\n", file.id, file.absent,
-            similarity, box.x, box.y, box.width, box.height);
     if (similarity >= best_similarity) best = static_cast<int>(i), best_similarity = similarity;
   }
   return best;
