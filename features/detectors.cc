@@ -8,6 +8,8 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/objdetect.hpp>
 
+#include "util/box.h"
+
 namespace attend {
 
 namespace {
@@ -20,12 +22,6 @@ constexpr double kMergeIou = 0.5;
 
 const char* const kOpencvDataHint =
     "the cascades come with Debian's package opencv-data (scripts/install_deps.sh installs it)";
-
-double Iou(const cv::Rect& a, const cv::Rect& b) {
-  const double overlap = (a & b).area();
-  const double united = a.area() + b.area() - overlap;
-  return united > 0 ? overlap / united : 0.0;
-}
 
 // The object box inside a detection window: `width` and `height` shares of it, centred.
 cv::Rect ObjectInWindow(const cv::Rect& window, double width, double height) {
@@ -324,7 +320,7 @@ void SuppressOverlaps(double max_iou, std::vector<Detection>* detections) {
   for (Detection& candidate : *detections) {
     bool overlaps = false;
     for (const Detection& other : kept) {
-      if (other.label == candidate.label && Iou(other.box, candidate.box) > max_iou) {
+      if (other.label == candidate.label && BoxIou(other.box, candidate.box) > max_iou) {
         overlaps = true;
         break;
       }
