@@ -111,7 +111,7 @@ int Matches(const std::vector<Detection>& found, const std::vector<cv::Rect2d>& 
     int best = -1;
     double best_iou = 0.5;
     for (size_t t = 0; t < truth.size(); ++t) {
-      const double iou = BoxIou(cv::Rect2d(found[i].box), truth[t]);
+      const double iou = attend::BoxIou(cv::Rect2d(found[i].box), truth[t]);
       if (!taken[t] && iou >= best_iou) best = static_cast<int>(t), best_iou = iou;
     }
     if (best >= 0) taken[best] = 1, (*truth_of)[i] = best, ++matched;
@@ -275,7 +275,7 @@ int main(int argc, char** argv) {
               double best = 0.3;
               const cv::Rect2d* match = nullptr;
               for (const cv::Rect2d& person : truth) {
-                const double iou = BoxIou(cv::Rect2d(window.box), person);
+                const double iou = attend::BoxIou(cv::Rect2d(window.box), person);
                 if (iou >= best) best = iou, match = &person;
               }
               if (match == nullptr) continue;
