@@ -95,10 +95,5 @@ struct MotScores {
 MotScores EvaluateMot(const std::vector<FrameRecord>& frames, const std::vector<GtObject>& truth,
                       const MotOptions& options = {});
 
-// The assignment of rows to columns of `cost` (rows of equal length, finite values) that
-// minimises the summed cost of the chosen cells (Kuhn-Munkres, the O(n^2 m) form with row and
-// column potentials). Every row gets a column when there are at most as many rows as columns,
-// every column a row otherwise. Returns each row's column, -1 for a row left without one.
-std::vector<int> MinimumCostAssignment(const std::vector<std::vector<double>>& cost);
 
 }  // namespace attend

@@ -140,6 +140,8 @@ ObjectChannelOptions ReadChannelOptions(const ParamBlock& params,
           : DetectorGate::kAttended;
   options.margin = params.GetDouble("margin", options.margin, RangeOf(ranges, "margin"));
   options.every = params.GetInt("every", options.every, RangeOf(ranges, "every"));
+  options.scan_every =
+      params.GetInt("scan_every", options.scan_every, RangeOf(ranges, "scan_every"));
   options.min_height =
       params.GetInt("min_height", options.min_height, RangeOf(ranges, "min_height"));
   options.max_height =
@@ -156,6 +158,7 @@ const FieldRanges<ObjectChannelOptions>& ObjectChannelOptions::Ranges() {
   static const FieldRanges<ObjectChannelOptions> ranges = {
       {"margin", &ObjectChannelOptions::margin, Range::Closed(0, 4)},
       {"every", &ObjectChannelOptions::every, Range::Closed(1, 1000)},
+      {"scan_every", &ObjectChannelOptions::scan_every, Range::Closed(0, 1000)},
       {"min_height", &ObjectChannelOptions::min_height, Range::Closed(4, 10000)},
       {"max_height", &ObjectChannelOptions::max_height, Range::Closed(0, 10000)},
       {"blur", &ObjectChannelOptions::blur, Range::Closed(0, 1)}};
@@ -272,7 +275,16 @@ void ObjectChannel::Compute(const cv::Mat& bgr, const std::vector<cv::Rect>& reg
     } else {
       ++frames_since_search_;
     }
+  } else if (options_.scan_every > 0 &&
+             (frames_since_search_ < 0 || frames_since_search_ + 1 >= options_.scan_every)) {
+    // The glance at the whole scene: it covers every region too.
+    detections_.clear();
+    Search(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), options_.min_height, max_object,
+           &detections_);
+    SuppressOverlaps(kMergeIou, &detections_);
+    frames_since_search_ = 0;
   } else {
+    ++frames_since_search_;
     detections_.clear();
     searched_.clear();
     const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
@@ -291,11 +303,39 @@ void ObjectChannel::Compute(const cv::Mat& bgr, const std::vector<cv::Rect>& reg
       });
       if (repeated) continue;
       searched_.emplace_back(crop, min_object);
+    }
+    for (const auto& [crop, min_object] : MergeCrops(searched_, geometry_.object_height)) {
       Search(bgr, crop, min_object, max_object, &detections_);
     }
     SuppressOverlaps(kMergeIou, &detections_);
   }
   PaintDetections(detections_, options_.blur, bgr.size(), map);
+}
+
+std::vector<std::pair<cv::Rect, double>> MergeCrops(std::vector<std::pair<cv::Rect, double>> crops,
+                                                    double object_height) {
+  const auto cost = [object_height](const cv::Rect& crop, double min_object) {
+    const double scale = object_height / min_object;
+    return static_cast<double>(crop.area()) * scale * scale;
+  };
+  bool merged = true;
+  while (merged) {
+    merged = false;
+    for (size_t i = 0; i < crops.size() && !merged; ++i) {
+      for (size_t j = i + 1; j < crops.size() && !merged; ++j) {
+        const auto& [a, a_min] = crops[i];
+        const auto& [b, b_min] = crops[j];
+        if ((a & b).empty()) continue;
+        const cv::Rect joined = a | b;
+        const double joined_min = std::min(a_min, b_min);
+        if (cost(joined, joined_min) > cost(a, a_min) + cost(b, b_min)) continue;
+        crops[i] = {joined, joined_min};
+        crops.erase(crops.begin() + static_cast<std::ptrdiff_t>(j));
+        merged = true;
+      }
+    }
+  }
+  return crops;
 }
 
 cv::Rect GateCrop(const cv::Rect& region, double margin, cv::Size window, cv::Size frame) {

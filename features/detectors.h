@@ -42,6 +42,9 @@ struct ObjectChannelOptions {
   // height above and below.
   double margin = 0.25;
   int every = 1;        // frame gate: search every this many frames, reuse in between
+  // attended gate: also search the whole frame every this many frames (a glance at the whole
+  // scene, which finds the objects attention has not looked at yet); 0: never.
+  int scan_every = 0;
   int min_height = 40;  // smallest object searched for, px of the frame
   int max_height = 0;   // largest object searched for, px of the frame; 0: no bound
   double blur = 0.0;    // sigma of a Gaussian on the map, share of the larger side; 0: none
@@ -132,6 +135,14 @@ class ObjectChannel {
   int last_searches_ = 0;
   double last_searched_pixels_ = 0.0;
 };
+
+// The crops the attended gate searches, with the smallest object each is searched for:
+// overlapping crops are merged into their bounding box, searched for the smaller of their
+// smallest objects, wherever that costs no more than searching both (a search's cost taken as
+// its scaled area: the crop's area times (object height / smallest object)^2), until no pair
+// merges. Keeps the order of the first crop of each merged group.
+std::vector<std::pair<cv::Rect, double>> MergeCrops(std::vector<std::pair<cv::Rect, double>> crops,
+                                                    double object_height);
 
 // The crop of `region` the attended gate searches: grown by `margin` times its size on every
 // side, widened about its centre to at least `window`'s aspect ratio (never heightened: the

@@ -80,6 +80,9 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("detected_only", &o->attention.select.detected_only);
   v.Field("reanchor_min_iou", &o->attention.select.reanchor_min_iou);
   v.Field("reanchor_max_iou", &o->attention.select.reanchor_max_iou);
+  v.Field("reanchor_min_similarity", &o->attention.select.reanchor_min_similarity);
+  v.Field("group_min_speed", &o->attention.select.group_min_speed);
+  v.Field("group_flow_tolerance", &o->attention.select.group_flow_tolerance);
   v.Field("label_overlap", &o->attention.label_overlap);
   v.Field("skin_fraction", &o->attention.skin_fraction);
   v.Field("skin_model", &o->attention.skin_model);

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <map>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
 
 #include "features/skin.h"
 #include "pyramid/similarity.h"
+#include "util/assignment.h"
 #include "util/box.h"
 #include "util/error.h"
 #include "util/timer.h"
@@ -47,7 +49,10 @@ const FieldRanges<SelectOptions>& SelectOptions::Ranges() {
       {"seed_level", &O::seed_level, Range::Closed(0.01, 1)},
       {"detection_taken", &O::detection_taken, Range::Closed(0, 1)},
       {"reanchor_min_iou", &O::reanchor_min_iou, Range::Closed(0, 1)},
-      {"reanchor_max_iou", &O::reanchor_max_iou, Range::Closed(0, 1)}};
+      {"reanchor_max_iou", &O::reanchor_max_iou, Range::Closed(0, 1)},
+      {"reanchor_min_similarity", &O::reanchor_min_similarity, Range::Closed(0, 1)},
+      {"group_min_speed", &O::group_min_speed, Range::Closed(0, 1000)},
+      {"group_flow_tolerance", &O::group_flow_tolerance, Range::Closed(0, 10)}};
   return ranges;
 }
 
@@ -160,6 +165,92 @@ int AttentionStage::SeedFromBox(const Segmentation& segmentation, const cv::Rect
   return area;
 }
 
+bool AttentionStage::RegionFlow(const Segmentation& segmentation) {
+  if (flow_state_ != 0) return flow_state_ > 0;
+  flow_state_ = -1;
+  if (previous_grey_.empty() || previous_grey_.size() != grey_.size()) return false;
+  if (!flow_solver_) flow_solver_ = cv::DISOpticalFlow::create(cv::DISOpticalFlow::PRESET_MEDIUM);
+  flow_solver_->calc(previous_grey_, grey_, flow_);
+  // The flow bleeds across the edges of what moves (the solver smooths it), so a region's flow
+  // is its mean away from its border, kFlowBorder px in; a region that is all border keeps all
+  // its pixels.
+  const cv::Mat& labels = segmentation.labels;
+  border_.create(labels.size(), CV_8UC1);
+  border_.setTo(0);
+  for (int y = 0; y < labels.rows; ++y) {
+    const int* label = labels.ptr<int>(y);
+    const int* below = y + 1 < labels.rows ? labels.ptr<int>(y + 1) : nullptr;
+    uchar* edge = border_.ptr<uchar>(y);
+    uchar* edge_below = below != nullptr ? border_.ptr<uchar>(y + 1) : nullptr;
+    for (int x = 0; x < labels.cols; ++x) {
+      if (x + 1 < labels.cols && label[x + 1] != label[x]) edge[x] = edge[x + 1] = 255;
+      if (below != nullptr && below[x] != label[x]) edge[x] = edge_below[x] = 255;
+    }
+  }
+  cv::dilate(border_, border_,
+             cv::getStructuringElement(cv::MORPH_RECT,
+                                       cv::Size(2 * kFlowBorder + 1, 2 * kFlowBorder + 1)));
+  const size_t regions = segmentation.regions.size();
+  std::vector<cv::Point2d> inner_sum(regions), all_sum(regions);
+  std::vector<int> inner_count(regions, 0), all_count(regions, 0);
+  for (int y = 0; y < flow_.rows; ++y) {
+    const int* label = labels.ptr<int>(y);
+    const uchar* edge = border_.ptr<uchar>(y);
+    const cv::Point2f* flow = flow_.ptr<cv::Point2f>(y);
+    for (int x = 0; x < flow_.cols; ++x) {
+      if (label[x] < 0) continue;
+      const cv::Point2d pixel(flow[x].x, flow[x].y);
+      all_sum[label[x]] += pixel;
+      ++all_count[label[x]];
+      if (!edge[x]) inner_sum[label[x]] += pixel, ++inner_count[label[x]];
+    }
+  }
+  region_flow_.assign(regions, cv::Point2f());
+  for (size_t r = 0; r < regions; ++r) {
+    if (inner_count[r] > 0) {
+      region_flow_[r] = cv::Point2f(inner_sum[r] * (1.0 / inner_count[r]));
+    } else if (all_count[r] > 0) {
+      region_flow_[r] = cv::Point2f(all_sum[r] * (1.0 / all_count[r]));
+    }
+  }
+  flow_state_ = 1;
+  return true;
+}
+
+void AttentionStage::GroupByMotion(const Segmentation& segmentation,
+                                   const std::vector<uint8_t>& taken, double max_area,
+                                   std::vector<int>* members, double* seed_area) {
+  if (!RegionFlow(segmentation)) return;
+  // The proto-object's motion: its regions' flows weighted by their areas.
+  cv::Point2d motion;
+  double area = 0.0;
+  for (const int region : *members) {
+    motion += cv::Point2d(region_flow_[region]) * segmentation.regions[region].area;
+    area += segmentation.regions[region].area;
+  }
+  if (area <= 0.0) return;
+  motion *= 1.0 / area;
+  const double speed = cv::norm(motion);
+  if (speed < options_.select.group_min_speed) return;
+  const double tolerance = options_.select.group_flow_tolerance * speed;
+  std::vector<uint8_t> in(segmentation.regions.size(), 0);
+  for (const int region : *members) in[region] = 1;
+  // Outwards from the proto-object, a region at a time (breadth first).
+  for (size_t next = 0; next < members->size(); ++next) {
+    const int region = (*members)[next];
+    for (auto [edge, end] = boost::out_edges(region, segmentation.graph); edge != end; ++edge) {
+      const int neighbour = static_cast<int>(boost::target(*edge, segmentation.graph));
+      if (in[neighbour] || taken[neighbour]) continue;
+      const int neighbour_area = segmentation.regions[neighbour].area;
+      if (neighbour_area > max_area || *seed_area + neighbour_area > max_area) continue;
+      if (cv::norm(cv::Point2d(region_flow_[neighbour]) - motion) > tolerance) continue;
+      in[neighbour] = 1;
+      members->push_back(neighbour);
+      *seed_area += neighbour_area;
+    }
+  }
+}
+
 void AttentionStage::Forget(const Active& active) {
   if (!files_.enabled() || active.last_box.empty()) return;
   ObjectFile file;
@@ -212,6 +303,12 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
   frame->track_ms = tracked.milliseconds;
   const cv::Rect image(0, 0, bgr.cols, bgr.rows);
   files_.Age();
+  const bool grouping = options_.select.group_min_speed > 0.f;
+  if (grouping) {
+    std::swap(grey_, previous_grey_);
+    cv::cvtColor(bgr, grey_, cv::COLOR_BGR2GRAY);
+    flow_state_ = 0;
+  }
 
   // The states of the targets tracked this frame, their saliency and the drop rule.
   Stopwatch stage;
@@ -231,7 +328,33 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
     held_.create(bgr.size(), CV_8UC1);
     held_.setTo(0);
   }
-  for (const TrackResult& result : tracked.results) {
+  // The detection each found target is on: the frame's targets and detections matched one to
+  // one at IoU >= the re-anchoring threshold (MatchBoxes: as many pairs as can be, then the
+  // best overlaps), so that a target that drifted cannot take its neighbour's detection from
+  // the neighbour's own target.
+  std::vector<int> detection_of(tracked.results.size(), -1);
+  if (!detections.empty()) {
+    std::vector<int> rows;
+    std::vector<cv::Rect> target_boxes, detection_boxes;
+    for (size_t r = 0; r < tracked.results.size(); ++r) {
+      const TrackResult& result = tracked.results[r];
+      auto active = std::find_if(active_.begin(), active_.end(),
+                                 [&](const Active& a) { return a.tracker_id == result.id; });
+      if (active == active_.end() || active->skin || result.state != TrackState::kFound) continue;
+      rows.push_back(static_cast<int>(r));
+      target_boxes.push_back(result.box & image);
+    }
+    for (const Detection& detection : detections) detection_boxes.push_back(detection.box);
+    const double min_iou =
+        options_.select.reanchor_min_iou > 0.f ? options_.select.reanchor_min_iou : 0.3;
+    for (const auto& [row, column] : MatchBoxes(target_boxes, detection_boxes, min_iou)) {
+      detection_of[rows[row]] = column;
+    }
+  }
+  // Where the target looks like itself, for the re-anchoring's gate and the object files.
+  const bool appearances = files_.enabled() || options_.select.reanchor_min_similarity > 0.f;
+  for (size_t r = 0; r < tracked.results.size(); ++r) {
+    const TrackResult& result = tracked.results[r];
     auto active = std::find_if(active_.begin(), active_.end(),
                                [&](const Active& a) { return a.tracker_id == result.id; });
     if (active == active_.end()) continue;
@@ -252,21 +375,22 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
       target.reason = WhyReleased(target, active->low_frames, shared, image);
       cv::Mat own = mask;
       if (target.reason == ReleaseReason::kNone && !detections.empty() && !active->skin) {
-        // The detection this target is on, if any (each detection serves one target, the
-        // oldest first).
-        const double min_iou =
-            options_.select.reanchor_min_iou > 0.f ? options_.select.reanchor_min_iou : 0.3;
-        int on = -1;
-        double on_iou = min_iou;
-        for (size_t d = 0; d < detections.size(); ++d) {
-          const double iou = BoxIou(target.box, detections[d].box);
-          if (!detection_used_[d] && iou >= on_iou) on = static_cast<int>(d), on_iou = iou;
+        int on = detection_of[r];
+        const bool reanchor = on >= 0 && options_.select.reanchor_min_iou > 0.f &&
+                              BoxIou(target.box, detections[on].box) <
+                                  options_.select.reanchor_max_iou;
+        const int seed_area = reanchor ? SeedFromBox(segmentation, detections[on].box) : 0;
+        if (reanchor && options_.select.reanchor_min_similarity > 0.f &&
+            !active->appearance.empty() && seed_area > 0 &&
+            active->appearance.Similarity(
+                ObjectAppearance::Of(bgr, seed_mask_, detections[on].box)) <
+                options_.select.reanchor_min_similarity) {
+          on = -1;  // the detection is someone else's: this target is not recognised
         }
         if (on >= 0) {
           detection_used_[on] = 1;
           active->unrecognised = 0;
-          if (options_.select.reanchor_min_iou > 0.f && on_iou < options_.select.reanchor_max_iou &&
-              SeedFromBox(segmentation, detections[on].box) >= options_.select.min_area) {
+          if (reanchor && seed_area >= options_.select.min_area) {
             const int restarted =
                 tracker_->StartFromMask(bgr, seed_mask_, TrackSimilarity::kColour, tracked.skin);
             if (restarted >= 0) {
@@ -306,7 +430,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
         ++active->since_kept;
         const bool recognised =
             detections.empty() || active->label.empty() || active->unrecognised == 0;
-        if (files_.enabled() && recognised) {
+        if (appearances && recognised) {
           if (!active->last_box.empty()) {
             const cv::Point2f moved = Centre(target.box) - Centre(active->last_box);
             const float steps = static_cast<float>(active->since_kept);
@@ -509,6 +633,7 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
             seed_area += region_area;
           }
           if (seed_area > max_area) members.resize(1), seed_area = segmentation.regions[best].area;
+          if (grouping) GroupByMotion(segmentation, taken, max_area, &members, &seed_area);
         }
         if (inhibited_area + seed_area > max_inhibited) continue;
         const cv::Mat region_mask = colour == best;

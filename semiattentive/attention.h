@@ -37,6 +37,10 @@
 #include "semiattentive/target_state.h"
 #include "tracker/target_tracker.h"
 
+namespace cv {
+class DISOpticalFlow;
+}  // namespace cv
+
 namespace attend {
 
 // A found target whose box is at least this share of the image's width and of its height
@@ -76,10 +80,22 @@ struct SelectOptions {
   // object). 0: never.
   float reanchor_min_iou = 0.f;
   float reanchor_max_iou = 0.75f;
+  // ... and only when what the detection's seed looks like (ObjectAppearance::Similarity)
+  // is at least this like what the target looked like on its object: a target that slid
+  // onto the person beside it is not restarted on them (it is left as it is, unrecognised).
+  // 0: any look.
+  float reanchor_min_similarity = 0.f;
   float seed_share = 0.5f;
   // object: the candidate's salient region is the connected area around its most salient
   // pixel where the inhibited saliency is at least this times the candidate's mean.
   float seed_level = 0.5f;
+  // object: motion grouping. Where the proto-object moves at least this fast (px a frame, its
+  // regions' mean dense optical flow from the previous frame, OpenCV's DIS), the colour
+  // regions next to it that move alike join it, region by region outwards: a region whose mean
+  // flow differs from the proto-object's by at most group_flow_tolerance times its speed.
+  // 0: off (the thesis's stage has no motion).
+  float group_min_speed = 0.f;
+  float group_flow_tolerance = 0.5f;
   static const std::vector<std::string>& Seeds();
   // The numeric fields' ranges (util/field_ranges.h), for AttentionOptions::Check and the
   // configuration's `select` section.
@@ -208,6 +224,15 @@ class AttentionStage {
   int SeedFromBox(const Segmentation& segmentation, const cv::Rect& box);
   // Leaves an object file for a target that ends.
   void Forget(const Active& active);
+  // select.group_min_speed: the mean optical flow of each colour region of `segmentation`
+  // from the previous frame's grey image to this one's, computed once a frame when a seed
+  // first asks; false when there is no previous frame of the same size.
+  bool RegionFlow(const Segmentation& segmentation);
+  // Joins to `members` (colour regions) the regions next to them that move alike
+  // (select.group_min_speed), not `taken`, each at most `max_area`, while `seed_area` stays
+  // within it.
+  void GroupByMotion(const Segmentation& segmentation, const std::vector<uint8_t>& taken,
+                     double max_area, std::vector<int>* members, double* seed_area);
   // The label of the detection that overlaps `box` most (label_overlap), "" when none does.
   std::string LabelOf(const cv::Rect& box, const std::vector<Detection>& detections) const;
 
@@ -227,6 +252,12 @@ class AttentionStage {
   int next_id_ = 1;  // the id the next new target gets (the tracker's own ids are internal)
   ObjectFiles files_;
   std::vector<cv::Rect> look_regions_;
+  // Motion grouping: the grey frames, the flow between them and its mean per colour region.
+  static constexpr int kFlowBorder = 3;  // px: a region's flow is taken this far inside it
+  cv::Mat grey_, previous_grey_, flow_, border_;
+  cv::Ptr<cv::DISOpticalFlow> flow_solver_;
+  int flow_state_ = 0;  // this frame: 0 not computed yet, 1 computed, -1 none possible
+  std::vector<cv::Point2f> region_flow_;
 };
 
 }  // namespace attend

@@ -143,10 +143,83 @@ TEST(ObjectChannel, OverlappingCropsDoNotDoubleADetection) {
   FakeDetector fake;
   ObjectChannel channel(Gated(), FakeDetector::Geometry(), "marker", fake.Search());
   cv::Mat map;
-  channel.Compute(frame, {cv::Rect(146, 96, 32, 32), cv::Rect(140, 92, 40, 36)}, &map);
+  // A small region and a large one around the same marker: their crops (48x48 for objects of
+  // 21.3 px and up, 225x180 for 80 px and up) cost 1296 and 1620 scaled pixels, their
+  // bounding box searched for 21.3 px objects about 22800, so they are not merged.
+  channel.Compute(frame, {cv::Rect(146, 96, 32, 32), cv::Rect(100, 60, 150, 120)}, &map);
   EXPECT_EQ(fake.searched.size(), 2u);  // both crops were searched
   ASSERT_EQ(channel.detections().size(), 1u);
   ExpectBoxNear(channel.detections()[0].box, marker, 2);
+}
+
+TEST(ObjectChannel, CropsThatOverlapMuchAreSearchedOnce) {
+  const cv::Rect marker(150, 100, 24, 24);
+  const cv::Mat frame = Frame({320, 240}, {marker});
+  FakeDetector fake;
+  ObjectChannel channel(Gated(), FakeDetector::Geometry(), "marker", fake.Search());
+  cv::Mat map;
+  // Crops (138, 88, 48, 48) for objects of 21.3 px and (130, 83, 60, 54) for 24 px: the
+  // second holds the first, and searching it for 21.3 px objects (1828 scaled pixels) costs
+  // less than both (1296 + 1440).
+  channel.Compute(frame, {cv::Rect(146, 96, 32, 32), cv::Rect(140, 92, 40, 36)}, &map);
+  ASSERT_EQ(fake.searched.size(), 1u);
+  EXPECT_EQ(fake.searched[0].width, 45);  // 60 x 0.75
+  EXPECT_NEAR(fake.searched[0].height, 40.5, 0.5);
+  ASSERT_EQ(channel.detections().size(), 1u);
+  ExpectBoxNear(channel.detections()[0].box, marker, 2);
+}
+
+TEST(MergeCrops, MergesWhereTheBoundingBoxCostsNoMoreThanBoth) {
+  using Crops = std::vector<std::pair<cv::Rect, double>>;
+  // Half overlapping, same smallest object: 60x40 = 2400 <= 1600 + 1600.
+  EXPECT_EQ(MergeCrops({{{0, 0, 40, 40}, 16.0}, {{20, 0, 40, 40}, 16.0}}, 16.0),
+            (Crops{{{0, 0, 60, 40}, 16.0}}));
+  // Corners touching: 79x79 = 6241 > 3200.
+  const Crops corners = {{{0, 0, 40, 40}, 16.0}, {{39, 39, 40, 40}, 16.0}};
+  EXPECT_EQ(MergeCrops(corners, 16.0), corners);
+  // Apart: never merged, however cheap.
+  const Crops apart = {{{0, 0, 4, 4}, 16.0}, {{10, 0, 4, 4}, 16.0}};
+  EXPECT_EQ(MergeCrops(apart, 16.0), apart);
+  // A chain: the first two merge into (0, 0, 60, 40), which then takes the third.
+  EXPECT_EQ(MergeCrops({{{0, 0, 40, 40}, 16.0}, {{20, 0, 40, 40}, 16.0}, {{50, 0, 30, 40}, 16.0}},
+                       16.0),
+            (Crops{{{0, 0, 80, 40}, 16.0}}));
+  // The smaller smallest object costs the merge: (0, 0, 60, 40) for 8-px objects is
+  // 2400 x 4 = 9600 > 1600 x 4 + 1600.
+  const Crops scales = {{{0, 0, 40, 40}, 8.0}, {{20, 0, 40, 40}, 16.0}};
+  EXPECT_EQ(MergeCrops(scales, 16.0), scales);
+}
+
+TEST(ObjectChannel, AttendedGateGlancesAtTheWholeFrameEveryScanEvery) {
+  const cv::Rect looked_at(20, 20, 20, 20), elsewhere(100, 50, 20, 20);
+  const cv::Mat frame = Frame({160, 120}, {looked_at, elsewhere});
+  FakeDetector fake;
+  ObjectChannelOptions options = Gated(0.25, 16);
+  options.scan_every = 3;
+  ObjectChannel channel(options, FakeDetector::Geometry(), "marker", fake.Search());
+  cv::Mat map;
+  for (int index = 0; index < 7; ++index) {
+    fake.searched.clear();
+    channel.Compute(frame, {cv::Rect(15, 15, 30, 30)}, &map);
+    SCOPED_TRACE(::testing::Message() << "frame " << index);
+    ASSERT_EQ(fake.searched.size(), 1u);
+    if (index % 3 == 0) {
+      // The whole frame at its own scale (16-px objects fill the 16-px window): both markers.
+      EXPECT_EQ(fake.searched[0], cv::Size(160, 120));
+      EXPECT_EQ(channel.detections().size(), 2u);
+    } else {
+      // Only the region's crop: the marker elsewhere is not found.
+      EXPECT_NE(fake.searched[0], cv::Size(160, 120));
+      ASSERT_EQ(channel.detections().size(), 1u);
+      ExpectBoxNear(channel.detections()[0].box, looked_at, 2);
+    }
+  }
+  // A new sequence glances at its first frame.
+  channel.Restart();
+  fake.searched.clear();
+  channel.Compute(frame, {cv::Rect(15, 15, 30, 30)}, &map);
+  ASSERT_EQ(fake.searched.size(), 1u);
+  EXPECT_EQ(fake.searched[0], cv::Size(160, 120));
 }
 
 TEST(ObjectChannel, NoRegionsNoSearch) {
@@ -359,6 +432,10 @@ TEST(DetectorFeatures, AreRegisteredWithTheirKeys) {
   EXPECT_NE(ConfigErrorOf([] {
               Create("people", "features: [{name: people, model: inria}]");
             }).find("features.0.model"),
+            std::string::npos);
+  EXPECT_NE(ConfigErrorOf([] {
+              Create("people", "features: [{name: people, scan_every: -1}]");
+            }).find("features.0.scan_every"),
             std::string::npos);
 }
 

@@ -14,6 +14,7 @@
 #include "synth/renderer.h"
 #include "synth/scene.h"
 #include "tests/support/temp_dir.h"
+#include "util/box.h"
 
 namespace attend {
 namespace {
@@ -337,7 +338,8 @@ TEST(Attention, ATargetWhoseBoxSpansTheImageIsReleased) {
 }
 
 TEST(Attention, AShortOcclusionKeepsTheIdentityAndIsNotReselected) {
-  AttentionStage stage(AttentionOptions{}, ShippedSkinModel());
+  const AttentionOptions options;
+  AttentionStage stage(options, ShippedSkinModel());
   const cv::Rect box(60, 40, 30, 24);
   const cv::Scalar red(40, 40, 210), blue(200, 90, 30);
   Step(&stage, Draw({{box, red}}, {box}, 0));
@@ -395,7 +397,8 @@ TEST(Attention, AnOccludedTargetInhibitsTheAreaItIsSearchedIn) {
 }
 
 TEST(Attention, ASkinObjectIsTrackedWithTheSkinSimilarity) {
-  AttentionStage stage(AttentionOptions{}, ShippedSkinModel());
+  const AttentionOptions options;
+  AttentionStage stage(options, ShippedSkinModel());
   const cv::Rect face(70, 30, 26, 34), box(20, 70, 30, 24);
   const cv::Scalar skin(140, 172, 224), green(60, 180, 50);
   AttentionFrame frame = Step(&stage, Draw({{face, skin}, {box, green}}, {face, box}, 0));
@@ -539,6 +542,57 @@ TEST(Attention, ATargetOnAnotherTargetsPixelsIsReleasedAsADuplicate) {
       EXPECT_EQ(active_at_end, 2);
     }
     EXPECT_EQ(stage.targets_attended(), 2) << "max_shared " << max_shared;
+  }
+}
+
+// Motion grouping (select.group_min_speed): a red-over-blue object moves right 3 px a frame
+// under a still green panel that touches its top; only the red half is salient. The
+// textures move with their objects and the background's is still, so that the optical flow
+// is exact by construction. With grouping the object seed takes the blue half, which moves
+// with the red one, and not the green panel, which touches it but stands still; without it
+// the target is the red half alone.
+TEST(Attention, MotionGroupingJoinsTheRegionsThatMoveWithTheSeedAndNoOthers) {
+  const cv::Size size(160, 120);
+  cv::Mat background(size, CV_8UC3);
+  cv::RNG(11).fill(background, cv::RNG::UNIFORM, 118, 139);
+  cv::Mat texture(size, CV_8UC3);
+  cv::RNG(12).fill(texture, cv::RNG::UNIFORM, 0, 12);
+  const cv::Rect panel(30, 10, 90, 20);
+  const auto frame_at = [&](int f, cv::Rect* red_out, cv::Rect* blue_out) {
+    const cv::Rect red(40 + 3 * f, 30, 30, 20), blue(40 + 3 * f, 50, 30, 20);
+    Drawn d;
+    d.bgr = background.clone();
+    const auto paint = [&](const cv::Rect& box, const cv::Scalar& colour, int texture_x) {
+      d.bgr(box).setTo(colour);
+      // The object's own texture, anchored to it.
+      d.bgr(box) += texture(cv::Rect(texture_x, box.y, box.width, box.height));
+    };
+    paint(panel, cv::Scalar(40, 170, 40), panel.x);
+    paint(red, cv::Scalar(30, 30, 200), 0);
+    paint(blue, cv::Scalar(190, 70, 30), 0);
+    BgrToTsl(d.bgr, &d.tsl);
+    d.saliency = cv::Mat::zeros(size, CV_32FC1);
+    if (f > 0) d.saliency(red).setTo(1.f);
+    Segmenter segmenter;
+    segmenter.Segment(d.bgr, &d.segmentation);
+    *red_out = red, *blue_out = blue;
+    return d;
+  };
+  for (const float speed : {1.f, 0.f}) {
+    SCOPED_TRACE(::testing::Message() << "group_min_speed " << speed);
+    AttentionOptions options;
+    options.select.seed = "object";
+    options.select.group_min_speed = speed;
+    options.select.max_new = 1;
+    AttentionStage stage(options, ShippedSkinModel());
+    cv::Rect red, blue;
+    EXPECT_TRUE(Step(&stage, frame_at(0, &red, &blue)).new_ids.empty());
+    const AttentionFrame frame = Step(&stage, frame_at(1, &red, &blue));
+    ASSERT_EQ(frame.new_ids.size(), 1u);
+    const cv::Rect box = frame.targets.back().box;
+    const cv::Rect expected = speed > 0.f ? (red | blue) : red;
+    EXPECT_GT(BoxIou(box, expected), 0.85) << box << " vs " << expected;
+    EXPECT_GE(box.y, panel.br().y - 2) << "the still panel joined: " << box;
   }
 }
 
