@@ -1,4 +1,4 @@
-// The controller of `attend eval-fixations` (issue 14, docs/FIXATIONS.md): saliency map folders
+// The controller of `attend eval-fixations` (docs/FIXATIONS.md): saliency map folders
 // and baselines scored against human eye fixations (NSS, AUC-Judd, shuffled AUC, CC, SIM, KL,
 // and the share of fixations in the first attended regions when a folder has scanpath.json),
 // with per-image CSVs and fixations.json on request. The command only parses its arguments.

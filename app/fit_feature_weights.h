@@ -1,4 +1,4 @@
-// The controller of `attend fit-weights` (issue 14, docs/FIXATIONS.md): feature weights fitted
+// The controller of `attend fit-weights` (docs/FIXATIONS.md): feature weights fitted
 // to eye fixations on the first images of a dataset, written as a whole configuration. The
 // command only parses its arguments.
 #pragma once

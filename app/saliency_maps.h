@@ -1,4 +1,4 @@
-// The controller of `attend saliency` (issue 14, docs/FIXATIONS.md): the pre-attentive stage on
+// The controller of `attend saliency` (docs/FIXATIONS.md): the pre-attentive stage on
 // still images, each on its own (pipeline/still_saliency.h), written as OUT/<stem>.pfm and
 // OUT/<stem>.png at the image's size, OUT/saliency.json and, on request, every feature's map
 // (OUT/features/<name>/<stem>.*) and the first attended regions (OUT/scanpath.json). The command

@@ -4,10 +4,13 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <cstdio>
+#include <algorithm>
 #include <ctime>
 #include <fstream>
 #include <string>
+#include <vector>
+
+#include "util/strings.h"
 
 namespace attend::bench {
 
@@ -45,11 +48,14 @@ inline int ParseBenchOptions(const std::string& name, const std::string& descrip
   return -1;
 }
 
-// `value` with `digits` decimals.
-inline std::string Fixed(double value, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
-  return buffer;
+using attend::Fixed;  // util/strings.h
+
+// The median of `values` (the mean of the middle two for an even count); 0 when empty.
+inline double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t half = values.size() / 2;
+  return values.size() % 2 == 1 ? values[half] : 0.5 * (values[half - 1] + values[half]);
 }
 
 // The processor's model name from /proc/cpuinfo, or "unknown".

@@ -54,6 +54,8 @@
 
 namespace {
 
+using attend::bench::Median;
+
 namespace fs = std::filesystem;
 using attend::Detection;
 
@@ -70,12 +72,6 @@ struct Run {
     return feature == "faces" ? "faces" : feature + " " + model + ", " + gate;
   }
 };
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
 
 // The plugin `feature` with its defaults, `fixed` and then `sets` ("key=value").
 std::unique_ptr<attend::FeatureMap> MakePlugin(const std::string& feature,

@@ -75,6 +75,7 @@ constexpr int kLargeMaxDisparity = 64;
 using Options = attend::bench::BenchOptions;
 using attend::bench::CpuModel;
 using attend::bench::Fixed;
+using attend::bench::Median;
 using attend::bench::UtcNow;
 
 struct Pair {
@@ -232,13 +233,6 @@ int CountKnown(const cv::Mat& ground_truth, double* largest = nullptr) {
   }
   if (largest != nullptr) *largest = max;
   return known;
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const size_t half = values.size() / 2;
-  return values.size() % 2 == 1 ? values[half] : 0.5 * (values[half - 1] + values[half]);
 }
 
 // One method on one pair: Run() is the timed call; Disparity() converts its last output to

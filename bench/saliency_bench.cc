@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_common.h"
 #include "features/builtin.h"
 #include "features/feature_set.h"
 #include "features/lazy_frame_context.h"
@@ -36,6 +37,8 @@
 #include "util/timer.h"
 
 namespace {
+
+using attend::bench::Median;
 
 struct Options {
   std::string scene;
@@ -68,11 +71,6 @@ double RocAuc(const cv::Mat& map, const cv::Mat& positive) {
     below += neg[i];
   }
   return area / (total_pos * total_neg);
-}
-
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values.empty() ? 0.0 : values[values.size() / 2];
 }
 
 struct Method {

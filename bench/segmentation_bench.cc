@@ -51,6 +51,7 @@ constexpr int kFelzenszwalbMinSize = 20;
 using Options = attend::bench::BenchOptions;
 using attend::bench::CpuModel;
 using attend::bench::Fixed;
+using attend::bench::Median;
 using attend::bench::UtcNow;
 
 struct SourceImage {
@@ -206,13 +207,6 @@ cv::Mat Resized(const cv::Mat& bgr, cv::Size size) {
   cv::Mat out;
   cv::resize(bgr, out, size, 0, 0, shrinking ? cv::INTER_AREA : cv::INTER_LINEAR);
   return out;
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const size_t half = values.size() / 2;
-  return values.size() % 2 == 1 ? values[half] : 0.5 * (values[half - 1] + values[half]);
 }
 
 int CountDistinctLabels(const cv::Mat& labels) {

@@ -91,6 +91,7 @@ constexpr int kMinValue = 10;
 using Options = attend::bench::BenchOptions;
 using attend::bench::CpuModel;
 using attend::bench::Fixed;
+using attend::bench::Median;
 using attend::bench::UtcNow;
 
 // ---------------------------------------------------------------------------------------------
@@ -357,13 +358,6 @@ int Oversize(const std::vector<cv::Rect2d>& predicted, const std::vector<cv::Rec
     if (predicted[f].area() > 4.0 * truth[f].area()) ++frames;
   }
   return frames;
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const size_t half = values.size() / 2;
-  return values.size() % 2 == 1 ? values[half] : 0.5 * (values[half - 1] + values[half]);
 }
 
 // ---------------------------------------------------------------------------------------------

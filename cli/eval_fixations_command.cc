@@ -1,5 +1,5 @@
-// attend eval-fixations: saliency maps scored against human eye fixations (issue 14,
-// docs/FIXATIONS.md).
+// attend eval-fixations: saliency maps scored against human eye fixations
+// (docs/FIXATIONS.md).
 #include <iomanip>
 #include <iostream>
 #include <memory>

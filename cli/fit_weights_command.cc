@@ -1,5 +1,5 @@
-// attend fit-weights: feature weights fitted to eye fixations on a training split (issue 14,
-// docs/FIXATIONS.md).
+// attend fit-weights: feature weights fitted to eye fixations on a training split
+// (docs/FIXATIONS.md).
 #include <iomanip>
 #include <iostream>
 #include <memory>

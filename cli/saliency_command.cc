@@ -1,4 +1,4 @@
-// attend saliency: the pre-attentive stage on still images (issue 14, docs/FIXATIONS.md).
+// attend saliency: the pre-attentive stage on still images (docs/FIXATIONS.md).
 #include <filesystem>
 #include <iostream>
 #include <memory>

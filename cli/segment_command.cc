@@ -12,6 +12,7 @@
 #include "cli/commands.h"
 #include "cli/home.h"
 #include "pipeline/options_io.h"
+#include "util/strings.h"
 
 namespace attend {
 
@@ -25,12 +26,6 @@ struct SegmentArguments {
   bool metrics = false;
   bool quiet = false;
 };
-
-std::string Fixed(double value, int digits) {
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(digits) << value;
-  return text.str();
-}
 
 int Segment(const SegmentArguments& args) {
   const std::string config_path = args.config.empty() ? DefaultConfigPath() : args.config;

@@ -432,14 +432,6 @@ double ParamBlock::RequireDouble(const std::string& key, Range range) const {
   return GetDouble(key, 0.0, range);
 }
 
-int ParamBlock::RequireInt(const std::string& key, Range range) const {
-  if (!Has(key)) {
-    Lookup(*state_, key);
-    Fail(key, "required key is missing");
-  }
-  return GetInt(key, 0, range);
-}
-
 std::string ParamBlock::RequireString(const std::string& key) const {
   if (!Has(key)) {
     Lookup(*state_, key);
@@ -495,13 +487,6 @@ void ParamBlock::CheckNoUnknownKeys() const {
 }
 
 std::vector<std::string> ParamBlock::KnownKeys() const { return state_->known(); }
-
-std::string ParamBlock::ToYaml(bool flow) const {
-  YAML::Emitter out;
-  if (flow) out << YAML::Flow;
-  out << state_->node;
-  return out.c_str();
-}
 
 YAML::Node NodeOf(const ParamBlock& block) { return block.state()->node; }
 

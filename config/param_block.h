@@ -31,8 +31,6 @@ class ParamBlock {
 
   // Dotted key path of this block from the root ("" for the root, "features.2").
   const std::string& path() const;
-  // Dotted path of a key in this block.
-  std::string KeyPath(const std::string& key) const;
   // Where a key (or, with "", this block) was written: "FILE:LINE" or "--set KEY=VALUE".
   // For a block, the overrides of keys inside it are named first.
   std::string Where(const std::string& key = "") const;
@@ -60,7 +58,6 @@ class ParamBlock {
 
   // Like the getters above, but the key must be present.
   double RequireDouble(const std::string& key, Range range = {}) const;
-  int RequireInt(const std::string& key, Range range = {}) const;
   std::string RequireString(const std::string& key) const;
 
   // A nested map (an empty block when the key is absent or null).
@@ -82,14 +79,13 @@ class ParamBlock {
   // Keys that getters asked for, in the order asked (present or not).
   std::vector<std::string> KnownKeys() const;
 
-  // The block as YAML text (flow style when `flow`).
-  std::string ToYaml(bool flow = false) const;
-
   struct State;
   explicit ParamBlock(std::shared_ptr<State> state);
   const std::shared_ptr<State>& state() const { return state_; }
 
  private:
+  // Dotted path of a key in this block.
+  std::string KeyPath(const std::string& key) const;
   // "FILE:LINE" of a key (or, with "", this block) in the file, without the overrides.
   std::string WrittenAt(const std::string& key) const;
 

@@ -12,6 +12,7 @@
 
 #include "io/pfm.h"
 #include "util/json_text.h"
+#include "util/strings.h"
 
 namespace attend {
 
@@ -62,14 +63,12 @@ std::string ScriptSafe(const std::string& text) {
   return out;
 }
 
-std::string Fixed(double value, int digits = 3) {
+// A table cell: `value` with `digits` decimals, "&ndash;" when it is not finite, and no
+// "-0.000".
+std::string Cell(double value, int digits = 3) {
   if (!std::isfinite(value)) return "&ndash;";
-  if (std::abs(value) < 0.5 * std::pow(10.0, -digits)) value = 0.0;  // no "-0.000"
-  std::ostringstream out;
-  out.setf(std::ios::fixed);
-  out.precision(digits);
-  out << value;
-  return out.str();
+  if (std::abs(value) < 0.5 * std::pow(10.0, -digits)) value = 0.0;
+  return Fixed(value, digits);
 }
 
 std::string RunLabel(const RunData& run, std::size_t index) {
@@ -150,7 +149,7 @@ std::string RunsTable(const ReportInput& input) {
     for (const auto& stage : run.mean_timings_ms) total += stage.second;
     html += "<tr><td>" + Escape(RunLabel(run, i)) + "</td><td>" + Escape(run.dir) + "</td><td>" +
             Escape(run.sequence) + "</td><td>" + std::to_string(run.frames.size()) + "</td><td>" +
-            std::to_string(SummariseTargets(run.frames).size()) + "</td><td>" + Fixed(total, 2) +
+            std::to_string(SummariseTargets(run.frames).size()) + "</td><td>" + Cell(total, 2) +
             "</td></tr>";
   }
   return html + "</table></section>\n";
@@ -178,9 +177,9 @@ std::string AttentionTable(const ReportInput& input) {
     }
     const AttentionScores& s = *run.attention;
     html += "<td>" + std::to_string(s.objects) + "</td><td>" + std::to_string(s.attended) +
-            "</td><td>" + Fixed(s.coverage) + "</td><td>" + Fixed(s.mean_latency, 2) + "</td><td>" +
+            "</td><td>" + Cell(s.coverage) + "</td><td>" + Cell(s.mean_latency, 2) + "</td><td>" +
             std::to_string(s.revisits) + "</td><td>" + std::to_string(s.identity_switches) +
-            "</td><td>" + Fixed(s.mean_iou) + "</td></tr>";
+            "</td><td>" + Cell(s.mean_iou) + "</td></tr>";
   }
   return html +
          "</table><p class=\"small\">As <code>attend eval</code> scores them (SPEC 4, "
@@ -234,7 +233,7 @@ std::string MetricsTable(const ReportInput& input) {
       }
     }
     const auto metric = [&c](double SaliencyMetrics::*field) {
-      return c.mean_saliency ? Fixed((*c.mean_saliency).*field) : std::string("&ndash;");
+      return c.mean_saliency ? Cell((*c.mean_saliency).*field) : std::string("&ndash;");
     };
     html += "<tr><td>" + Escape(RunLabel(input.runs[i + 1], i + 1)) + "</td><td>" +
             std::to_string(c.frames.size()) + "</td><td>" + metric(&SaliencyMetrics::cc) +
@@ -392,7 +391,7 @@ std::string Thumbnails(const ReportInput& input) {
     for (const int frame : MostDifferentFrames(c, input.thumbnail_frames)) {
       std::string cc = "&ndash;";
       for (const FrameComparison& f : c.frames) {
-        if (f.frame == frame && f.saliency) cc = Fixed(f.saliency->cc);
+        if (f.frame == frame && f.saliency) cc = Cell(f.saliency->cc);
       }
       html += "<tr><th>frame " + std::to_string(frame) + "<br>CC " + cc + "</th>" +
               ImageCell(Thumbnail(OverlayImage(a.dir, frame), width), "A overlay") +

@@ -1,4 +1,4 @@
-// Saliency baselines scored beside attend's maps (issue 14, docs/FIXATIONS.md): a centre bias,
+// Saliency baselines scored beside attend's maps (docs/FIXATIONS.md): a centre bias,
 // and OpenCV's spectral residual (Hou & Zhang, CVPR 2007) and fine-grained (Montabone & Soto,
 // 2010) static saliency from the contrib module `saliency`.
 #pragma once

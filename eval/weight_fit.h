@@ -1,4 +1,4 @@
-// Feature weights fitted to eye fixations (`attend fit-weights`, issue 14, docs/FIXATIONS.md):
+// Feature weights fitted to eye fixations (`attend fit-weights`, docs/FIXATIONS.md):
 // the weights on a grid over the simplex (each a multiple of `step`, summing to 1) whose
 // combined map has the highest mean NSS over the training images. NSS does not change when
 // every weight is scaled, so the simplex holds every distinct combination.

@@ -25,15 +25,15 @@ FeatureRegistry BuiltinFeatures() {
                &CreateDisparityFeature);
   registry.Add("motion",
                "luminance change against the previous frames, less global brightness change "
-               "and sensor noise (not in the thesis; issue 13)",
+               "and sensor noise (not in the thesis)",
                &CreateMotionFeature);
   registry.Add("centre_bias",
                "a Gaussian centred on the image: where people look in photographs (not in the "
-               "thesis; issue 14)",
+               "thesis)",
                &CreateCentreBiasFeature);
   registry.Add("centre_surround",
                "Lab colour and lightness contrast at several scales, as centre-surround "
-               "differences of Gaussians (Itti et al. 1998; not in the thesis; issue 14)",
+               "differences of Gaussians (Itti et al. 1998; not in the thesis)",
                &CreateCentreSurroundFeature);
   registry.Add("people",
                "boxes of the people OpenCV's HOG pedestrian detector finds, where attention looks "

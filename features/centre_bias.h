@@ -1,6 +1,6 @@
 // The `centre_bias` plugin: people looking at a photograph look near its centre (Tatler 2007;
 // the centre prior of the MIT saliency benchmark). Not in the thesis, whose scenes are a robot's
-// view rather than framed photographs; issue 14. The map is a Gaussian centred on the image,
+// view rather than framed photographs. The map is a Gaussian centred on the image,
 //
 //   C(x, y) = exp(-((x - cx)^2 / (2 (s w)^2) + (y - cy)^2 / (2 (s h)^2)))
 //

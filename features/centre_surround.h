@@ -1,6 +1,6 @@
 // The `centre_surround` plugin: colour and intensity contrast at several scales, as
 // centre-surround differences (Itti, Koch and Niebur, PAMI 1998; not in the thesis, whose
-// contrast features are per BIP region at one segmentation; issue 14). The image in CIE Lab
+// contrast features are per BIP region at one segmentation). The image in CIE Lab
 // (L, a, b each in [0, 1]) is blurred by Gaussians of sigma c (the centre) and r x c (the
 // surround) for each c in `scales` (px at the working size); the scale's map is the Euclidean
 // distance between centre and surround over the three channels, min-max normalised; the

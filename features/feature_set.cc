@@ -24,7 +24,7 @@ FeatureSet::FeatureSet(const std::vector<FeatureSpec>& specs, const FeatureRegis
                                    spec.name + ".enabled=false)");
     }
     members_.push_back({*registry.Find(spec.name), std::move(feature)});
-    results_.push_back({spec.name, spec.weight, spec.normalisation, cv::Mat(), 0.0});
+    results_.push_back({spec.name, spec.weight, spec.normalisation, cv::Mat(), 0.0, {}});
   }
 }
 

@@ -51,7 +51,10 @@ const cv::Mat& LazyFrameContext::SkinDistance(const SkinModel& model) const {
     return s.mean == model.mean && s.covariance == model.covariance;
   });
   if (slot == skin_slots_.end()) {
-    slot = skin_slots_.insert(skin_slots_.end(), SkinSlot{model.mean, model.covariance});
+    SkinSlot added;
+    added.mean = model.mean;
+    added.covariance = model.covariance;
+    slot = skin_slots_.insert(skin_slots_.end(), std::move(added));
   }
   if (!slot->ready) {
     SkinDistanceMap(tsl, model, &slot->distance);

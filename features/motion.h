@@ -1,5 +1,5 @@
 // The `motion` plugin: what moves draws attention (Itti's flicker channel; not in the thesis,
-// whose pre-attentive stage has no motion channel; issue 13). The map is the change of the
+// whose pre-attentive stage has no motion channel). The map is the change of the
 // luminance against a background made of the previous frames, with the frame-wide part of the
 // change (the light, the camera's exposure) and the sensor noise taken out:
 //

@@ -42,11 +42,10 @@ class FramePipeline {
   // Each feature's map normalised to [0, 1], in the order of features().
   const std::vector<cv::Mat>& normalised() const { return normalised_; }
   const cv::Mat& saliency() const { return saliency_; }
-  // Whether the last frame was grey (colour/grey.h), and the weights its saliency used: on a
-  // grey frame a feature whose map is constant (colour contrast and skin, which are 0 there)
-  // gets weight 0, so it does not dilute the features that see something.
+  // Whether the last frame was grey (colour/grey.h): on a grey frame a feature whose map is
+  // constant (colour contrast and skin, which are 0 there) gets weight 0 in its saliency, so
+  // it does not dilute the features that see something.
   bool grey() const { return grey_; }
-  const std::vector<double>& frame_weights() const { return frame_weights_; }
   const cv::Mat& inhibition() const { return attention_.inhibition(); }
   const cv::Mat& inhibited() const { return attention_.inhibited(); }
   int targets_attended() const { return attention_.targets_attended(); }

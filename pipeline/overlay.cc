@@ -33,8 +33,10 @@ void DrawCaption(cv::Mat* image, const std::string& text, double font_scale) {
 void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::string& suffix,
                      double font_scale) {
   // Ids count up in the order objects were attended, so the label is the focus order.
-  DrawLabel(image, "#" + std::to_string(id) + suffix, cv::Point(box.x, std::max(10, box.y - 3)),
-            TargetColour(id), font_scale);
+  std::string label = "#";
+  label += std::to_string(id);
+  label += suffix;
+  DrawLabel(image, label, cv::Point(box.x, std::max(10, box.y - 3)), TargetColour(id), font_scale);
 }
 
 cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record) {

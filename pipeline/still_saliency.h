@@ -1,4 +1,4 @@
-// The pre-attentive stage on still images (`attend saliency`, issue 14): each image on its
+// The pre-attentive stage on still images (`attend saliency`): each image on its
 // own, as `attend run` computes the first frame of a sequence (the BIP segmentation, the
 // feature plugins, their normalised weighted sum), with nothing carried from one image to the
 // next. Features that need stereo are left out. Maps come back at the image's own size.

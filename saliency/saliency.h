@@ -23,13 +23,13 @@ struct SaliencyOptions {
   int local_maxima_window = 15;          // odd window side in pixels, for local_maxima
   // The combined map is blurred by a Gaussian of this share of the image's larger side (0:
   // none), then scaled back to its maximum. Region-based features are piecewise constant with
-  // hard edges, and people look near a salient thing, not exactly at it (issue 14); not in the
+  // hard edges, and people look near a salient thing, not exactly at it; not in the
   // thesis.
   double blur = 0.0;
   // How the normalised maps combine: "sum" (SPEC 2.3, the thesis: the weighted mean) or
   // "product" (the weighted geometric mean, prod_i (n_i + 0.01)^(w_i / sum w), less its value
   // where every map is 0: a map that is low somewhere, such as a centre bias, vetoes there
-  // rather than only adding elsewhere; not in the thesis, issue 14).
+  // rather than only adding elsewhere; not in the thesis).
   std::string combination = "sum";
 
   static const std::vector<std::string>& Normalisations();

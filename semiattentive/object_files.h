@@ -1,4 +1,4 @@
-// Object files: the memory of attended objects that are no longer tracked (issue 24; not in
+// Object files: the memory of attended objects that are no longer tracked (not in
 // the thesis, whose stage forgets a target when its tracker does).
 //
 // A target that ends (its tracker lost it, or it was released for any reason but being a

@@ -56,8 +56,4 @@ bool TargetStateFromName(const std::string& name, TargetState* state) {
 
 const char* ReleaseReasonName(ReleaseReason reason) { return NameOf(kReasonNames, reason); }
 
-bool ReleaseReasonFromName(const std::string& name, ReleaseReason* reason) {
-  return ValueOf(kReasonNames, name, reason);
-}
-
 }  // namespace attend

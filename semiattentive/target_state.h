@@ -31,8 +31,6 @@ bool TargetStateFromName(const std::string& name, TargetState* state);
 // "" (kNone), "too_large", "spans_image", "too_small", "low_saliency", "duplicate",
 // "unrecognised".
 const char* ReleaseReasonName(ReleaseReason reason);
-// The reason called `name` ("" is kNone); false when there is none.
-bool ReleaseReasonFromName(const std::string& name, ReleaseReason* reason);
 
 // Whether a target in this state was seen in its frame (new, tracked or resumed): it has a box
 // there and counts as attended, for overlays, evaluation and comparison.

@@ -92,7 +92,6 @@ class BipTargetTracker final : public TargetTracker {
   void Remove(int id) override { tracker_.Remove(id); }
   std::vector<int> ids() const override { return tracker_.ids(); }
   TrackerKind kind() const override { return TrackerKind::kBip; }
-  bool UsesSkin() const override { return true; }
   double milliseconds() const override { return tracker_.milliseconds(); }
   double segmentation_milliseconds() const override { return tracker_.segmentation_milliseconds(); }
 

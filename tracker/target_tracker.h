@@ -1,4 +1,4 @@
-// One interface over the trackers that can follow attended targets (issue 13): the BIP template
+// One interface over the trackers that can follow attended targets: the BIP template
 // tracker of thesis chapter 4 (tracker/tracker.h) and OpenCV's KCF and CSRT, chosen by
 // `tracker.kind` (configs/README.md; docs/TRACKING.md, "Tracker kinds").
 //
@@ -117,8 +117,6 @@ class TargetTracker {
 
   virtual TrackerKind kind() const = 0;
   const char* name() const { return TrackerKindName(kind()); }
-  // Whether Track and the starts use the skin map (the caller may skip computing it).
-  virtual bool UsesSkin() const { return false; }
   // Milliseconds of the last Track() call, and the part of it spent segmenting (bip: the
   // over-segmentation of the regions of interest, MultiTracker::segmentation_milliseconds; 0
   // for the kinds that do not segment).

@@ -1,5 +1,7 @@
 #include "util/strings.h"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -119,6 +121,12 @@ size_t NonPrintableAt(std::string_view text) {
     }
   }
   return std::string_view::npos;
+}
+
+std::string Fixed(double value, int digits) {
+  char buffer[512];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
+  return buffer;
 }
 
 }  // namespace attend

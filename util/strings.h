@@ -36,6 +36,9 @@ std::string ShortestNumber(double value);
 // `text` with ASCII letters in lower case (file extensions, case-blind names).
 std::string Lowercase(std::string text);
 
+// `value` with `digits` decimals ("%.*f").
+std::string Fixed(double value, int digits);
+
 // Joins with a separator.
 std::string Join(const std::vector<std::string>& parts, std::string_view separator);
 

@@ -35,11 +35,6 @@ class StageTimes {
     stages_.emplace_back(stage, ms);
   }
   const std::vector<std::pair<std::string, double>>& stages() const { return stages_; }
-  double TotalMs() const {
-    double total = 0.0;
-    for (const auto& stage : stages_) total += stage.second;
-    return total;
-  }
 
  private:
   std::vector<std::pair<std::string, double>> stages_;

@@ -210,7 +210,6 @@ TEST(BipTargetTracker, GivesWhatMultiTrackerGives) {
       EXPECT_EQ(cv::countNonZero(wrapped->Mask(a[i].id) != direct.Mask(b[i].id)), 0);
     }
   }
-  EXPECT_TRUE(wrapped->UsesSkin());
 }
 
 }  // namespace

@@ -366,7 +366,9 @@ TEST(Tracker, TheCallersCylinderImageGivesTheSameResults) {
         EXPECT_EQ(a[i].overlap, b[i].overlap) << "frame " << frame << " target " << a[i].id;
         const cv::Mat mask_a = own.Mask(a[i].id), mask_b = given.Mask(b[i].id);
         ASSERT_EQ(mask_a.empty(), mask_b.empty()) << "frame " << frame;
-        if (!mask_a.empty()) EXPECT_EQ(cv::countNonZero(mask_a != mask_b), 0);
+        if (!mask_a.empty()) {
+          EXPECT_EQ(cv::countNonZero(mask_a != mask_b), 0);
+        }
       }
     }
   }
