@@ -37,10 +37,6 @@
 #include "semiattentive/target_state.h"
 #include "tracker/target_tracker.h"
 
-namespace cv {
-class DISOpticalFlow;
-}  // namespace cv
-
 namespace attend {
 
 // A found target whose box is at least this share of the image's width and of its height
@@ -186,7 +182,7 @@ class AttentionStage {
   ~AttentionStage();
 
   // The model whose SkinDistanceMap the steps below take (FrameContext::SkinDistance).
-  const SkinModel& skin_model() const { return skin_model_; }
+  const SkinModel& skin_model() const;
   // Tracks the existing targets in the frame (8-bit BGR, with `skin_distance`, its
   // SkinDistanceMap for skin_model(), and optionally `cylinder`, its BgrToCylinder, which the
   // tracker then need not compute again) into `tracked`.
@@ -202,62 +198,20 @@ class AttentionStage {
   // Where attention looked in the last frame Select saw: the boxes of the targets it follows,
   // of its object files' predictions and of the candidates it weighed (at most
   // kLookCandidates, best first); FrameContext::AttentionRegions of the next frame.
-  const std::vector<cv::Rect>& look_regions() const { return look_regions_; }
+  const std::vector<cv::Rect>& look_regions() const;
   static constexpr int kLookCandidates = 8;
-  const ObjectFiles& object_files() const { return files_; }
+  const ObjectFiles& object_files() const;
 
-  const cv::Mat& inhibition() const { return inhibition_; }  // CV_32FC1, 0 or 1
-  const cv::Mat& inhibited() const { return inhibited_; }    // CV_32FC1
-  int targets_attended() const { return attended_; }
+  const cv::Mat& inhibition() const;  // CV_32FC1, 0 or 1
+  const cv::Mat& inhibited() const;   // CV_32FC1
+  int targets_attended() const;
   // The tracker kind that follows the targets ("bip", "kcf", "csrt").
-  const char* tracker_name() const { return tracker_->name(); }
+  const char* tracker_name() const;
 
  private:
-  struct Active;
-  // Why a found target is released this frame (kNone when it is not): SPEC 2.4's drop rule
-  // and the size rules above.
-  ReleaseReason WhyReleased(const AttendedTarget& target, int low_frames, double shared,
-                            const cv::Rect& image) const;
-  // The seed of a detected object: the colour regions of `segmentation` of which at least
-  // select.seed_share lies inside `box`, clipped to the box, into seed_mask_ (frame size).
-  // Returns the seed's area.
-  int SeedFromBox(const Segmentation& segmentation, const cv::Rect& box);
-  // Leaves an object file for a target that ends.
-  void Forget(const Active& active);
-  // select.group_min_speed: the mean optical flow of each colour region of `segmentation`
-  // from the previous frame's grey image to this one's, computed once a frame when a seed
-  // first asks; false when there is no previous frame of the same size.
-  bool RegionFlow(const Segmentation& segmentation);
-  // Joins to `members` (colour regions) the regions next to them that move alike
-  // (select.group_min_speed), not `taken`, each at most `max_area`, while `seed_area` stays
-  // within it.
-  void GroupByMotion(const Segmentation& segmentation, const std::vector<uint8_t>& taken,
-                     double max_area, std::vector<int>* members, double* seed_area);
-  // The label of the detection that overlaps `box` most (label_overlap), "" when none does.
-  std::string LabelOf(const cv::Rect& box, const std::vector<Detection>& detections) const;
-
-  AttentionOptions options_;
-  SkinModel skin_model_;
-  std::unique_ptr<TargetTracker> tracker_;
-  std::vector<Active> active_;
-  cv::Mat inhibition_, inhibited_;
-  cv::Mat covered_;              // pixels of the active targets (masks, or boxes while occluded)
-  cv::Mat held_;                 // the masks of the targets found and kept so far in this frame
-  cv::Mat seed_mask_;            // an object seed's pixels
-  cv::Mat fill_mask_;            // the flood fill of an object seed's salient region
-  std::vector<uint8_t> member_;  // per colour region: in the object seed
-  std::vector<uint8_t> detection_used_;  // per detection of the frame: a target is on it
-  BipBuilder saliency_builder_;
-  int attended_ = 0;
-  int next_id_ = 1;  // the id the next new target gets (the tracker's own ids are internal)
-  ObjectFiles files_;
-  std::vector<cv::Rect> look_regions_;
-  // Motion grouping: the grey frames, the flow between them and its mean per colour region.
-  static constexpr int kFlowBorder = 3;  // px: a region's flow is taken this far inside it
-  cv::Mat grey_, previous_grey_, flow_, border_;
-  cv::Ptr<cv::DISOpticalFlow> flow_solver_;
-  int flow_state_ = 0;  // this frame: 0 not computed yet, 1 computed, -1 none possible
-  std::vector<cv::Point2f> region_flow_;
+  // The targets, the object files, the tracker and the per-frame scratch.
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace attend
