@@ -13,13 +13,11 @@ namespace attend {
 
 namespace {
 
-// Visits every key of the configuration in file order. The visitor decides what a key means:
-// read it from YAML, write it, or list it. Keeping one list is what keeps reading, writing
-// and documentation in step. The ranges of numeric keys are not written here: each section
-// names the options structs whose fields it binds (Ranges), and a key takes the range of its
-// field (util/field_ranges.h), the one that struct's Check() applies.
+// The sections of the configuration, a function each, in file order (VisitOptions below).
+
+// sequence: the input and the frames taken.
 template <typename Visitor>
-void VisitOptions(AttendOptions* o, Visitor& v) {
+void VisitSequence(AttendOptions* o, Visitor& v) {
   v.BeginSection("sequence");
   v.Ranges(&o->sequence, SequenceOptions::Ranges());
   v.Ranges(&o->sequence, SequenceOptions::SizeRanges());
@@ -36,24 +34,33 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("height", &o->sequence.height);
   v.Choice("resize", &o->sequence.resize, SequenceOptions::ResizeModes());
   v.EndSection([o] { return o->sequence.Check(); });
+}
 
+// segmentation: the BIP colour segmentation.
+template <typename Visitor>
+void VisitSegmentation(AttendOptions* o, Visitor& v) {
   v.BeginSection("segmentation");
   v.Ranges(&o->segmentation, SegmentationOptions::Ranges());
   v.Field("t_max", &o->segmentation.t_max);
   v.Field("min_region_area", &o->segmentation.min_region_area);
   v.Field("link_across_kinds", &o->segmentation.bip.link_across_kinds);
   v.EndSection([o] { return o->segmentation.Check(); });
+}
 
+// output: the run folder's dumps and video.
+template <typename Visitor>
+void VisitOutput(AttendOptions* o, Visitor& v) {
   v.BeginSection("output");
   v.Field("dir", &o->output.dir);
   v.ChoiceList("dump", &o->output.dump, OutputOptions::DumpKinds());
   v.ChoiceList("map_formats", &o->output.map_formats, OutputOptions::MapFormats());
   v.Field("video", &o->output.video);
   v.EndSection([o] { return o->output.Check(); });
+}
 
-  v.Features("features", &o->features);
-  v.Field("plugins", &o->plugins);
-
+// saliency: normalisation and combination of the feature maps.
+template <typename Visitor>
+void VisitSaliency(AttendOptions* o, Visitor& v) {
   v.BeginSection("saliency");
   v.Ranges(&o->saliency, SaliencyOptions::Ranges());
   v.Choice("normalisation", &o->saliency.normalisation, SaliencyOptions::Normalisations());
@@ -61,7 +68,11 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("blur", &o->saliency.blur);
   v.Choice("combination", &o->saliency.combination, {"sum", "product"});
   v.EndSection([o] { return o->saliency.Check(); });
+}
 
+// select: the selection of new targets and their seeds.
+template <typename Visitor>
+void VisitSelect(AttendOptions* o, Visitor& v) {
   v.BeginSection("select");
   v.Ranges(&o->attention.select, SelectOptions::Ranges());
   v.Ranges(&o->attention, AttentionOptions::Ranges());
@@ -95,7 +106,11 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("skin_max_area_fraction", &o->attention.skin_region.max_area_fraction);
   v.Field("skin_min_area", &o->attention.skin_region.min_area);
   v.EndSection([o] { return o->attention.Check(); });
+}
 
+// drop: the release rules.
+template <typename Visitor>
+void VisitDrop(AttendOptions* o, Visitor& v) {
   v.BeginSection("drop");
   v.Ranges(&o->attention.drop, DropOptions::Ranges());
   v.Field("min_saliency", &o->attention.drop.min_saliency);
@@ -103,14 +118,22 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("max_shared", &o->attention.drop.max_shared);
   v.Field("unrecognised_frames", &o->attention.drop.unrecognised_frames);
   v.EndSection([o] { return o->attention.Check(); });
+}
 
+// inhibition: inhibition of return.
+template <typename Visitor>
+void VisitInhibition(AttendOptions* o, Visitor& v) {
   v.BeginSection("inhibition");
   v.Ranges(&o->attention.inhibition, InhibitionOptions::Ranges());
   v.Field("margin", &o->attention.inhibition.margin);
   v.Field("keep_occluded", &o->attention.inhibition.keep_occluded);
   v.Field("occluded_search", &o->attention.inhibition.occluded_search);
   v.EndSection([o] { return o->attention.Check(); });
+}
 
+// attention: the object files.
+template <typename Visitor>
+void VisitMemory(AttendOptions* o, Visitor& v) {
   v.BeginSection("attention");
   v.Ranges(&o->attention.memory, ObjectFileOptions::Ranges());
   v.Field("memory_frames", &o->attention.memory.memory_frames);
@@ -119,83 +142,86 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   v.Field("memory_min_similarity", &o->attention.memory.min_similarity);
   v.Field("memory_velocity_decay", &o->attention.memory.velocity_decay);
   v.EndSection([o] { return o->attention.Check(); });
+}
 
+// The keys of the BIP tracker (kind bip; TrackerOptions) after `mode`, each once: `visit`
+// is called with the key's name and its member.
+template <typename Visit>
+void ForEachBipKey(Visit&& visit) {
+  visit("t_colour", &TrackerOptions::t_colour);
+  visit("t_oversegment", &TrackerOptions::t_oversegment);
+  visit("t_refine", &TrackerOptions::t_refine);
+  visit("alpha", &TrackerOptions::alpha);
+  visit("epsilon", &TrackerOptions::epsilon);
+  visit("epsilon_max", &TrackerOptions::epsilon_max);
+  visit("working_area", &TrackerOptions::working_area);
+  visit("min_overlap", &TrackerOptions::min_overlap);
+  visit("bounded_min_overlap", &TrackerOptions::bounded_min_overlap);
+  visit("bound_growth", &TrackerOptions::bound_growth);
+  visit("size_rate", &TrackerOptions::size_rate);
+  visit("centre_rate", &TrackerOptions::centre_rate);
+  visit("distinctive_weights", &TrackerOptions::distinctive_weights);
+  visit("distinct_rate", &TrackerOptions::distinct_rate);
+  visit("motion_sigma", &TrackerOptions::motion_sigma);
+  visit("appearance", &TrackerOptions::appearance);
+  visit("appearance_share", &TrackerOptions::appearance_share);
+  visit("appearance_rate", &TrackerOptions::appearance_rate);
+  visit("min_score", &TrackerOptions::min_score);
+  visit("redetect_range", &TrackerOptions::redetect_range);
+  visit("redetect_ratio", &TrackerOptions::redetect_ratio);
+}
+
+// tracker: the kind, and each kind's own keys.
+template <typename Visitor>
+void VisitTracker(AttendOptions* o, Visitor& v) {
   v.BeginSection("tracker");
   v.Ranges(&o->attention.tracker.bip, TrackerOptions::Ranges());
   v.Ranges(&o->attention.tracker.opencv, OpenCvTrackerOptions::Ranges());
-  {
-    // Enums in the options; the visitors see their names.
-    TargetTrackerOptions& t = o->attention.tracker;
-    std::string kind = TrackerKindName(t.kind);
-    v.Choice("kind", &kind, TrackerKindNames());
-    TrackerKindFromName(kind, &t.kind);
-    std::string mode = TrackerModeName(t.bip.mode);
-    v.Choice("mode", &mode, {TrackerModeName(TrackerMode::kThesis),
-                             TrackerModeName(TrackerMode::kBounded)});
-    t.bip.mode =
-        mode == TrackerModeName(TrackerMode::kBounded) ? TrackerMode::kBounded : TrackerMode::kThesis;
-    v.Field("t_colour", &t.bip.t_colour);
-    v.Field("t_oversegment", &t.bip.t_oversegment);
-    v.Field("t_refine", &t.bip.t_refine);
-    v.Field("alpha", &t.bip.alpha);
-    v.Field("epsilon", &t.bip.epsilon);
-    v.Field("epsilon_max", &t.bip.epsilon_max);
-    v.Field("working_area", &t.bip.working_area);
-    v.Field("min_overlap", &t.bip.min_overlap);
-    v.Field("bounded_min_overlap", &t.bip.bounded_min_overlap);
-    v.Field("bound_growth", &t.bip.bound_growth);
-    v.Field("size_rate", &t.bip.size_rate);
-    v.Field("centre_rate", &t.bip.centre_rate);
-    v.Field("distinctive_weights", &t.bip.distinctive_weights);
-    v.Field("distinct_rate", &t.bip.distinct_rate);
-    v.Field("motion_sigma", &t.bip.motion_sigma);
-    v.Field("appearance", &t.bip.appearance);
-    v.Field("appearance_share", &t.bip.appearance_share);
-    v.Field("appearance_rate", &t.bip.appearance_rate);
-    v.Field("min_score", &t.bip.min_score);
-    v.Field("redetect_range", &t.bip.redetect_range);
-    v.Field("redetect_ratio", &t.bip.redetect_ratio);
-    v.Field("lost_frames", &t.opencv.lost_frames);
-    v.Field("kcf_detect_thresh", &t.opencv.kcf_detect_thresh);
-    // A key of another kind than the chosen one would have no effect: it is an error when its
-    // value differs from its default, so that a file that sets every key at its default (as
-    // configs/default.yaml and RUN/config.yaml do, SPEC 3.4) can change the kind alone.
-    const TargetTrackerOptions d;
-    const bool bip = t.kind == TrackerKind::kBip;
-    const std::string bip_kinds = "bip", opencv_kinds = "kcf or csrt";
-    v.Owned("mode", bip, t.bip.mode == d.bip.mode, bip_kinds, kind);
-    v.Owned("t_colour", bip, t.bip.t_colour == d.bip.t_colour, bip_kinds, kind);
-    v.Owned("t_oversegment", bip, t.bip.t_oversegment == d.bip.t_oversegment, bip_kinds, kind);
-    v.Owned("t_refine", bip, t.bip.t_refine == d.bip.t_refine, bip_kinds, kind);
-    v.Owned("alpha", bip, t.bip.alpha == d.bip.alpha, bip_kinds, kind);
-    v.Owned("epsilon", bip, t.bip.epsilon == d.bip.epsilon, bip_kinds, kind);
-    v.Owned("epsilon_max", bip, t.bip.epsilon_max == d.bip.epsilon_max, bip_kinds, kind);
-    v.Owned("working_area", bip, t.bip.working_area == d.bip.working_area, bip_kinds, kind);
-    v.Owned("min_overlap", bip, t.bip.min_overlap == d.bip.min_overlap, bip_kinds, kind);
-    v.Owned("bounded_min_overlap", bip, t.bip.bounded_min_overlap == d.bip.bounded_min_overlap,
-            bip_kinds, kind);
-    v.Owned("bound_growth", bip, t.bip.bound_growth == d.bip.bound_growth, bip_kinds, kind);
-    v.Owned("size_rate", bip, t.bip.size_rate == d.bip.size_rate, bip_kinds, kind);
-    v.Owned("centre_rate", bip, t.bip.centre_rate == d.bip.centre_rate, bip_kinds, kind);
-    v.Owned("distinctive_weights", bip, t.bip.distinctive_weights == d.bip.distinctive_weights,
-            bip_kinds, kind);
-    v.Owned("distinct_rate", bip, t.bip.distinct_rate == d.bip.distinct_rate, bip_kinds, kind);
-    v.Owned("motion_sigma", bip, t.bip.motion_sigma == d.bip.motion_sigma, bip_kinds, kind);
-    v.Owned("appearance", bip, t.bip.appearance == d.bip.appearance, bip_kinds, kind);
-    v.Owned("appearance_share", bip, t.bip.appearance_share == d.bip.appearance_share, bip_kinds,
-            kind);
-    v.Owned("appearance_rate", bip, t.bip.appearance_rate == d.bip.appearance_rate, bip_kinds,
-            kind);
-    v.Owned("min_score", bip, t.bip.min_score == d.bip.min_score, bip_kinds, kind);
-    v.Owned("redetect_range", bip, t.bip.redetect_range == d.bip.redetect_range, bip_kinds, kind);
-    v.Owned("redetect_ratio", bip, t.bip.redetect_ratio == d.bip.redetect_ratio, bip_kinds, kind);
-    v.Owned("lost_frames", !bip, t.opencv.lost_frames == d.opencv.lost_frames, opencv_kinds,
-            kind);
-    v.Owned("kcf_detect_thresh", t.kind == TrackerKind::kKcf,
-            t.opencv.kcf_detect_thresh == d.opencv.kcf_detect_thresh, "kcf", kind);
-  }
+  // Enums in the options; the visitors see their names.
+  TargetTrackerOptions& t = o->attention.tracker;
+  std::string kind = TrackerKindName(t.kind);
+  v.Choice("kind", &kind, TrackerKindNames());
+  TrackerKindFromName(kind, &t.kind);
+  std::string mode = TrackerModeName(t.bip.mode);
+  v.Choice("mode", &mode, TrackerModeNames());
+  TrackerModeFromName(mode, &t.bip.mode);
+  ForEachBipKey([&](const char* key, auto member) { v.Field(key, &(t.bip.*member)); });
+  v.Field("lost_frames", &t.opencv.lost_frames);
+  v.Field("kcf_detect_thresh", &t.opencv.kcf_detect_thresh);
+  // A key of another kind than the chosen one would have no effect: it is an error when its
+  // value differs from its default, so that a file that sets every key at its default (as
+  // configs/default.yaml and RUN/config.yaml do, SPEC 3.4) can change the kind alone.
+  const TargetTrackerOptions d;
+  const bool bip = t.kind == TrackerKind::kBip;
+  const std::string bip_kinds = "bip", opencv_kinds = "kcf or csrt";
+  v.Owned("mode", bip, t.bip.mode == d.bip.mode, bip_kinds, kind);
+  ForEachBipKey([&](const char* key, auto member) {
+    v.Owned(key, bip, t.bip.*member == d.bip.*member, bip_kinds, kind);
+  });
+  v.Owned("lost_frames", !bip, t.opencv.lost_frames == d.opencv.lost_frames, opencv_kinds, kind);
+  v.Owned("kcf_detect_thresh", t.kind == TrackerKind::kKcf,
+          t.opencv.kcf_detect_thresh == d.opencv.kcf_detect_thresh, "kcf", kind);
   v.EndSection([o] { return o->attention.Check(); });
+}
 
+// Visits every key of the configuration in file order. The visitor decides what a key means:
+// read it from YAML, write it, or list it. Keeping one list is what keeps reading, writing
+// and documentation in step. The ranges of numeric keys are not written here: each section
+// names the options structs whose fields it binds (Ranges), and a key takes the range of its
+// field (util/field_ranges.h), the one that struct's Check() applies.
+template <typename Visitor>
+void VisitOptions(AttendOptions* o, Visitor& v) {
+  VisitSequence(o, v);
+  VisitSegmentation(o, v);
+  VisitOutput(o, v);
+  v.Features("features", &o->features);
+  v.Field("plugins", &o->plugins);
+  VisitSaliency(o, v);
+  VisitSelect(o, v);
+  VisitDrop(o, v);
+  VisitInhibition(o, v);
+  VisitMemory(o, v);
+  VisitTracker(o, v);
   v.Field("threads", &o->threads, Range::Closed(0, 256));
 }
 

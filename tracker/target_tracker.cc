@@ -6,39 +6,31 @@
 #include <opencv2/tracking.hpp>
 #include <opencv2/video/tracking.hpp>
 
+#include "util/enum_table.h"
 #include "util/error.h"
 #include "util/timer.h"
 
 namespace attend {
 
-const char* TrackerKindName(TrackerKind kind) {
-  switch (kind) {
-    case TrackerKind::kBip:
-      return "bip";
-    case TrackerKind::kKcf:
-      return "kcf";
-    case TrackerKind::kCsrt:
-      return "csrt";
-  }
-  ATTEND_CHECK(false) << "unknown tracker kind";
-  return "";
-}
+namespace {
+
+constexpr EnumTable<TrackerKind, 3> kTrackerKinds = {{{
+    {TrackerKind::kBip, "bip"},
+    {TrackerKind::kKcf, "kcf"},
+    {TrackerKind::kCsrt, "csrt"},
+}}};
+
+}  // namespace
+
+const char* TrackerKindName(TrackerKind kind) { return kTrackerKinds.Name(kind); }
 
 const std::vector<std::string>& TrackerKindNames() {
-  static const std::vector<std::string> names = {TrackerKindName(TrackerKind::kBip),
-                                                 TrackerKindName(TrackerKind::kKcf),
-                                                 TrackerKindName(TrackerKind::kCsrt)};
+  static const std::vector<std::string> names = kTrackerKinds.Names();
   return names;
 }
 
 bool TrackerKindFromName(const std::string& name, TrackerKind* kind) {
-  for (const TrackerKind k : {TrackerKind::kBip, TrackerKind::kKcf, TrackerKind::kCsrt}) {
-    if (name == TrackerKindName(k)) {
-      *kind = k;
-      return true;
-    }
-  }
-  return false;
+  return kTrackerKinds.FromName(name, kind);
 }
 
 const FieldRanges<OpenCvTrackerOptions>& OpenCvTrackerOptions::Ranges() {

@@ -10,6 +10,7 @@
 #include "pyramid/bip.h"
 #include "pyramid/segmentation.h"
 #include "pyramid/similarity.h"
+#include "util/enum_table.h"
 #include "util/error.h"
 #include "util/timer.h"
 #include "util/vector_clones.h"
@@ -299,8 +300,24 @@ std::string TrackerOptions::Check() const {
   return "";
 }
 
-const char* TrackerModeName(TrackerMode mode) {
-  return mode == TrackerMode::kBounded ? "bounded" : "thesis";
+namespace {
+
+constexpr EnumTable<TrackerMode, 2> kTrackerModes = {{{
+    {TrackerMode::kThesis, "thesis"},
+    {TrackerMode::kBounded, "bounded"},
+}}};
+
+}  // namespace
+
+const char* TrackerModeName(TrackerMode mode) { return kTrackerModes.Name(mode); }
+
+const std::vector<std::string>& TrackerModeNames() {
+  static const std::vector<std::string> names = kTrackerModes.Names();
+  return names;
+}
+
+bool TrackerModeFromName(const std::string& name, TrackerMode* mode) {
+  return kTrackerModes.FromName(name, mode);
 }
 
 const char* TrackStateName(TrackState state) {

@@ -27,6 +27,9 @@ namespace attend {
 enum class TrackerMode { kThesis, kBounded };
 // "thesis", "bounded" (the tracker.mode key).
 const char* TrackerModeName(TrackerMode mode);
+const std::vector<std::string>& TrackerModeNames();
+// The mode called `name`; false when there is none.
+bool TrackerModeFromName(const std::string& name, TrackerMode* mode);
 
 struct TrackerOptions {
   TrackerMode mode = TrackerMode::kThesis;
