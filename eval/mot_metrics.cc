@@ -48,16 +48,10 @@ std::string MotOptions::Check() const {
   return "";
 }
 
-MotScores EvaluateMot(const std::vector<FrameRecord>& frames, const std::vector<GtObject>& truth,
-                      const MotOptions& options) {
-  const std::string error = options.Check();
-  ATTEND_CHECK(error.empty()) << error;
-  std::map<int, std::vector<const GtObject*>> by_frame;
-  for (const GtObject& object : truth) by_frame[object.frame].push_back(&object);
+namespace {
 
-  MotScores scores;
-  scores.match_iou = options.match_iou;
-  scores.frames = static_cast<int>(frames.size());
+// What the frames of a run accumulate for the measures.
+struct MotTally {
   std::map<int, ObjectTally> objects;                  // by object id
   std::map<int, std::map<int, int>> frames_on_object;  // target id -> object id -> frames
   std::map<int, int> target_frames;                    // target id -> frames scored
@@ -65,168 +59,192 @@ MotScores EvaluateMot(const std::vector<FrameRecord>& frames, const std::vector<
   std::set<int> started;
   std::map<int, int> previous;  // object id -> target id, last frame
   double iou_sum = 0.0;
-  const std::vector<const GtObject*> no_objects;
-  for (const FrameRecord& record : frames) {
-    const auto found = by_frame.find(record.frame);
-    const std::vector<const GtObject*>& present =
-        found != by_frame.end() ? found->second : no_objects;
-    std::vector<const GtObject*> counted, uncounted;
-    std::set<int> seen_objects;
-    for (const GtObject* object : present) {
-      if (!seen_objects.insert(object->id).second) continue;  // one box an object a frame
-      const bool visible =
-          object->visible_fraction >= options.min_visible && object->box.area() >= options.min_area;
-      (visible ? counted : uncounted).push_back(object);
-    }
-    std::vector<const TargetRecord*> targets;
-    std::set<int> seen_targets;
-    for (const TargetRecord& target : record.targets) {
-      started.insert(target.id);
-      if (Visible(target.state) && seen_targets.insert(target.id).second) {
-        targets.push_back(&target);
-      }
-    }
-    scores.gt += static_cast<int>(counted.size());
-    std::vector<cv::Rect2d> object_boxes, target_boxes;
-    for (const GtObject* object : counted) object_boxes.push_back(object->box);
-    for (const TargetRecord* target : targets) target_boxes.emplace_back(target->bbox);
+};
 
-    // The previous frame's pairs that still reach the threshold, then the rest by assignment.
-    std::vector<std::pair<int, int>> pairs;  // (object index, target index)
-    std::vector<bool> object_used(counted.size(), false), target_used(targets.size(), false);
-    for (std::size_t i = 0; i < counted.size(); ++i) {
-      const auto kept = previous.find(counted[i]->id);
-      if (kept == previous.end()) continue;
-      for (std::size_t j = 0; j < targets.size(); ++j) {
-        if (targets[j]->id != kept->second) continue;
-        if (BoxIou(object_boxes[i], target_boxes[j]) >= options.match_iou) {
-          pairs.emplace_back(static_cast<int>(i), static_cast<int>(j));
-          object_used[i] = target_used[j] = true;
-        }
-      }
-    }
-    std::vector<int> free_objects, free_targets;
-    std::vector<cv::Rect2d> free_object_boxes, free_target_boxes;
-    for (std::size_t i = 0; i < counted.size(); ++i) {
-      if (object_used[i]) continue;
-      free_objects.push_back(static_cast<int>(i));
-      free_object_boxes.push_back(object_boxes[i]);
-    }
-    for (std::size_t j = 0; j < targets.size(); ++j) {
-      if (target_used[j]) continue;
-      free_targets.push_back(static_cast<int>(j));
-      free_target_boxes.push_back(target_boxes[j]);
-    }
-    for (const auto& [i, j] :
-         MatchBoxes(free_object_boxes, free_target_boxes, options.match_iou)) {
-      pairs.emplace_back(free_objects[i], free_targets[j]);
-      object_used[free_objects[i]] = target_used[free_targets[j]] = true;
-    }
+// One frame's objects, counted or present but not counted, and its visible targets.
+struct FrameBoxes {
+  std::vector<const GtObject*> counted, uncounted;
+  std::vector<const TargetRecord*> targets;
+  std::vector<cv::Rect2d> object_boxes, target_boxes;  // of counted and targets
+};
 
-    std::map<int, int> current;
-    for (const auto& [i, j] : pairs) {
-      const int object_id = counted[i]->id;
-      const int target_id = targets[j]->id;
-      ++scores.matches;
-      iou_sum += BoxIou(object_boxes[i], target_boxes[j]);
-      ObjectTally& tally = objects[object_id];
-      if (tally.last_target >= 0 && tally.last_target != target_id) ++scores.id_switches;
-      tally.last_target = target_id;
-      tally.target_ids.insert(target_id);
-      ++frames_on_object[target_id][object_id];
-      current[object_id] = target_id;
+FrameBoxes BoxesOf(const FrameRecord& record, const std::vector<const GtObject*>& present,
+                   const MotOptions& options, MotTally* tally) {
+  FrameBoxes f;
+  std::set<int> seen_objects;
+  for (const GtObject* object : present) {
+    if (!seen_objects.insert(object->id).second) continue;  // one box an object a frame
+    const bool visible =
+        object->visible_fraction >= options.min_visible && object->box.area() >= options.min_area;
+    (visible ? f.counted : f.uncounted).push_back(object);
+  }
+  std::set<int> seen_targets;
+  for (const TargetRecord& target : record.targets) {
+    tally->started.insert(target.id);
+    if (Visible(target.state) && seen_targets.insert(target.id).second) {
+      f.targets.push_back(&target);
     }
-    previous = std::move(current);
-    for (std::size_t i = 0; i < counted.size(); ++i) {
-      ObjectTally& tally = objects[counted[i]->id];
-      ++tally.counted_frames;
-      if (object_used[i]) {
-        ++tally.matched_frames;
-        if (!tally.matched_last) ++tally.streaks;
-      }
-      tally.matched_last = object_used[i];
-    }
-    scores.false_negatives += static_cast<int>(counted.size() - pairs.size());
+  }
+  for (const GtObject* object : f.counted) f.object_boxes.push_back(object->box);
+  for (const TargetRecord* target : f.targets) f.target_boxes.emplace_back(target->bbox);
+  return f;
+}
 
-    // Unmatched targets on an object that is present but not counted are left out.
-    std::vector<int> unmatched;
-    std::vector<cv::Rect2d> unmatched_boxes, uncounted_boxes;
-    for (std::size_t j = 0; j < targets.size(); ++j) {
-      if (target_used[j]) continue;
-      unmatched.push_back(static_cast<int>(j));
-      unmatched_boxes.push_back(target_boxes[j]);
-    }
-    for (const GtObject* object : uncounted) uncounted_boxes.push_back(object->box);
-    std::vector<bool> ignored(targets.size(), false);
-    int ignored_here = 0;
-    for (const std::pair<int, int>& pair :
-         MatchBoxes(unmatched_boxes, uncounted_boxes, options.match_iou)) {
-      ignored[unmatched[pair.first]] = true;
-      ++ignored_here;
-    }
-    scores.ignored += ignored_here;
-    scores.false_positives += static_cast<int>(unmatched.size()) - ignored_here;
-
-    // The trajectories of the identity measures, and every overlap a pairing of them would
-    // count.
-    for (std::size_t j = 0; j < targets.size(); ++j) {
-      if (ignored[j]) continue;
-      ++target_frames[targets[j]->id];
-      for (std::size_t i = 0; i < counted.size(); ++i) {
-        if (BoxIou(object_boxes[i], target_boxes[j]) >= options.match_iou) {
-          ++overlap_frames[{counted[i]->id, targets[j]->id}];
-        }
+// The frame's pairs (object index, target index): the previous frame's pairs that still reach
+// the threshold, then the rest by assignment. Marks the objects and targets used.
+std::vector<std::pair<int, int>> PairFrame(const FrameBoxes& f, const MotOptions& options,
+                                           const std::map<int, int>& previous,
+                                           std::vector<bool>* object_used,
+                                           std::vector<bool>* target_used) {
+  std::vector<std::pair<int, int>> pairs;
+  object_used->assign(f.counted.size(), false);
+  target_used->assign(f.targets.size(), false);
+  for (std::size_t i = 0; i < f.counted.size(); ++i) {
+    const auto kept = previous.find(f.counted[i]->id);
+    if (kept == previous.end()) continue;
+    for (std::size_t j = 0; j < f.targets.size(); ++j) {
+      if (f.targets[j]->id != kept->second) continue;
+      if (BoxIou(f.object_boxes[i], f.target_boxes[j]) >= options.match_iou) {
+        pairs.emplace_back(static_cast<int>(i), static_cast<int>(j));
+        (*object_used)[i] = (*target_used)[j] = true;
       }
     }
   }
+  std::vector<int> free_objects, free_targets;
+  std::vector<cv::Rect2d> free_object_boxes, free_target_boxes;
+  for (std::size_t i = 0; i < f.counted.size(); ++i) {
+    if ((*object_used)[i]) continue;
+    free_objects.push_back(static_cast<int>(i));
+    free_object_boxes.push_back(f.object_boxes[i]);
+  }
+  for (std::size_t j = 0; j < f.targets.size(); ++j) {
+    if ((*target_used)[j]) continue;
+    free_targets.push_back(static_cast<int>(j));
+    free_target_boxes.push_back(f.target_boxes[j]);
+  }
+  for (const auto& [i, j] : MatchBoxes(free_object_boxes, free_target_boxes, options.match_iou)) {
+    pairs.emplace_back(free_objects[i], free_targets[j]);
+    (*object_used)[free_objects[i]] = (*target_used)[free_targets[j]] = true;
+  }
+  return pairs;
+}
 
-  // CLEAR MOT and the attention measures, per object.
+// Scores one frame into `tally` and `scores`.
+void ScoreFrame(const FrameRecord& record, const std::vector<const GtObject*>& present,
+                const MotOptions& options, MotTally* tally, MotScores* scores) {
+  const FrameBoxes f = BoxesOf(record, present, options, tally);
+  scores->gt += static_cast<int>(f.counted.size());
+  std::vector<bool> object_used, target_used;
+  const std::vector<std::pair<int, int>> pairs =
+      PairFrame(f, options, tally->previous, &object_used, &target_used);
+
+  std::map<int, int> current;
+  for (const auto& [i, j] : pairs) {
+    const int object_id = f.counted[i]->id;
+    const int target_id = f.targets[j]->id;
+    ++scores->matches;
+    tally->iou_sum += BoxIou(f.object_boxes[i], f.target_boxes[j]);
+    ObjectTally& object = tally->objects[object_id];
+    if (object.last_target >= 0 && object.last_target != target_id) ++scores->id_switches;
+    object.last_target = target_id;
+    object.target_ids.insert(target_id);
+    ++tally->frames_on_object[target_id][object_id];
+    current[object_id] = target_id;
+  }
+  tally->previous = std::move(current);
+  for (std::size_t i = 0; i < f.counted.size(); ++i) {
+    ObjectTally& object = tally->objects[f.counted[i]->id];
+    ++object.counted_frames;
+    if (object_used[i]) {
+      ++object.matched_frames;
+      if (!object.matched_last) ++object.streaks;
+    }
+    object.matched_last = object_used[i];
+  }
+  scores->false_negatives += static_cast<int>(f.counted.size() - pairs.size());
+
+  // Unmatched targets on an object that is present but not counted are left out.
+  std::vector<int> unmatched;
+  std::vector<cv::Rect2d> unmatched_boxes, uncounted_boxes;
+  for (std::size_t j = 0; j < f.targets.size(); ++j) {
+    if (target_used[j]) continue;
+    unmatched.push_back(static_cast<int>(j));
+    unmatched_boxes.push_back(f.target_boxes[j]);
+  }
+  for (const GtObject* object : f.uncounted) uncounted_boxes.push_back(object->box);
+  std::vector<bool> ignored(f.targets.size(), false);
+  int ignored_here = 0;
+  for (const std::pair<int, int>& pair :
+       MatchBoxes(unmatched_boxes, uncounted_boxes, options.match_iou)) {
+    ignored[unmatched[pair.first]] = true;
+    ++ignored_here;
+  }
+  scores->ignored += ignored_here;
+  scores->false_positives += static_cast<int>(unmatched.size()) - ignored_here;
+
+  // The trajectories of the identity measures, and every overlap a pairing of them would
+  // count.
+  for (std::size_t j = 0; j < f.targets.size(); ++j) {
+    if (ignored[j]) continue;
+    ++tally->target_frames[f.targets[j]->id];
+    for (std::size_t i = 0; i < f.counted.size(); ++i) {
+      if (BoxIou(f.object_boxes[i], f.target_boxes[j]) >= options.match_iou) {
+        ++tally->overlap_frames[{f.counted[i]->id, f.targets[j]->id}];
+      }
+    }
+  }
+}
+
+// CLEAR MOT and the attention measures, per object.
+void ScoreObjects(const MotTally& tally, const MotOptions& options, MotScores* scores) {
   int ids_matched = 0;
-  for (const auto& [id, tally] : objects) {
-    ++scores.objects;
-    const double tracked = Ratio(tally.matched_frames, tally.counted_frames);
+  for (const auto& [id, object] : tally.objects) {
+    ++scores->objects;
+    const double tracked = Ratio(object.matched_frames, object.counted_frames);
     if (tracked >= options.mostly_tracked) {
-      ++scores.mostly_tracked;
+      ++scores->mostly_tracked;
     } else if (tracked < options.mostly_lost) {
-      ++scores.mostly_lost;
+      ++scores->mostly_lost;
     } else {
-      ++scores.partly_tracked;
+      ++scores->partly_tracked;
     }
-    if (tally.streaks > 1) scores.fragmentations += tally.streaks - 1;
-    if (tally.matched_frames > 0) {
-      ++scores.objects_attended_whole;
-      ids_matched += static_cast<int>(tally.target_ids.size());
+    if (object.streaks > 1) scores->fragmentations += object.streaks - 1;
+    if (object.matched_frames > 0) {
+      ++scores->objects_attended_whole;
+      ids_matched += static_cast<int>(object.target_ids.size());
     }
   }
-  scores.mota = scores.gt > 0
-                    ? 1.0 - static_cast<double>(scores.false_negatives + scores.false_positives +
-                                                scores.id_switches) /
-                                scores.gt
-                    : 0.0;
-  scores.motp = Ratio(iou_sum, scores.matches);
-  scores.attended_whole_fraction = Ratio(scores.objects_attended_whole, scores.objects);
-  scores.ids_per_attended_object = Ratio(ids_matched, scores.objects_attended_whole);
+  scores->mota = scores->gt > 0
+                     ? 1.0 - static_cast<double>(scores->false_negatives +
+                                                 scores->false_positives + scores->id_switches) /
+                                 scores->gt
+                     : 0.0;
+  scores->motp = Ratio(tally.iou_sum, scores->matches);
+  scores->attended_whole_fraction = Ratio(scores->objects_attended_whole, scores->objects);
+  scores->ids_per_attended_object = Ratio(ids_matched, scores->objects_attended_whole);
   int purest = 0;
-  for (const auto& [target, on] : frames_on_object) {
+  for (const auto& [target, on] : tally.frames_on_object) {
     int most = 0;
     for (const auto& [object, count] : on) most = std::max(most, count);
     purest += most;
   }
-  scores.purity = Ratio(purest, scores.matches);
-  scores.targets_started = static_cast<int>(started.size());
+  scores->purity = Ratio(purest, scores->matches);
+  scores->targets_started = static_cast<int>(tally.started.size());
+}
 
-  // Identity: objects (rows 0..G-1) and targets (columns 0..T-1) padded so that either may go
-  // unpaired. Object i with target j costs its IDFN + IDFP, (n_i - tp) + (n_j - tp); object i
-  // unpaired (column T + i) costs n_i, target j unpaired (row G + j) n_j, two paddings 0; any
-  // other padding cell more than the whole of either trajectory set.
+// Identity: objects (rows 0..G-1) and targets (columns 0..T-1) padded so that either may go
+// unpaired. Object i with target j costs its IDFN + IDFP, (n_i - tp) + (n_j - tp); object i
+// unpaired (column T + i) costs n_i, target j unpaired (row G + j) n_j, two paddings 0; any
+// other padding cell more than the whole of either trajectory set.
+void ScoreIdentity(const MotTally& tally, MotScores* scores) {
   std::vector<int> object_ids, target_ids;
   std::vector<int> object_length, target_length;
-  for (const auto& [id, tally] : objects) {
+  for (const auto& [id, object] : tally.objects) {
     object_ids.push_back(id);
-    object_length.push_back(tally.counted_frames);
+    object_length.push_back(object.counted_frames);
   }
   int target_detections = 0;
-  for (const auto& [id, count] : target_frames) {
+  for (const auto& [id, count] : tally.target_frames) {
     target_ids.push_back(id);
     target_length.push_back(count);
     target_detections += count;
@@ -234,12 +252,12 @@ MotScores EvaluateMot(const std::vector<FrameRecord>& frames, const std::vector<
   const int g = static_cast<int>(object_ids.size());
   const int t = static_cast<int>(target_ids.size());
   if (g > 0 && t > 0) {
-    const double forbidden = static_cast<double>(scores.gt + target_detections) + 1.0;
+    const double forbidden = static_cast<double>(scores->gt + target_detections) + 1.0;
     std::vector<std::vector<double>> cost(g + t, std::vector<double>(t + g, forbidden));
     for (int i = 0; i < g; ++i) {
       for (int j = 0; j < t; ++j) {
-        const auto overlap = overlap_frames.find({object_ids[i], target_ids[j]});
-        const int tp = overlap != overlap_frames.end() ? overlap->second : 0;
+        const auto overlap = tally.overlap_frames.find({object_ids[i], target_ids[j]});
+        const int tp = overlap != tally.overlap_frames.end() ? overlap->second : 0;
         cost[i][j] = object_length[i] + target_length[j] - 2.0 * tp;
       }
       cost[i][t + i] = object_length[i];
@@ -251,15 +269,37 @@ MotScores EvaluateMot(const std::vector<FrameRecord>& frames, const std::vector<
     const std::vector<int> column = MinimumCostAssignment(cost);
     for (int i = 0; i < g; ++i) {
       if (column[i] >= t) continue;
-      const auto overlap = overlap_frames.find({object_ids[i], target_ids[column[i]]});
-      if (overlap != overlap_frames.end()) scores.idtp += overlap->second;
+      const auto overlap = tally.overlap_frames.find({object_ids[i], target_ids[column[i]]});
+      if (overlap != tally.overlap_frames.end()) scores->idtp += overlap->second;
     }
   }
-  scores.idfn = scores.gt - scores.idtp;
-  scores.idfp = target_detections - scores.idtp;
-  scores.idf1 = Ratio(2.0 * scores.idtp, 2.0 * scores.idtp + scores.idfp + scores.idfn);
-  scores.idp = Ratio(scores.idtp, scores.idtp + scores.idfp);
-  scores.idr = Ratio(scores.idtp, scores.idtp + scores.idfn);
+  scores->idfn = scores->gt - scores->idtp;
+  scores->idfp = target_detections - scores->idtp;
+  scores->idf1 = Ratio(2.0 * scores->idtp, 2.0 * scores->idtp + scores->idfp + scores->idfn);
+  scores->idp = Ratio(scores->idtp, scores->idtp + scores->idfp);
+  scores->idr = Ratio(scores->idtp, scores->idtp + scores->idfn);
+}
+
+}  // namespace
+
+MotScores EvaluateMot(const std::vector<FrameRecord>& frames, const std::vector<GtObject>& truth,
+                      const MotOptions& options) {
+  const std::string error = options.Check();
+  ATTEND_CHECK(error.empty()) << error;
+  std::map<int, std::vector<const GtObject*>> by_frame;
+  for (const GtObject& object : truth) by_frame[object.frame].push_back(&object);
+  MotScores scores;
+  scores.match_iou = options.match_iou;
+  scores.frames = static_cast<int>(frames.size());
+  MotTally tally;
+  const std::vector<const GtObject*> no_objects;
+  for (const FrameRecord& record : frames) {
+    const auto found = by_frame.find(record.frame);
+    ScoreFrame(record, found != by_frame.end() ? found->second : no_objects, options, &tally,
+               &scores);
+  }
+  ScoreObjects(tally, options, &scores);
+  ScoreIdentity(tally, &scores);
   return scores;
 }
 
