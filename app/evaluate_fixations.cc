@@ -93,16 +93,9 @@ std::string Table(const std::vector<Method>& methods) {
   return out.str();
 }
 
-}  // namespace
-
-FixationEvaluation EvaluateFixations(const EvalFixationsRequest& request,
-                                     const FixationEvaluationObserver& observer) {
-  const FixationDataset dataset = OpenFixationDataset(request.dataset);
-  std::vector<FixationItem> items = dataset.items;
-  items.erase(items.begin(), items.begin() + std::min<size_t>(request.skip, items.size()));
-  if (request.first > 0 && static_cast<int>(items.size()) > request.first)
-    items.resize(request.first);
-
+// The methods to score: the map folders (NAME=FOLDER or FOLDER, with their scanpaths when
+// there are) and the baselines, each with its empty score lists.
+std::vector<Method> MethodsOf(const EvalFixationsRequest& request) {
   std::vector<Method> methods;
   for (const std::string& spec : request.maps) {
     Method method;
@@ -141,38 +134,43 @@ FixationEvaluation EvaluateFixations(const EvalFixationsRequest& request,
     method.values.assign(FixationMetricNames().size(), {});
     method.scanpath_shares.assign(kScanpathDepth, {});
   }
+  return methods;
+}
 
-  // Every image's fixations (scored coordinates) and size, for the shuffled AUC's negatives.
-  struct Loaded {
-    cv::Mat stimulus;  // at the scored size
-    std::vector<Fixation> fixations;
-    double scale = 1.0;
-  };
-  std::vector<std::vector<Fixation>> normalised(items.size());  // x / w, y / h
-  std::vector<std::string> failed;
-  // Empty with the reason when the stimulus cannot be used.
-  auto load = [&](const FixationItem& item, Loaded* loaded) -> std::string {
-    cv::Mat bgr;
-    try {
-      bgr = ReadImageFile(item.stimulus_path, cv::IMREAD_COLOR, item.stimulus_path);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    loaded->scale = ScoringScale(bgr.size(), request.max_side);
-    loaded->stimulus =
-        ToSize(bgr, cv::Size(static_cast<int>(std::lround(bgr.cols * loaded->scale)),
-                             static_cast<int>(std::lround(bgr.rows * loaded->scale))));
-    for (Fixation f : ReadFixationFile(item.fixations_path)) {
-      f.x *= loaded->scale;
-      f.y *= loaded->scale;
-      loaded->fixations.push_back(f);
-    }
-    return "";
-  };
-  // First pass: fixations only (cheap), for the shuffled negatives.
+// An image at its scored size and its fixations in the scored coordinates.
+struct Loaded {
+  cv::Mat stimulus;
+  std::vector<Fixation> fixations;
+  double scale = 1.0;
+};
+
+// Empty, or the reason when the stimulus cannot be used.
+std::string LoadStimulus(const FixationItem& item, int max_side, Loaded* loaded) {
+  cv::Mat bgr;
+  try {
+    bgr = ReadImageFile(item.stimulus_path, cv::IMREAD_COLOR, item.stimulus_path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  loaded->scale = ScoringScale(bgr.size(), max_side);
+  loaded->stimulus =
+      ToSize(bgr, cv::Size(static_cast<int>(std::lround(bgr.cols * loaded->scale)),
+                           static_cast<int>(std::lround(bgr.rows * loaded->scale))));
+  for (Fixation f : ReadFixationFile(item.fixations_path)) {
+    f.x *= loaded->scale;
+    f.y *= loaded->scale;
+    loaded->fixations.push_back(f);
+  }
+  return "";
+}
+
+// Every image's fixations as shares of its width and height (x / w, y / h), for the shuffled
+// AUC's negatives: a cheap first pass, fixations only.
+std::vector<std::vector<Fixation>> NormalisedFixations(const std::vector<FixationItem>& items) {
+  std::vector<std::vector<Fixation>> normalised(items.size());
   for (size_t i = 0; i < items.size(); ++i) {
     const cv::Size size = [&] {
-      // The header alone would do; the decoder reads the whole image, once more below.
+      // The header alone would do; the decoder reads the whole image, once more later.
       const cv::Mat bgr = cv::imread(items[i].stimulus_path, cv::IMREAD_REDUCED_GRAYSCALE_8);
       return bgr.empty() ? cv::Size() : cv::Size(bgr.cols * 8, bgr.rows * 8);
     }();
@@ -181,64 +179,76 @@ FixationEvaluation EvaluateFixations(const EvalFixationsRequest& request,
       normalised[i].push_back({f.subject, f.x / size.width, f.y / size.height});
     }
   }
+  return normalised;
+}
 
-  for (size_t i = 0; i < items.size(); ++i) {
-    const FixationItem& item = items[i];
-    Loaded loaded;
-    const std::string error = load(item, &loaded);
-    if (!error.empty()) {
-      if (observer.on_unreadable) observer.on_unreadable(error);
-      failed.push_back(item.stimulus_path);
-      continue;
-    }
-    const cv::Size size = loaded.stimulus.size();
-    std::vector<Fixation> others;
-    for (size_t j = 0; j < items.size(); ++j) {
-      if (j == i) continue;
-      for (const Fixation& f : normalised[j]) {
-        others.push_back({f.subject, f.x * size.width, f.y * size.height});
-      }
-    }
-    const double sigma =
-        request.sigma > 0.0 ? request.sigma : 0.025 * std::max(size.width, size.height);
-    const cv::Mat density = FixationDensity(size, loaded.fixations, sigma);
-    const cv::Mat centre = CentreBias(size);
-    for (Method& method : methods) {
-      cv::Mat map;
-      if (method.folder.empty()) {
-        map = BaselineMap(method.name, loaded.stimulus, request.baseline_blur);
-      } else {
-        const fs::path path = fs::path(method.folder) / (item.id + ".pfm");
-        std::error_code error;
-        if (!fs::exists(path, error))
-          throw InputError(path.string() + ": no saliency map for image " + item.id);
-        map = ReadPfmOneChannel(path.string(), "a saliency map");
-        const cv::Size native(static_cast<int>(std::lround(size.width / loaded.scale)),
-                              static_cast<int>(std::lround(size.height / loaded.scale)));
-        if (map.size() != native && map.size() != size && observer.on_note) {
-          observer.on_note(path.string() + " is " + std::to_string(map.cols) + "x" +
-                           std::to_string(map.rows) + ", its stimulus " +
-                           std::to_string(native.width) + "x" + std::to_string(native.height) +
-                           ": resized");
-        }
-        map = ToSize(map, size);
-        if (method.scanpaths.is_object() && method.scanpaths.contains(item.id)) {
-          const std::vector<double> shares =
-              ScanpathShares(method.scanpaths.at(item.id), loaded.scale, loaded.fixations);
-          for (int k = 0; k < kScanpathDepth; ++k) method.scanpath_shares[k].push_back(shares[k]);
-        }
-      }
-      const FixationScores scores = ScoreMap(map, loaded.fixations, others, density, centre);
-      for (size_t m = 0; m < FixationMetricNames().size(); ++m) {
-        method.values[m].push_back(Get(scores, FixationMetricNames()[m]));
-      }
-      method.ids.push_back(item.id);
-    }
-    if ((i + 1) % 50 == 0 && observer.on_progress) {
-      observer.on_progress(static_cast<int>(i + 1), static_cast<int>(items.size()));
+// The map of `method` for `item` at the scored size (a baseline's computed, a folder's read and
+// resized), and the method's scanpath shares on it.
+cv::Mat MapOf(const FixationItem& item, const Loaded& loaded, const EvalFixationsRequest& request,
+              const FixationEvaluationObserver& observer, Method* method) {
+  if (method->folder.empty()) {
+    return BaselineMap(method->name, loaded.stimulus, request.baseline_blur);
+  }
+  const cv::Size size = loaded.stimulus.size();
+  const fs::path path = fs::path(method->folder) / (item.id + ".pfm");
+  std::error_code error;
+  if (!fs::exists(path, error))
+    throw InputError(path.string() + ": no saliency map for image " + item.id);
+  cv::Mat map = ReadPfmOneChannel(path.string(), "a saliency map");
+  const cv::Size native(static_cast<int>(std::lround(size.width / loaded.scale)),
+                        static_cast<int>(std::lround(size.height / loaded.scale)));
+  if (map.size() != native && map.size() != size && observer.on_note) {
+    observer.on_note(path.string() + " is " + std::to_string(map.cols) + "x" +
+                     std::to_string(map.rows) + ", its stimulus " + std::to_string(native.width) +
+                     "x" + std::to_string(native.height) + ": resized");
+  }
+  map = ToSize(map, size);
+  if (method->scanpaths.is_object() && method->scanpaths.contains(item.id)) {
+    const std::vector<double> shares =
+        ScanpathShares(method->scanpaths.at(item.id), loaded.scale, loaded.fixations);
+    for (int k = 0; k < kScanpathDepth; ++k) method->scanpath_shares[k].push_back(shares[k]);
+  }
+  return map;
+}
+
+// Scores image `i` for every method.
+void ScoreImage(size_t i, const std::vector<FixationItem>& items,
+                const std::vector<std::vector<Fixation>>& normalised, const Loaded& loaded,
+                const EvalFixationsRequest& request, const FixationEvaluationObserver& observer,
+                std::vector<Method>* methods) {
+  const cv::Size size = loaded.stimulus.size();
+  std::vector<Fixation> others;
+  for (size_t j = 0; j < items.size(); ++j) {
+    if (j == i) continue;
+    for (const Fixation& f : normalised[j]) {
+      others.push_back({f.subject, f.x * size.width, f.y * size.height});
     }
   }
+  const double sigma =
+      request.sigma > 0.0 ? request.sigma : 0.025 * std::max(size.width, size.height);
+  const cv::Mat density = FixationDensity(size, loaded.fixations, sigma);
+  const cv::Mat centre = CentreBias(size);
+  for (Method& method : *methods) {
+    const cv::Mat map = MapOf(items[i], loaded, request, observer, &method);
+    const FixationScores scores = ScoreMap(map, loaded.fixations, others, density, centre);
+    for (size_t m = 0; m < FixationMetricNames().size(); ++m) {
+      method.values[m].push_back(Get(scores, FixationMetricNames()[m]));
+    }
+    method.ids.push_back(items[i].id);
+  }
+}
 
+// The mean scanpath share of each depth k = 1..kScanpathDepth.
+std::vector<double> MeanShares(const Method& method) {
+  std::vector<double> shares;
+  for (int k = 0; k < kScanpathDepth; ++k) {
+    shares.push_back(MeanWithInterval(method.scanpath_shares[k]).mean);
+  }
+  return shares;
+}
+
+// Each method's means with their 95 % intervals, by name.
+nlohmann::json MeansJson(const std::vector<Method>& methods) {
   nlohmann::json means = nlohmann::json::object();
   for (const Method& method : methods) {
     nlohmann::json entry = {{"images", method.ids.size()},
@@ -248,58 +258,82 @@ FixationEvaluation EvaluateFixations(const EvalFixationsRequest& request,
       entry[FixationMetricNames()[m]] = {{"mean", v.mean}, {"ci95", {v.low, v.high}}};
     }
     if (!method.scanpath_shares[0].empty()) {
-      nlohmann::json shares = nlohmann::json::array();
-      for (int k = 0; k < kScanpathDepth; ++k) {
-        shares.push_back(MeanWithInterval(method.scanpath_shares[k]).mean);
-      }
-      entry["scanpath_fixation_share"] = shares;  // k = 1..5
+      entry["scanpath_fixation_share"] = MeanShares(method);  // k = 1..5
     }
     means[method.name] = entry;
   }
-  const std::string table = Table(methods);
-  if (!request.out.empty()) {
-    const fs::path out(request.out);
-    std::error_code error;
-    fs::create_directories(out, error);
-    if (error) throw InputError(out.string() + ": cannot create the folder: " + error.message());
-    for (const Method& method : methods) {
-      const fs::path csv_path = out / (method.name + ".csv");
-      std::ofstream csv(csv_path);
-      csv << "id";
-      for (const std::string& metric : FixationMetricNames()) csv << "," << metric;
-      csv << "\n" << std::setprecision(6);
-      for (size_t r = 0; r < method.ids.size(); ++r) {
-        csv << method.ids[r];
-        for (const std::vector<double>& values : method.values) csv << "," << values[r];
-        csv << "\n";
-      }
-      if (!csv) throw InputError(csv_path.string() + ": cannot be written");
+  return means;
+}
+
+// OUT/METHOD.csv (a row an image) and OUT/fixations.json.
+void WriteReport(const EvalFixationsRequest& request, const FixationDataset& dataset,
+                 const std::vector<std::string>& failed, const std::vector<Method>& methods) {
+  const fs::path out(request.out);
+  std::error_code error;
+  fs::create_directories(out, error);
+  if (error) throw InputError(out.string() + ": cannot create the folder: " + error.message());
+  for (const Method& method : methods) {
+    const fs::path csv_path = out / (method.name + ".csv");
+    std::ofstream csv(csv_path);
+    csv << "id";
+    for (const std::string& metric : FixationMetricNames()) csv << "," << metric;
+    csv << "\n" << std::setprecision(6);
+    for (size_t r = 0; r < method.ids.size(); ++r) {
+      csv << method.ids[r];
+      for (const std::vector<double>& values : method.values) csv << "," << values[r];
+      csv << "\n";
     }
-    const nlohmann::json report = {{"dataset", request.dataset},
-                                   {"skipped", dataset.skipped},
-                                   {"failed", failed},
-                                   {"skip", request.skip},
-                                   {"first", request.first},
-                                   {"max_side", request.max_side},
-                                   {"sigma_px", request.sigma},
-                                   {"baseline_blur", request.baseline_blur},
-                                   {"command", request.command_line},
-                                   {"methods", means}};
-    const fs::path json_path = out / "fixations.json";
-    std::ofstream file(json_path);
-    file << JsonText(report, 2) << "\n";
-    if (!file) throw InputError(json_path.string() + ": cannot be written");
+    if (!csv) throw InputError(csv_path.string() + ": cannot be written");
   }
+  const nlohmann::json report = {{"dataset", request.dataset},
+                                 {"skipped", dataset.skipped},
+                                 {"failed", failed},
+                                 {"skip", request.skip},
+                                 {"first", request.first},
+                                 {"max_side", request.max_side},
+                                 {"sigma_px", request.sigma},
+                                 {"baseline_blur", request.baseline_blur},
+                                 {"command", request.command_line},
+                                 {"methods", MeansJson(methods)}};
+  const fs::path json_path = out / "fixations.json";
+  std::ofstream file(json_path);
+  file << JsonText(report, 2) << "\n";
+  if (!file) throw InputError(json_path.string() + ": cannot be written");
+}
+
+}  // namespace
+
+FixationEvaluation EvaluateFixations(const EvalFixationsRequest& request,
+                                     const FixationEvaluationObserver& observer) {
+  const FixationDataset dataset = OpenFixationDataset(request.dataset);
+  std::vector<FixationItem> items = dataset.items;
+  items.erase(items.begin(), items.begin() + std::min<size_t>(request.skip, items.size()));
+  if (request.first > 0 && static_cast<int>(items.size()) > request.first)
+    items.resize(request.first);
+  std::vector<Method> methods = MethodsOf(request);
+  const std::vector<std::vector<Fixation>> normalised = NormalisedFixations(items);
+  std::vector<std::string> failed;
+  for (size_t i = 0; i < items.size(); ++i) {
+    Loaded loaded;
+    const std::string error = LoadStimulus(items[i], request.max_side, &loaded);
+    if (!error.empty()) {
+      if (observer.on_unreadable) observer.on_unreadable(error);
+      failed.push_back(items[i].stimulus_path);
+      continue;
+    }
+    ScoreImage(i, items, normalised, loaded, request, observer, &methods);
+    if ((i + 1) % 50 == 0 && observer.on_progress) {
+      observer.on_progress(static_cast<int>(i + 1), static_cast<int>(items.size()));
+    }
+  }
+  if (!request.out.empty()) WriteReport(request, dataset, failed, methods);
   FixationEvaluation result;
-  result.table = table;
+  result.table = Table(methods);
   result.failed = failed;
   for (const Method& method : methods) {
-    if (method.scanpath_shares[0].empty()) continue;
-    std::vector<double> shares;
-    for (int k = 0; k < kScanpathDepth; ++k) {
-      shares.push_back(MeanWithInterval(method.scanpath_shares[k]).mean);
+    if (!method.scanpath_shares[0].empty()) {
+      result.scanpath_shares.emplace_back(method.name, MeanShares(method));
     }
-    result.scanpath_shares.emplace_back(method.name, shares);
   }
   return result;
 }
