@@ -142,6 +142,7 @@ struct Loaded {
   cv::Mat stimulus;
   std::vector<Fixation> fixations;
   double scale = 1.0;
+  cv::Size native;  // the stimulus's own size
 };
 
 // Empty, or the reason when the stimulus cannot be used.
@@ -152,6 +153,7 @@ std::string LoadStimulus(const FixationItem& item, int max_side, Loaded* loaded)
   } catch (const InputError& e) {
     return e.what();
   }
+  loaded->native = bgr.size();
   loaded->scale = ScoringScale(bgr.size(), max_side);
   loaded->stimulus =
       ToSize(bgr, cv::Size(static_cast<int>(std::lround(bgr.cols * loaded->scale)),
@@ -195,8 +197,7 @@ cv::Mat MapOf(const FixationItem& item, const Loaded& loaded, const EvalFixation
   if (!fs::exists(path, error))
     throw InputError(path.string() + ": no saliency map for image " + item.id);
   cv::Mat map = ReadPfmOneChannel(path.string(), "a saliency map");
-  const cv::Size native(static_cast<int>(std::lround(size.width / loaded.scale)),
-                        static_cast<int>(std::lround(size.height / loaded.scale)));
+  const cv::Size& native = loaded.native;
   if (map.size() != native && map.size() != size && observer.on_note) {
     observer.on_note(path.string() + " is " + std::to_string(map.cols) + "x" +
                      std::to_string(map.rows) + ", its stimulus " + std::to_string(native.width) +

@@ -950,158 +950,12 @@ struct MultiTracker::Impl {
       frame_cylinder_ = cylinder;
     }
     const cv::Rect image(0, 0, frame.cols, frame.rows);
-    const int epsilon_max = options.EpsilonMaxPixels(frame.cols);
     for (const TrackSimilarity similarity : {TrackSimilarity::kColour, TrackSimilarity::kSkin}) {
-      // One pyramid over the union of this similarity's ROIs (4.3).
-      union_mask.create(frame.size(), CV_8UC1);
-      union_mask.setTo(0);
-      bool any = false;
-      cv::Rect bounds;
-      for (Target& target : targets) {
-        if (target.similarity != similarity) continue;
-        target.roi =
-            cv::Rect(target.box.x - target.border, target.box.y - target.border,
-                     target.box.width + 2 * target.border, target.box.height + 2 * target.border) &
-            image;
-        if (target.roi.empty()) continue;
-        union_mask(target.roi).setTo(255);
-        bounds = any ? bounds | target.roi : target.roi;
-        any = true;
-      }
-      if (!any) continue;
-      if (similarity == TrackSimilarity::kSkin) {
-        ATTEND_CHECK(skin.type() == CV_8UC1 && skin.size() == frame.size())
-            << "skin targets need the frame's binary skin map";
-      }
-      // The pyramid over the union of the ROIs is built in parts: ROIs whose aligned crops
-      // overlap or touch share a part, and parts are apart by at least a pixel outside every
-      // ROI. No vertex of one part is linked to, or adjacent to, a vertex of another, at any
-      // level, and every part links with the thresholds of the whole union's crop. A part's
-      // crop starts on a multiple of kAlignment, as the union's does, so their cells agree up
-      // to level kMaxTemplateLevel; above it they may not, and a regular cell there needs
-      // 2^(kMaxTemplateLevel + 1) pixels square inside the ROIs: when a part's ROIs could hold
-      // one, the pyramid is built whole. Each part is then exactly the union pyramid's
-      // restriction to it (the template follows the whole pyramid's height, see MakeTemplate),
-      // and the parts cost what their crops cost, not what the bounding box of every ROI
-      // would.
-      std::vector<cv::Rect> groups;  // aligned crops
-      std::vector<cv::Rect> spans;   // the bounding box of each group's ROIs
-      group_of.assign(targets.size(), -1);
-      for (size_t i = 0; i < targets.size(); ++i) {
-        if (targets[i].similarity != similarity || targets[i].roi.empty()) continue;
-        group_of[i] = static_cast<int>(groups.size());
-        groups.push_back(Aligned(targets[i].roi));
-        spans.push_back(targets[i].roi);
-      }
-      for (bool merged = true; merged;) {
-        merged = false;
-        for (size_t a = 0; a < groups.size() && !merged; ++a) {
-          for (size_t b = a + 1; b < groups.size() && !merged; ++b) {
-            const cv::Rect grown(groups[a].x - 1, groups[a].y - 1, groups[a].width + 2,
-                                 groups[a].height + 2);
-            if ((grown & groups[b]).empty()) continue;
-            Merge(a, b, &groups, &spans);
-            merged = true;
-          }
-        }
-      }
-      constexpr int kUnaligned = 2 * kAlignment;
-      const bool whole_pyramid = !options.pyramid_parts ||
-                                 std::any_of(spans.begin(), spans.end(), [](const cv::Rect& span) {
-                                   return span.width >= kUnaligned && span.height >= kUnaligned;
-                                 });
-      while (whole_pyramid && groups.size() > 1) Merge(0, 1, &groups, &spans);
-      const cv::Rect whole = Aligned(bounds);
-      const int schedule_side = std::min(whole.width, whole.height);
-      const Stopwatch segmentation;
       int pyramid_levels = 0;
-      for (size_t g = 0; g < groups.size(); ++g) {
-        Hierarchy& part = Pyramid(similarity, g);
-        BuildHierarchy(frame, skin, similarity, union_mask, groups[g], schedule_side,
-                       options.t_oversegment, &part, cylinder);
-        pyramid_levels = std::max(pyramid_levels, part.bip->num_levels());
-      }
-      segmentation_ms += segmentation.ElapsedMs();
-
+      if (!BuildPyramids(frame, skin, cylinder, similarity, &pyramid_levels)) continue;
       for (size_t i = 0; i < targets.size(); ++i) {
-        Target& target = targets[i];
-        if (target.similarity != similarity) continue;
-        // A target with an empty ROI (outside the image) is searched in no pyramid.
-        const Hierarchy& h = Pyramid(similarity, std::max(group_of[i], 0));
-        TrackResult result;
-        result.id = target.id;
-        result.roi = target.roi;
-        std::vector<uint8_t> in_target(h.regions, 0);
-        const Match match = group_of[i] < 0 ? Match() : Localise(target, h, &in_target);
-        result.overlap = match.overlap;
-        if (match.found) {
-          const cv::Point shift(match.displacement.x << match.level,
-                                match.displacement.y << match.level);
-          cv::Rect keep = target.roi;
-          if (options.mode == TrackerMode::kBounded) {
-            // The target's box first, then its pixels and template inside that box only.
-            const cv::Rect plausible = BoundTarget(h, target, shift, image, &in_target);
-            PaintTarget(h, in_target, plausible, frame.size(), &target.mask);
-            const cv::Rect mask_box = cv::boundingRect(target.mask(plausible)) + plausible.tl();
-            if (!mask_box.empty()) {
-              cv::Rect2d smooth;
-              keep = SmoothBox(target, shift, mask_box, plausible, image, &smooth);
-              target.smooth = smooth;
-              target.box = keep;
-            }
-          } else {
-            Refine(h, target.roi, &in_target);
-          }
-          PaintTarget(h, in_target, keep, frame.size(), &target.mask);
-          target.levels = MakeTemplate(h, in_target, keep, &target.levels, shift, pyramid_levels);
-          // The target's pixels all lie in its ROI.
-          const cv::Mat inside = target.mask(target.roi);
-          const cv::Moments moments = cv::moments(inside, true);
-          if (moments.m00 > 0) {
-            if (options.mode == TrackerMode::kThesis) {
-              target.box = cv::boundingRect(inside) + target.roi.tl();
-            }
-            target.centroid = {static_cast<float>(target.roi.x + moments.m10 / moments.m00),
-                               static_cast<float>(target.roi.y + moments.m01 / moments.m00)};
-          }
-          target.motion = shift;
-          target.border = options.EpsilonPixels(frame.cols);
-          if (options.mode == TrackerMode::kBounded) {
-            LearnDistinct(h, &target);
-            LearnAppearance(&target);
-            if (correlated_) {
-              target.typical_correlation =
-                  target.typical_correlation == 0.0
-                      ? best_correlation_
-                      : 0.9 * target.typical_correlation + 0.1 * best_correlation_;
-              const double distinct = MeanDistinct(target, target.box);
-              if (distinct >= 0.0) {
-                target.typical_distinct = target.typical_distinct == 0.0
-                                              ? distinct
-                                              : 0.9 * target.typical_distinct + 0.1 * distinct;
-              }
-            }
-          }
-          result.state = TrackState::kFound;
-          result.level = match.level;
-          result.area = static_cast<int>(moments.m00);
-        } else {
-          // Not found (4.2.7): every weight decays, the ROI border grows.
-          target.mask.release();
-          // A weight left at a rounding error of 0 (1 - k alpha in float) is 0, as in
-          // MakeTemplate: the target is lost after 1 / alpha frames, not one more.
-          for (TemplateLevel& level : target.levels) {
-            for (float& w : level.weight) w = w - options.alpha > 1e-6f ? w - options.alpha : 0.f;
-          }
-          while (!target.levels.empty() && target.levels.back().Empty()) target.levels.pop_back();
-          target.border = std::min(target.border + 1, epsilon_max);
-          target.motion = {0, 0};
-          if (!target.levels.empty()) Redetect(&target);
-          result.state = target.levels.empty() ? TrackState::kLost : TrackState::kOccluded;
-        }
-        result.box = target.box;
-        result.centroid = target.centroid;
-        results->push_back(result);
+        if (targets[i].similarity != similarity) continue;
+        results->push_back(TrackTarget(i, frame, pyramid_levels));
       }
     }
     std::sort(results->begin(), results->end(),
@@ -1109,6 +963,183 @@ struct MultiTracker::Impl {
     targets.erase(std::remove_if(targets.begin(), targets.end(),
                                  [](const Target& t) { return t.levels.empty(); }),
                   targets.end());
+  }
+
+  // The ROIs of this similarity's targets and the pyramid over their union, in parts (4.3);
+  // false when no target of it has an ROI in the image. `pyramid_levels`: the tallest part's.
+  bool BuildPyramids(const cv::Mat& frame, const cv::Mat& skin, const cv::Mat& cylinder,
+                     TrackSimilarity similarity, int* pyramid_levels) {
+    const cv::Rect image(0, 0, frame.cols, frame.rows);
+    // One pyramid over the union of this similarity's ROIs (4.3).
+    union_mask.create(frame.size(), CV_8UC1);
+    union_mask.setTo(0);
+    bool any = false;
+    cv::Rect bounds;
+    for (Target& target : targets) {
+      if (target.similarity != similarity) continue;
+      target.roi =
+          cv::Rect(target.box.x - target.border, target.box.y - target.border,
+                   target.box.width + 2 * target.border, target.box.height + 2 * target.border) &
+          image;
+      if (target.roi.empty()) continue;
+      union_mask(target.roi).setTo(255);
+      bounds = any ? bounds | target.roi : target.roi;
+      any = true;
+    }
+    if (!any) return false;
+    if (similarity == TrackSimilarity::kSkin) {
+      ATTEND_CHECK(skin.type() == CV_8UC1 && skin.size() == frame.size())
+          << "skin targets need the frame's binary skin map";
+    }
+    // The pyramid over the union of the ROIs is built in parts: ROIs whose aligned crops
+    // overlap or touch share a part, and parts are apart by at least a pixel outside every
+    // ROI. No vertex of one part is linked to, or adjacent to, a vertex of another, at any
+    // level, and every part links with the thresholds of the whole union's crop. A part's
+    // crop starts on a multiple of kAlignment, as the union's does, so their cells agree up
+    // to level kMaxTemplateLevel; above it they may not, and a regular cell there needs
+    // 2^(kMaxTemplateLevel + 1) pixels square inside the ROIs: when a part's ROIs could hold
+    // one, the pyramid is built whole. Each part is then exactly the union pyramid's
+    // restriction to it (the template follows the whole pyramid's height, see MakeTemplate),
+    // and the parts cost what their crops cost, not what the bounding box of every ROI
+    // would.
+    std::vector<cv::Rect> groups;  // aligned crops
+    std::vector<cv::Rect> spans;   // the bounding box of each group's ROIs
+    group_of.assign(targets.size(), -1);
+    for (size_t i = 0; i < targets.size(); ++i) {
+      if (targets[i].similarity != similarity || targets[i].roi.empty()) continue;
+      group_of[i] = static_cast<int>(groups.size());
+      groups.push_back(Aligned(targets[i].roi));
+      spans.push_back(targets[i].roi);
+    }
+    for (bool merged = true; merged;) {
+      merged = false;
+      for (size_t a = 0; a < groups.size() && !merged; ++a) {
+        for (size_t b = a + 1; b < groups.size() && !merged; ++b) {
+          const cv::Rect grown(groups[a].x - 1, groups[a].y - 1, groups[a].width + 2,
+                               groups[a].height + 2);
+          if ((grown & groups[b]).empty()) continue;
+          Merge(a, b, &groups, &spans);
+          merged = true;
+        }
+      }
+    }
+    constexpr int kUnaligned = 2 * kAlignment;
+    const bool whole_pyramid = !options.pyramid_parts ||
+                               std::any_of(spans.begin(), spans.end(), [](const cv::Rect& span) {
+                                 return span.width >= kUnaligned && span.height >= kUnaligned;
+                               });
+    while (whole_pyramid && groups.size() > 1) Merge(0, 1, &groups, &spans);
+    const cv::Rect whole = Aligned(bounds);
+    const int schedule_side = std::min(whole.width, whole.height);
+    const Stopwatch segmentation;
+    for (size_t g = 0; g < groups.size(); ++g) {
+      Hierarchy& part = Pyramid(similarity, g);
+      BuildHierarchy(frame, skin, similarity, union_mask, groups[g], schedule_side,
+                     options.t_oversegment, &part, cylinder);
+      *pyramid_levels = std::max(*pyramid_levels, part.bip->num_levels());
+    }
+    segmentation_ms += segmentation.ElapsedMs();
+    return true;
+  }
+
+  // Tracks target `i` in its part of the pyramid: found, it takes its new mask, box and
+  // template; not found, it decays.
+  TrackResult TrackTarget(size_t i, const cv::Mat& frame, int pyramid_levels) {
+    Target& target = targets[i];
+    // A target with an empty ROI (outside the image) is searched in no pyramid.
+    const Hierarchy& h = Pyramid(target.similarity, std::max(group_of[i], 0));
+    TrackResult result;
+    result.id = target.id;
+    result.roi = target.roi;
+    std::vector<uint8_t> in_target(h.regions, 0);
+    const Match match = group_of[i] < 0 ? Match() : Localise(target, h, &in_target);
+    result.overlap = match.overlap;
+    if (match.found) {
+      Found(h, match, frame, pyramid_levels, &in_target, &target, &result);
+    } else {
+      Missed(frame, &target, &result);
+    }
+    result.box = target.box;
+    result.centroid = target.centroid;
+    return result;
+  }
+
+  // A target found at `match`: its mask, box and template (4.2.4-4.2.6; bounded: its box
+  // first, then its pixels inside it).
+  void Found(const Hierarchy& h, const Match& match, const cv::Mat& frame, int pyramid_levels,
+             std::vector<uint8_t>* in_target_pointer, Target* target_pointer,
+             TrackResult* result) {
+    Target& target = *target_pointer;
+    std::vector<uint8_t>& in_target = *in_target_pointer;
+    const cv::Rect image(0, 0, frame.cols, frame.rows);
+    const cv::Point shift(match.displacement.x << match.level,
+                          match.displacement.y << match.level);
+    cv::Rect keep = target.roi;
+    if (options.mode == TrackerMode::kBounded) {
+      // The target's box first, then its pixels and template inside that box only.
+      const cv::Rect plausible = BoundTarget(h, target, shift, image, &in_target);
+      PaintTarget(h, in_target, plausible, frame.size(), &target.mask);
+      const cv::Rect mask_box = cv::boundingRect(target.mask(plausible)) + plausible.tl();
+      if (!mask_box.empty()) {
+        cv::Rect2d smooth;
+        keep = SmoothBox(target, shift, mask_box, plausible, image, &smooth);
+        target.smooth = smooth;
+        target.box = keep;
+      }
+    } else {
+      Refine(h, target.roi, &in_target);
+    }
+    PaintTarget(h, in_target, keep, frame.size(), &target.mask);
+    target.levels = MakeTemplate(h, in_target, keep, &target.levels, shift, pyramid_levels);
+    // The target's pixels all lie in its ROI.
+    const cv::Mat inside = target.mask(target.roi);
+    const cv::Moments moments = cv::moments(inside, true);
+    if (moments.m00 > 0) {
+      if (options.mode == TrackerMode::kThesis) {
+        target.box = cv::boundingRect(inside) + target.roi.tl();
+      }
+      target.centroid = {static_cast<float>(target.roi.x + moments.m10 / moments.m00),
+                         static_cast<float>(target.roi.y + moments.m01 / moments.m00)};
+    }
+    target.motion = shift;
+    target.border = options.EpsilonPixels(frame.cols);
+    if (options.mode == TrackerMode::kBounded) {
+      LearnDistinct(h, &target);
+      LearnAppearance(&target);
+      if (correlated_) {
+        target.typical_correlation =
+            target.typical_correlation == 0.0
+                ? best_correlation_
+                : 0.9 * target.typical_correlation + 0.1 * best_correlation_;
+        const double distinct = MeanDistinct(target, target.box);
+        if (distinct >= 0.0) {
+          target.typical_distinct = target.typical_distinct == 0.0
+                                        ? distinct
+                                        : 0.9 * target.typical_distinct + 0.1 * distinct;
+        }
+      }
+    }
+    result->state = TrackState::kFound;
+    result->level = match.level;
+    result->area = static_cast<int>(moments.m00);
+  }
+
+  // A target not found (4.2.7).
+  void Missed(const cv::Mat& frame, Target* target_pointer, TrackResult* result) {
+    Target& target = *target_pointer;
+    const int epsilon_max = options.EpsilonMaxPixels(frame.cols);
+    // Every weight decays, the ROI border grows.
+    target.mask.release();
+    // A weight left at a rounding error of 0 (1 - k alpha in float) is 0, as in
+    // MakeTemplate: the target is lost after 1 / alpha frames, not one more.
+    for (TemplateLevel& level : target.levels) {
+      for (float& w : level.weight) w = w - options.alpha > 1e-6f ? w - options.alpha : 0.f;
+    }
+    while (!target.levels.empty() && target.levels.back().Empty()) target.levels.pop_back();
+    target.border = std::min(target.border + 1, epsilon_max);
+    target.motion = {0, 0};
+    if (!target.levels.empty()) Redetect(&target);
+    result->state = target.levels.empty() ? TrackState::kLost : TrackState::kOccluded;
   }
 
   int Start(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity similarity,
