@@ -1,30 +1,38 @@
-// The subcommands of `attend` (SPEC 3.2). Each Add* function declares its options on the
-// CLI11 app and sets `action` to the function that runs it after a successful parse.
+// The subcommands of `attend` (SPEC 3.2). A command is one file, cli/NAME_command.cc, whose
+// Add function declares its options on the CLI11 app and sets `action` to the function that
+// runs it after a successful parse, and one registration line at the end of that file:
+//
+//   ATTEND_COMMAND(30, "segment", AddSegmentCommand);
+//
+// `order` places the command in `attend --help` (the registrations are added in that order,
+// whatever order the linker gives the files).
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
 
 namespace attend {
 
 using CommandAction = std::function<int()>;
-
 // `command_line` is the whole invocation, recorded in what a command writes.
-void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
-void AddSynthCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
-void AddSegmentCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
-void AddDisparityCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
-void AddTrackCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
-void AddEvalTrackingCommand(CLI::App& app, const std::string& command_line,
-                            CommandAction* action);
-void AddEvalCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
-void AddSkinTrainCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
-void AddCompareCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
-void AddReportCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
-void AddSaliencyCommand(CLI::App& app, const std::string& command_line,
-                        CommandAction* action);
-void AddEvalFixationsCommand(CLI::App& app, const std::string& command_line,
-                             CommandAction* action);
-void AddFitWeightsCommand(CLI::App& app, const std::string& command_line, CommandAction* action);
+using AddCommandFunction = void (*)(CLI::App& app, const std::string& command_line,
+                                    CommandAction* action);
+
+// A command's registration (ATTEND_COMMAND), made while the program starts.
+class CommandRegistration {
+ public:
+  CommandRegistration(int order, const char* name, AddCommandFunction add);
+};
+
+#define ATTEND_COMMAND(order, name, add)                                               \
+  static const ::attend::CommandRegistration attend_command_registration_##add(order, \
+                                                                              name, add)
+
+// Adds every registered command to `app`, in their order.
+void AddCommands(CLI::App& app, const std::string& command_line, CommandAction* action);
+
+// The function that declares the command called `name`; nullptr when there is none.
+AddCommandFunction FindCommand(const std::string& name);
 
 }  // namespace attend

@@ -62,4 +62,8 @@ void AddReportCommand(CLI::App& app, const std::string& command_line, CommandAct
   });
 }
 
+ATTEND_COMMAND(90, "compare", AddCompareCommand);
+
+ATTEND_COMMAND(100, "report", AddReportCommand);
+
 }  // namespace attend

@@ -182,4 +182,6 @@ void AddDisparityCommand(CLI::App& app, const std::string&, CommandAction* actio
   });
 }
 
+ATTEND_COMMAND(40, "disparity", AddDisparityCommand);
+
 }  // namespace attend

@@ -37,4 +37,6 @@ void AddEvalCommand(CLI::App& app, const std::string&, CommandAction* action) {
   eval->callback([args, action] { *action = [args] { return Eval(*args); }; });
 }
 
+ATTEND_COMMAND(70, "eval", AddEvalCommand);
+
 }  // namespace attend

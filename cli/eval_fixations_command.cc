@@ -78,4 +78,6 @@ void AddEvalFixationsCommand(CLI::App& app, const std::string& command_line,
   cmd->callback([args, action] { *action = [args] { return EvalFixations(*args); }; });
 }
 
+ATTEND_COMMAND(120, "eval-fixations", AddEvalFixationsCommand);
+
 }  // namespace attend

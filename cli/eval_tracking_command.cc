@@ -62,4 +62,6 @@ void AddEvalTrackingCommand(CLI::App& app, const std::string&, CommandAction* ac
   command->callback([args, action] { *action = [args] { return EvalTracking(*args); }; });
 }
 
+ATTEND_COMMAND(60, "eval-tracking", AddEvalTrackingCommand);
+
 }  // namespace attend

@@ -75,4 +75,6 @@ void AddFitWeightsCommand(CLI::App& app, const std::string& command_line, Comman
   cmd->callback([args, action] { *action = [args] { return FitWeightsCommand(*args); }; });
 }
 
+ATTEND_COMMAND(130, "fit-weights", AddFitWeightsCommand);
+
 }  // namespace attend

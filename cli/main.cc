@@ -24,19 +24,7 @@ int main(int argc, char** argv) {
   std::string command_line = "attend";
   for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
   attend::CommandAction action;
-  attend::AddRunCommand(app, command_line, &action);
-  attend::AddSynthCommand(app, command_line, &action);
-  attend::AddSegmentCommand(app, command_line, &action);
-  attend::AddDisparityCommand(app, command_line, &action);
-  attend::AddTrackCommand(app, command_line, &action);
-  attend::AddEvalTrackingCommand(app, command_line, &action);
-  attend::AddEvalCommand(app, command_line, &action);
-  attend::AddSkinTrainCommand(app, command_line, &action);
-  attend::AddCompareCommand(app, command_line, &action);
-  attend::AddReportCommand(app, command_line, &action);
-  attend::AddSaliencyCommand(app, command_line, &action);
-  attend::AddEvalFixationsCommand(app, command_line, &action);
-  attend::AddFitWeightsCommand(app, command_line, &action);
+  attend::AddCommands(app, command_line, &action);
 
   try {
     app.parse(argc, argv);

@@ -163,4 +163,6 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
   run->callback([args, action] { *action = [args] { return Run(*args); }; });
 }
 
+ATTEND_COMMAND(10, "run", AddRunCommand);
+
 }  // namespace attend

@@ -107,4 +107,6 @@ void AddSaliencyCommand(CLI::App& app, const std::string& command_line, CommandA
   cmd->callback([args, action] { *action = [args] { return Saliency(*args); }; });
 }
 
+ATTEND_COMMAND(110, "saliency", AddSaliencyCommand);
+
 }  // namespace attend

@@ -77,4 +77,6 @@ void AddSegmentCommand(CLI::App& app, const std::string&, CommandAction* action)
   segment->callback([args, action] { *action = [args] { return Segment(*args); }; });
 }
 
+ATTEND_COMMAND(30, "segment", AddSegmentCommand);
+
 }  // namespace attend

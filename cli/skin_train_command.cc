@@ -94,4 +94,6 @@ void AddSkinTrainCommand(CLI::App& app, const std::string& command_line, Command
   });
 }
 
+ATTEND_COMMAND(80, "skin-train", AddSkinTrainCommand);
+
 }  // namespace attend

@@ -54,4 +54,6 @@ void AddSynthCommand(CLI::App& app, const std::string&, CommandAction* action) {
   synth->callback([args, action] { *action = [args] { return Synth(*args); }; });
 }
 
+ATTEND_COMMAND(20, "synth", AddSynthCommand);
+
 }  // namespace attend

@@ -198,4 +198,6 @@ void AddTrackCommand(CLI::App& app, const std::string&, CommandAction* action) {
   });
 }
 
+ATTEND_COMMAND(50, "track", AddTrackCommand);
+
 }  // namespace attend

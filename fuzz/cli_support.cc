@@ -22,11 +22,13 @@ void SilenceStandardOutput() {
   std::cout.rdbuf(&null_buffer);
 }
 
-int RunCommand(AddCommand add, const std::vector<std::string>& args) {
+int RunCommand(const std::vector<std::string>& args) {
   CLI::App app;
   CommandAction action;
   std::string command_line = "attend";
   for (const std::string& arg : args) command_line += " " + arg;
+  const AddCommandFunction add = args.empty() ? nullptr : FindCommand(args[0]);
+  if (add == nullptr) Fail("no such command: " + command_line);
   add(app, command_line, &action);
   std::vector<const char*> argv = {"attend"};
   for (const std::string& arg : args) argv.push_back(arg.c_str());

@@ -13,10 +13,10 @@ namespace attend::fuzz {
 // Sends std::cout nowhere for the rest of the process (the commands print their reports there).
 void SilenceStandardOutput();
 
-// Declares the command with `add` on a fresh CLI11 app, parses `args` (without the program
-// name) and runs the command's action. A command line the app refuses stops the process: the
-// targets build their command lines themselves, so that is a mistake of the target.
-using AddCommand = void (*)(CLI::App&, const std::string&, CommandAction*);
-int RunCommand(AddCommand add, const std::vector<std::string>& args);
+// Declares the command `args[0]` (a registered command, cli/commands.h) on a fresh CLI11 app,
+// parses `args` (without the program name) and runs the command's action. A command line the
+// app refuses stops the process: the targets build their command lines themselves, so that is
+// a mistake of the target.
+int RunCommand(const std::vector<std::string>& args);
 
 }  // namespace attend::fuzz

@@ -37,7 +37,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace attend;
   fuzz::WriteFuzzedRunFiles(data, size, fixture->valid, fixture->run);
   fuzz::ExpectOnlyDocumentedErrors([&] {
-    fuzz::RunCommand(AddEvalCommand, {"eval", fixture->run, "--gt", fixture->sequence + "/gt"});
+    fuzz::RunCommand({"eval", fixture->run, "--gt", fixture->sequence + "/gt"});
   });
   return 0;
 }

@@ -59,8 +59,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       }
     }
     EvaluateAttention(frames, objects);
-    fuzz::RunCommand(AddEvalTrackingCommand,
-                     {"eval-tracking", tracks_path, "--gt", input, "--gt-id", "1"});
+    fuzz::RunCommand({"eval-tracking", tracks_path, "--gt", input, "--gt-id", "1"});
   });
   return 0;
 }

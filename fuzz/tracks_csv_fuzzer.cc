@@ -44,7 +44,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         fuzz::Fail("tracks.csv row " + std::to_string(i) + " changes in a round trip");
       }
     }
-    fuzz::RunCommand(AddEvalTrackingCommand, {"eval-tracking", input, "--gt", ground_truth_path});
+    fuzz::RunCommand({"eval-tracking", input, "--gt", ground_truth_path});
   });
   return 0;
 }
