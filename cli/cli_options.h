@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "util/frame_range.h"
+
 namespace attend {
 
 // `--set KEY=VALUE`, repeatable, one value per --set (so that positional arguments may follow
@@ -12,17 +14,6 @@ namespace attend {
 CLI::Option* AddSetOption(CLI::App* command, std::vector<std::string>* sets,
                           const std::string& help);
 
-// A frame range FIRST:LAST of --frames, inclusive; either side may be empty (`last` -1: to the
-// end of the source).
-struct FrameRange {
-  int first = 0;
-  int last = -1;
-};
-
-// Parses `text` of `--frames` over `range`: a side left empty keeps `range`'s value. A
-// ConfigError naming the option and the text when it is not FIRST:LAST with non-negative
-// integers, or the range ends before it starts.
-FrameRange ParseFrameRange(const std::string& text, FrameRange range = FrameRange());
 
 // The output stem of every image, in order. Two images with one stem would overwrite each
 // other's files: a ConfigError naming both and `outputs` (with STEM standing for the stem).

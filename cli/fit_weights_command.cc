@@ -9,7 +9,7 @@
 #include "app/fit_feature_weights.h"
 #include "cli/cli_options.h"
 #include "cli/commands.h"
-#include "cli/home.h"
+#include "app/home.h"
 #include "pipeline/options_io.h"
 
 namespace attend {

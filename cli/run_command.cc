@@ -2,17 +2,14 @@
 #include <unistd.h>
 
 #include <csignal>
-#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
 
+#include "app/run_attention.h"
 #include "cli/cli_options.h"
 #include "cli/commands.h"
-#include "cli/home.h"
-#include "pipeline/options_io.h"
-#include "pipeline/run.h"
 #include "util/error.h"
 #include "util/timer.h"
 
@@ -67,52 +64,26 @@ void PrintProgress(const RunProgress& progress) {
 }
 
 int Run(const RunArguments& args) {
-  const std::string config_path = args.config.empty() ? DefaultConfigPath() : args.config;
-  AttendOptions options = LoadOptions(config_path, args.sets);
-
-  SequenceOptions& sequence = options.sequence;
-  const bool source_on_command_line = !args.sequence.empty() || !args.left.empty() ||
-                                      !args.side_by_side.empty() || !args.video.empty() ||
-                                      !args.images.empty();
-  if (source_on_command_line) {
-    sequence.folder = args.sequence;
-    sequence.left_video = args.left;
-    sequence.right_video = args.right;
-    sequence.side_by_side_video = args.side_by_side;
-    sequence.video = args.video;
-    sequence.images = args.images;
-  }
-  if (!args.frames.empty()) {
-    const FrameRange range =
-        ParseFrameRange(args.frames, {sequence.first_frame, sequence.last_frame});
-    sequence.first_frame = range.first;
-    sequence.last_frame = range.last;
-  }
-  if (sequence.SourceCount() == 0) sequence.folder = EnsureBundledSequence(args.quiet);
-  // The effective configuration names the source absolutely, so RUN/config.yaml repeats the
-  // run from any folder.
-  for (std::string* path : {&sequence.folder, &sequence.left_video, &sequence.right_video,
-                            &sequence.side_by_side_video, &sequence.video, &sequence.images}) {
-    if (!path->empty()) *path = std::filesystem::absolute(*path).lexically_normal().string();
-  }
-
-  RunRequest request;
-  request.options = options;
+  AttentionRunRequest request;
+  request.config = args.config;
+  request.sets = args.sets;
+  request.source = {args.sequence, args.left, args.right, args.side_by_side, args.video,
+                    args.images};
+  request.frames = args.frames;
+  request.out = args.out;
   request.overwrite = args.overwrite;
-  request.config_path = config_path;
+  request.quiet = args.quiet;
   request.command_line = args.command_line;
-  request.home = AttendHome();
-  // Empty: the run loop names a folder under runs/ once it knows the sequence's name.
-  request.out_dir = !args.out.empty() ? args.out : options.output.dir;
   request.stop = &g_stop_requested;
   const bool show_progress = !args.quiet && isatty(STDERR_FILENO);
   if (show_progress) request.on_progress = PrintProgress;
+  const AttendOptions options = ResolveRunOptions(request);
 
   std::signal(SIGINT, OnStopSignal);
   std::signal(SIGTERM, OnStopSignal);
   RunSummary summary;
   try {
-    summary = RunSequence(request);
+    summary = RunAttention(request, options);
   } catch (...) {
     if (show_progress) std::cerr << "\n";
     throw;

@@ -9,7 +9,7 @@
 #include "app/saliency_maps.h"
 #include "cli/cli_options.h"
 #include "cli/commands.h"
-#include "cli/home.h"
+#include "app/home.h"
 #include "io/sequence.h"
 #include "pipeline/options_io.h"
 #include "util/error.h"

@@ -10,7 +10,7 @@
 #include "app/segment_images.h"
 #include "cli/cli_options.h"
 #include "cli/commands.h"
-#include "cli/home.h"
+#include "app/home.h"
 #include "pipeline/options_io.h"
 #include "util/strings.h"
 

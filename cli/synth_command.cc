@@ -2,10 +2,8 @@
 #include <iostream>
 #include <memory>
 
+#include "app/render_scene.h"
 #include "cli/commands.h"
-#include "synth/render_sequence.h"
-#include "synth/scene.h"
-#include "util/timer.h"
 
 namespace attend {
 
@@ -21,15 +19,16 @@ struct SynthArguments {
 };
 
 int Synth(const SynthArguments& args) {
-  const Scene scene = LoadScene(args.scene);
-  SynthOptions options;
-  if (args.seed >= 0) options.seed = static_cast<std::uint64_t>(args.seed);
-  if (args.frames >= 0) options.frames = args.frames;
-  options.overwrite = args.overwrite;
-  const Stopwatch watch;
-  const SynthSummary summary = RenderSequence(scene, args.out, options);
+  RenderSceneRequest request;
+  request.scene = args.scene;
+  request.out = args.out;
+  if (args.seed >= 0) request.seed = static_cast<std::uint64_t>(args.seed);
+  if (args.frames >= 0) request.frames = args.frames;
+  request.overwrite = args.overwrite;
+  const RenderSceneResult result = RenderScene(request);
   if (!args.quiet) {
-    std::cout << summary.BriefReport() << " in " << static_cast<int>(watch.ElapsedMs()) << " ms\n";
+    std::cout << result.summary.BriefReport() << " in " << static_cast<int>(result.milliseconds)
+              << " ms\n";
   }
   return 0;
 }

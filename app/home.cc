@@ -1,4 +1,4 @@
-#include "cli/home.h"
+#include "app/home.h"
 
 #include <unistd.h>
 

@@ -1,5 +1,5 @@
-// Where `attend` finds its bundled files (configs/, sequences/): $ATTEND_HOME, or the source
-// tree it was built from.
+// Where attend finds its bundled files (configs/, sequences/): $ATTEND_HOME, or the source
+// tree it was built from; and the bundled default sequence.
 #pragma once
 
 #include <string>

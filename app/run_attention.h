@@ -1,0 +1,52 @@
+// The controller of `attend run` (SPEC 3.2, 3.3): the attention pipeline over a sequence into a
+// run folder. It loads the configuration, resolves the source (the request's, else the
+// configuration's, else the bundled sequence), names it absolutely so that RUN/config.yaml
+// repeats the run from any folder, and runs the loop (pipeline/run.h). The command only
+// parses its arguments, installs the signal handlers and prints.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "pipeline/run.h"
+
+namespace attend {
+
+// A source given beside the configuration (SequenceOptions: folder, left and right videos,
+// side-by-side video, video, images): any of them but right_video alone replaces the
+// configuration's whole source.
+struct RunSource {
+  std::string folder;
+  std::string left_video;
+  std::string right_video;
+  std::string side_by_side_video;
+  std::string video;
+  std::string images;
+};
+
+struct AttentionRunRequest {
+  std::string config;              // the configuration file; "": DefaultConfigPath()
+  std::vector<std::string> sets;   // key=value overrides, as --set
+  RunSource source;
+  std::string frames;              // FIRST:LAST over the configuration's range; "": as it is
+  std::string out;                 // the run folder; "": output.dir, else one under runs/
+  bool overwrite = false;
+  bool quiet = false;              // no notice while the bundled sequence renders
+  std::string command_line;        // recorded in the summary
+  const std::atomic<bool>* stop = nullptr;              // finish the frame, then stop
+  std::function<void(const RunProgress&)> on_progress;  // after every frame
+};
+
+// The configuration `request` makes: loaded with its overrides, its source and frame range
+// replaced as asked, the bundled sequence when there is no source, every source path absolute.
+// ConfigError for a bad file, key or value.
+AttendOptions ResolveRunOptions(const AttentionRunRequest& request);
+
+// Runs `options` (ResolveRunOptions of `request`) as `request` says (RunSequence): the run
+// folder's summary. Errors as RunSequence's. Resolving first lets a caller load the
+// configuration and render the bundled sequence before it installs its signal handlers.
+RunSummary RunAttention(const AttentionRunRequest& request, const AttendOptions& options);
+
+}  // namespace attend
