@@ -171,8 +171,9 @@ void AddDisparityCommand(CLI::App& app, const std::string&, CommandAction* actio
       ->needs(gt);
   AddSetOption(command, &args->sets,
                "Set an option, the value parsed as YAML: --set disparity.KEY=VALUE with KEY "
-               "one of max_disparity, window, subpixel, left_right_check, lr_tolerance, "
-               "smoothness (hard or penalty), jump_penalty (repeatable)");
+               "one of " +
+                   Join(DisparityOptionKeys(), ", ") +
+                   " (smoothness: hard or penalty; repeatable)");
   command->callback([args, action, subpixel, lr_check] {
     const bool subpixel_given = subpixel->count() > 0;
     const bool lr_check_given = lr_check->count() > 0;
