@@ -301,23 +301,17 @@ std::vector<TargetSummary> SummariseTargets(const std::vector<FrameRecord>& fram
   return targets;
 }
 
-RunComparison CompareRuns(const RunData& a, const RunData& b) {
-  RunComparison comparison;
-  comparison.run_a = a.dir;
-  comparison.run_b = b.dir;
-  comparison.frames_a = static_cast<int>(a.frames.size());
-  comparison.frames_b = static_cast<int>(b.frames.size());
-  comparison.config = DiffConfigs(a.config, b.config);
-  if (!a.sequence.empty() && !b.sequence.empty() && a.sequence != b.sequence) {
-    comparison.notes.push_back("the runs are of different sequences (" + a.sequence + ", " +
-                               b.sequence + "): frames are compared by index");
-  }
-  if (a.interrupted) comparison.notes.push_back(a.dir + " was interrupted");
-  if (b.interrupted) comparison.notes.push_back(b.dir + " was interrupted");
+namespace {
 
+// The frames both runs have, by index: their targets, matched pairs and saliency metrics,
+// with notes on what could not be compared. `pair_frames`: the frames each (A id, B id) pair
+// was matched in.
+void CompareFrames(const RunData& a, const RunData& b, RunComparison* comparison_out,
+                   std::map<std::pair<int, int>, int>* pair_frames_out) {
+  RunComparison& comparison = *comparison_out;
+  std::map<std::pair<int, int>, int>& pair_frames = *pair_frames_out;
   std::map<int, const FrameRecord*> frames_b;
   for (const FrameRecord& record : b.frames) frames_b[record.frame] = &record;
-  std::map<std::pair<int, int>, int> pair_frames;
   int missing_maps = 0, resized = 0;
   double sums[3] = {0, 0, 0};
   int counts[3] = {0, 0, 0};
@@ -371,8 +365,13 @@ RunComparison CompareRuns(const RunData& a, const RunData& b) {
     const auto mean = [&](int i) { return counts[i] > 0 ? sums[i] / counts[i] : kNaN; };
     comparison.mean_saliency = SaliencyMetrics{mean(0), mean(1), mean(2)};
   }
+}
 
-  // Targets: each of A with the one of B it was paired with most often, one to one.
+// Targets: each of A with the one of B it was paired with most often, one to one.
+void MatchTargets(const RunData& a, const RunData& b,
+                  const std::map<std::pair<int, int>, int>& pair_frames,
+                  RunComparison* comparison_out) {
+  RunComparison& comparison = *comparison_out;
   comparison.targets_a = SummariseTargets(a.frames);
   comparison.targets_b = SummariseTargets(b.frames);
   std::vector<std::pair<std::pair<int, int>, int>> pairs(pair_frames.begin(), pair_frames.end());
@@ -402,21 +401,45 @@ RunComparison CompareRuns(const RunData& a, const RunData& b) {
   for (const TargetSummary& target : comparison.targets_b) {
     if (used_b.count(target.id) == 0) comparison.matches.push_back({-1, target.id, 0});
   }
+}
 
-  // Timings: the stages of A in order, then those only in B.
-  for (const auto& [stage, ms] : a.mean_timings_ms) comparison.timings.push_back({stage, ms, {}});
+// Timings: the stages of A in order, then those only in B.
+void CompareTimings(const RunData& a, const RunData& b, RunComparison* comparison) {
+  for (const auto& [stage, ms] : a.mean_timings_ms) comparison->timings.push_back({stage, ms, {}});
   for (const auto& [stage, ms] : b.mean_timings_ms) {
     // The binding is captured through a reference of its own: clang before 16 cannot capture
     // a structured binding (C++20 P1091R3), and the fuzz build uses clang 14.
     const auto found =
-        std::find_if(comparison.timings.begin(), comparison.timings.end(),
+        std::find_if(comparison->timings.begin(), comparison->timings.end(),
                      [&stage = stage](const StageTiming& t) { return t.stage == stage; });
-    if (found != comparison.timings.end()) {
+    if (found != comparison->timings.end()) {
       found->b = ms;
     } else {
-      comparison.timings.push_back({stage, {}, ms});
+      comparison->timings.push_back({stage, {}, ms});
     }
   }
+}
+
+}  // namespace
+
+RunComparison CompareRuns(const RunData& a, const RunData& b) {
+  RunComparison comparison;
+  comparison.run_a = a.dir;
+  comparison.run_b = b.dir;
+  comparison.frames_a = static_cast<int>(a.frames.size());
+  comparison.frames_b = static_cast<int>(b.frames.size());
+  comparison.config = DiffConfigs(a.config, b.config);
+  if (!a.sequence.empty() && !b.sequence.empty() && a.sequence != b.sequence) {
+    comparison.notes.push_back("the runs are of different sequences (" + a.sequence + ", " +
+                               b.sequence + "): frames are compared by index");
+  }
+  if (a.interrupted) comparison.notes.push_back(a.dir + " was interrupted");
+  if (b.interrupted) comparison.notes.push_back(b.dir + " was interrupted");
+
+  std::map<std::pair<int, int>, int> pair_frames;
+  CompareFrames(a, b, &comparison, &pair_frames);
+  MatchTargets(a, b, pair_frames, &comparison);
+  CompareTimings(a, b, &comparison);
   return comparison;
 }
 
