@@ -136,6 +136,23 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   }
 
   stage.Restart();
+  Saliency(frame);
+  record->timings.Add("saliency", stage.ElapsedMs());
+
+  detections_.clear();
+  for (const FeatureResult& result : features_.results()) {
+    detections_.insert(detections_.end(), result.detections.begin(), result.detections.end());
+  }
+  attention_.Select(frame.left, context_.SkinDistance(attention_.skin_model()), tracked_, saliency_,
+                    context_.Regions(), &attended_, detections_);
+  record->timings.Add("track", attended_.track_ms);
+  record->timings.Add("inhibit", attended_.inhibit_ms);
+  record->timings.Add("select", attended_.select_ms);
+  record->inhibited_fraction = attended_.inhibited_fraction;
+  RecordTargets(record);
+}
+
+void FramePipeline::Saliency(const StereoFrame& frame) {
   const std::vector<FeatureResult>& results = features_.results();
   for (size_t i = 0; i < results.size(); ++i) {
     const ChosenNormalisation& chosen = normalisers_[i];
@@ -168,18 +185,9 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
     CombineMaps(normalised_, frame_weights_, context_.size(), &saliency_);
   }
   SmoothSaliency(options_.saliency, &saliency_);
-  record->timings.Add("saliency", stage.ElapsedMs());
+}
 
-  detections_.clear();
-  for (const FeatureResult& result : results) {
-    detections_.insert(detections_.end(), result.detections.begin(), result.detections.end());
-  }
-  attention_.Select(frame.left, context_.SkinDistance(attention_.skin_model()), tracked_, saliency_,
-                    context_.Regions(), &attended_, detections_);
-  record->timings.Add("track", attended_.track_ms);
-  record->timings.Add("inhibit", attended_.inhibit_ms);
-  record->timings.Add("select", attended_.select_ms);
-  record->inhibited_fraction = attended_.inhibited_fraction;
+void FramePipeline::RecordTargets(FrameRecord* record) const {
   record->targets.clear();
   for (const AttendedTarget& target : attended_.targets) {
     TargetRecord out;

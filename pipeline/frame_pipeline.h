@@ -51,6 +51,11 @@ class FramePipeline {
   int targets_attended() const { return attention_.targets_attended(); }
 
  private:
+  // The feature maps normalised, weighted and combined into saliency_ (SPEC 2.3).
+  void Saliency(const StereoFrame& frame);
+  // The attention stage's targets as the frame's records (SPEC 3.3).
+  void RecordTargets(FrameRecord* record) const;
+
   const AttendOptions options_;
   LazyFrameContext context_;
   FeatureSet features_;
