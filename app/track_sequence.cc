@@ -90,31 +90,10 @@ class OverlayDump final : public TrackObserver {
   fs::path out_;
 };
 
-}  // namespace
-
-std::unique_ptr<TrackObserver> MakeMaskDump(const std::string& out) {
-  return std::make_unique<MaskDump>(out);
-}
-
-std::unique_ptr<TrackObserver> MakeOverlayDump(const std::string& out) {
-  return std::make_unique<OverlayDump>(out);
-}
-
-nlohmann::json TrackSequence(const TrackRequest& request,
-                             const std::vector<TrackObserver*>& observers) {
-  ATTEND_CHECK(request.box_texts.size() == request.boxes.size()) << "one text per box";
+// Targets start on the first frame of the range, one per box, ids 1, 2, ... in order. Every
+// box must lie inside the frame (a usage error, like a box of zero size) before any starts.
+void StartOnBoxes(const TrackRequest& request, const StereoFrame& frame, TargetTracker* tracker) {
   const std::vector<cv::Rect>& boxes = request.boxes;
-  SequenceOptions source_options;
-  const std::unique_ptr<FrameSource> source = OpenTrackSource(request, &source_options);
-  StereoFrame frame;
-  if (!source->Next(&frame)) {
-    throw InputError(source_options.Describe() + ": no frame in the range " + request.range_text);
-  }
-  const int first_frame = frame.index;
-
-  // Targets start on the first frame of the range, one per box, ids 1, 2, ... in order. Every
-  // box must lie inside the frame (a usage error, like a box of zero size) before any starts.
-  const std::unique_ptr<TargetTracker> tracker = TargetTracker::Create(request.options);
   const cv::Rect image(0, 0, frame.left.cols, frame.left.rows);
   auto what = [&](size_t i) {
     return request.box_texts[i] + " (target " + std::to_string(i + 1) + ", frame " +
@@ -139,6 +118,32 @@ nlohmann::json TrackSequence(const TrackRequest& request,
                      ": no target: no region of the frame's over-segmentation lies mostly inside "
                      "the box, or the target is too thin for a template");
   }
+}
+
+}  // namespace
+
+std::unique_ptr<TrackObserver> MakeMaskDump(const std::string& out) {
+  return std::make_unique<MaskDump>(out);
+}
+
+std::unique_ptr<TrackObserver> MakeOverlayDump(const std::string& out) {
+  return std::make_unique<OverlayDump>(out);
+}
+
+nlohmann::json TrackSequence(const TrackRequest& request,
+                             const std::vector<TrackObserver*>& observers) {
+  ATTEND_CHECK(request.box_texts.size() == request.boxes.size()) << "one text per box";
+  const std::vector<cv::Rect>& boxes = request.boxes;
+  SequenceOptions source_options;
+  const std::unique_ptr<FrameSource> source = OpenTrackSource(request, &source_options);
+  StereoFrame frame;
+  if (!source->Next(&frame)) {
+    throw InputError(source_options.Describe() + ": no frame in the range " + request.range_text);
+  }
+  const int first_frame = frame.index;
+
+  const std::unique_ptr<TargetTracker> tracker = TargetTracker::Create(request.options);
+  StartOnBoxes(request, frame, tracker.get());
 
   const fs::path out(request.out);
   PrepareOutputFolder(request.out, request.overwrite,
