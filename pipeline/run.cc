@@ -123,6 +123,21 @@ class OverlayDump final : public RunObserver {
   RunFolder* folder_;
 };
 
+// The scanpath: each target's centre where it was first attended, in selection order.
+void AppendScanpath(const FrameRecord& input, nlohmann::ordered_json* scanpath) {
+  for (const int id : input.new_ids) {
+    for (const TargetRecord& target : input.targets) {
+      if (target.id != id) continue;
+      const cv::Rect& b = target.bbox;
+      scanpath->push_back({{"frame", input.frame},
+                           {"id", id},
+                           {"x", b.x + b.width / 2.0},
+                           {"y", b.y + b.height / 2.0},
+                           {"bbox", {b.x, b.y, b.width, b.height}}});
+    }
+  }
+}
+
 }  // namespace
 
 std::string RunSummary::BriefReport() const {
@@ -215,18 +230,7 @@ RunSummary RunSequence(const RunRequest& request) {
       const FrameRecord input =
           InputFromWorking(record, info.scale_x, info.scale_y, info.native_size);
       folder.AppendFrame(input);
-      // The scanpath: each target's centre where it was first attended, in selection order.
-      for (const int id : input.new_ids) {
-        for (const TargetRecord& target : input.targets) {
-          if (target.id != id) continue;
-          const cv::Rect& b = target.bbox;
-          scanpath.push_back({{"frame", input.frame},
-                              {"id", id},
-                              {"x", b.x + b.width / 2.0},
-                              {"y", b.y + b.height / 2.0},
-                              {"bbox", {b.x, b.y, b.width, b.height}}});
-        }
-      }
+      AppendScanpath(input, &scanpath);
 
       for (const auto& [name, ms] : record.timings.stages()) totals.Add(name, ms);
       ++summary.frames;
