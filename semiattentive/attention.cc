@@ -5,6 +5,7 @@
 #include <memory>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
+#include <utility>
 
 #include "features/skin.h"
 #include "pyramid/similarity.h"
@@ -216,7 +217,9 @@ struct AttentionStage::Impl {
                      double max_area, std::vector<int>* members, double* seed_area);
   // The label of the detection that overlaps `box` most (label_overlap), "" when none does.
   std::string LabelOf(const cv::Rect& box, const std::vector<Detection>& detections) const;
-  std::vector<Active>::iterator ActiveOfTracker(int tracker_id);
+  // The target its tracker follows under `tracker_id`; nullptr when none.
+  const Active* ActiveOfTracker(int tracker_id) const;
+  Active* ActiveOfTracker(int tracker_id);
 
   AttentionOptions options_;
   SkinModel skin_model_;
@@ -261,9 +264,14 @@ void AttentionStage::Impl::Track(const cv::Mat& bgr, const cv::Mat& skin_distanc
   tracked->milliseconds = stopwatch.ElapsedMs();
 }
 
-std::vector<Active>::iterator AttentionStage::Impl::ActiveOfTracker(int tracker_id) {
-  return std::find_if(active_.begin(), active_.end(),
-                      [&](const Active& a) { return a.tracker_id == tracker_id; });
+const Active* AttentionStage::Impl::ActiveOfTracker(int tracker_id) const {
+  const auto found = std::find_if(active_.begin(), active_.end(),
+                                  [&](const Active& a) { return a.tracker_id == tracker_id; });
+  return found != active_.end() ? &*found : nullptr;
+}
+
+Active* AttentionStage::Impl::ActiveOfTracker(int tracker_id) {
+  return const_cast<Active*>(std::as_const(*this).ActiveOfTracker(tracker_id));
 }
 
 void AttentionStage::Impl::Select(const Frame& in, AttentionFrame* frame) {
@@ -309,9 +317,8 @@ std::vector<int> AttentionStage::Impl::MatchDetections(const Frame& in) const {
   std::vector<cv::Rect> target_boxes, detection_boxes;
   for (size_t r = 0; r < in.tracked.results.size(); ++r) {
     const TrackResult& result = in.tracked.results[r];
-    auto active = std::find_if(active_.begin(), active_.end(),
-                               [&](const Active& a) { return a.tracker_id == result.id; });
-    if (active == active_.end() || active->skin || result.state != TrackState::kFound) continue;
+    const Active* active = ActiveOfTracker(result.id);
+    if (active == nullptr || active->skin || result.state != TrackState::kFound) continue;
     rows.push_back(static_cast<int>(r));
     target_boxes.push_back(result.box & in.image);
   }
@@ -340,15 +347,15 @@ void AttentionStage::Impl::FollowTargets(const Frame& in, AttentionFrame* frame)
   std::vector<int> removed;  // tracker ids
   for (size_t r = 0; r < in.tracked.results.size(); ++r) {
     const TrackResult& result = in.tracked.results[r];
-    auto active = ActiveOfTracker(result.id);
-    if (active == active_.end()) continue;
+    Active* active = ActiveOfTracker(result.id);
+    if (active == nullptr) continue;
     AttendedTarget target;
     target.id = active->id;
     target.box = result.box & in.image;
     target.skin = active->skin;
     const cv::Mat mask = result.state == TrackState::kFound ? tracker_->Mask(result.id) : cv::Mat();
     if (result.state == TrackState::kFound && !mask.empty()) {
-      FollowFound(in, result, mask, detection_of[r], &*active, &target, &removed);
+      FollowFound(in, result, mask, detection_of[r], active, &target, &removed);
     } else if (result.state == TrackState::kOccluded) {
       target.state = TargetState::kOccluded;
       ++active->unseen;
