@@ -47,8 +47,11 @@ void PrepareOutputFolder(const std::string& folder, bool overwrite, const Output
 void ReplaceFile(const std::string& path, const std::string& what,
                  const std::function<bool(const std::string& temporary)>& write) {
   const fs::path target(path);
-  const fs::path temporary =
-      target.parent_path() / ("." + target.filename().string() + ".tmp-" + std::to_string(getpid()));
+  std::string name = ".";
+  name += target.filename().string();
+  name += ".tmp-";
+  name += std::to_string(getpid());
+  const fs::path temporary = target.parent_path() / name;
   const auto fail = [&](const std::string& reason) {
     std::error_code ignored;
     fs::remove(temporary, ignored);
