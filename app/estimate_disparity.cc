@@ -58,7 +58,7 @@ nlohmann::json EstimateDisparity(const DisparityRequest& request) {
                              {"subpixel", options.subpixel},
                              {"left_right_check", options.left_right_check},
                              {"lr_tolerance", options.lr_tolerance},
-                             {"smoothness", options.smoothness},
+                             {"smoothness", DisparitySmoothnessName(options.smoothness)},
                              {"jump_penalty", options.jump_penalty}}}};
   if (!ground_truth.empty()) {
     const BadPixelRates rates = EvaluateDisparity(disparity, ground_truth);

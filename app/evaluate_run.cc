@@ -9,6 +9,7 @@
 #include "eval/disparity_scores.h"
 #include "eval/mot_metrics.h"
 #include "eval/run_evaluation.h"
+#include "features/disparity_feature.h"
 #include "io/ground_truth.h"
 #include "io/pfm.h"
 #include "pipeline/options_io.h"
@@ -65,8 +66,7 @@ nlohmann::ordered_json DisparityScores(const std::string& run, const std::string
   if (!fs::is_directory(maps) || !fs::is_directory(truth)) return nullptr;
   int max_disparity = DisparityOptions{}.max_disparity;
   for (const FeatureSpec& spec : options.features) {
-    if (spec.name == "disparity")
-      max_disparity = spec.params.GetInt("max_disparity", max_disparity);
+    if (spec.name == "disparity") max_disparity = ReadDisparityOptions(spec.params).max_disparity;
   }
   double bad1 = 0.0, bad2 = 0.0;
   int frames = 0;

@@ -43,6 +43,7 @@
 #include "bench/bench_common.h"
 #include "eval/disparity_scores.h"
 #include "stereo/disparity.h"
+#include "stereo/disparity_internal.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 #include "util/timer.h"

@@ -113,6 +113,14 @@ int Disparity(const DisparityArguments& args, bool subpixel_given, bool lr_check
   return 0;
 }
 
+// The help of the flag that sets the field `key`: its line of the field table and its default.
+std::string FlagHelp(std::string_view key) {
+  for (const FieldDescription& line : DescribeFields(DisparityOptions::Fields())) {
+    if (line.key == key) return line.doc + " (default " + line.fallback + ")";
+  }
+  return "";
+}
+
 }  // namespace
 
 void AddDisparityCommand(CLI::App& app, const std::string&, CommandAction* action) {
@@ -134,12 +142,8 @@ void AddDisparityCommand(CLI::App& app, const std::string&, CommandAction* actio
                    "Disparity map to write (.pfm; its folder is created; an existing file is "
                    "replaced only once the new map is complete)")
       ->required();
-  command->add_option("--max-disparity", args->max_disparity,
-                      "D: disparities 0..D-1 are searched; below the image width (default " +
-                          std::to_string(DisparityOptions{}.max_disparity) + ")");
-  command->add_option("--window", args->window,
-                      "Side of the square ZNCC window, odd (default " +
-                          std::to_string(DisparityOptions{}.window) + ")");
+  command->add_option("--max-disparity", args->max_disparity, FlagHelp("max_disparity"));
+  command->add_option("--window", args->window, FlagHelp("window"));
   CLI::Option* subpixel =
       command->add_flag("--subpixel", args->subpixel, "Sub-pixel refinement by a parabola fit");
   CLI::Option* lr_check = command->add_flag(
@@ -170,10 +174,10 @@ void AddDisparityCommand(CLI::App& app, const std::string&, CommandAction* actio
           "POSITIVE"))
       ->needs(gt);
   AddSetOption(command, &args->sets,
-               "Set an option, the value parsed as YAML: --set disparity.KEY=VALUE with KEY "
-               "one of " +
-                   Join(DisparityOptionKeys(), ", ") +
-                   " (smoothness: hard or penalty; repeatable)");
+               "Set an option, the value parsed as YAML (repeatable): --set "
+               "disparity.KEY=VALUE, with KEY one of\n" +
+                   FormatFieldDescriptions(DescribeFields(DisparityOptions::Fields()),
+                                           "disparity."));
   command->callback([args, action, subpixel, lr_check] {
     const bool subpixel_given = subpixel->count() > 0;
     const bool lr_check_given = lr_check->count() > 0;

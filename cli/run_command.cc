@@ -10,6 +10,7 @@
 #include "app/run_attention.h"
 #include "cli/cli_options.h"
 #include "cli/commands.h"
+#include "pipeline/options_io.h"
 #include "util/error.h"
 #include "util/timer.h"
 
@@ -42,6 +43,7 @@ struct RunArguments {
   std::vector<std::string> sets;
   std::string frames;
   bool quiet = false;
+  bool list_keys = false;
   std::string command_line;
 };
 
@@ -64,6 +66,12 @@ void PrintProgress(const RunProgress& progress) {
 }
 
 int Run(const RunArguments& args) {
+  if (args.list_keys) {
+    std::cout << "The configuration's keys (configs/README.md): type, range, default and what "
+                 "each does.\n"
+              << FormatFieldDescriptions(DescribeConfiguration());
+    return 0;
+  }
   AttentionRunRequest request;
   request.config = args.config;
   request.sets = args.sets;
@@ -127,7 +135,10 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
   run->add_flag("--overwrite", args->overwrite, "Replace a previous run in a non-empty --out");
   AddSetOption(run, &args->sets,
                "Override a configuration key, the value parsed as YAML: --set select.max_new=3, "
-               "--set 'output.dump=[overlay]', --set features.skin.weight=0.5");
+               "--set 'output.dump=[overlay]', --set features.skin.weight=0.5; --list-keys "
+               "lists the keys");
+  run->add_flag("--list-keys", args->list_keys,
+                "Print every configuration key with its type, range, default and a line of doc, and exit");
   run->add_option("--frames", args->frames, "Frame range FIRST:LAST, inclusive (10:50, 10:, :99)");
   run->add_flag("--quiet", args->quiet, "No progress line or report; errors only");
   args->command_line = command_line;

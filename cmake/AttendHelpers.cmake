@@ -27,7 +27,8 @@ endfunction()
 function(attend_export_plugin_api target)
   set_target_properties(${target} PROPERTIES ENABLE_EXPORTS ON)
   set(archives)
-  foreach(library attend_features attend_config attend_pyramid attend_colour attend_util)
+  foreach(library attend_features attend_saliency attend_config attend_pyramid attend_colour
+                  attend_util)
     list(APPEND archives "$<TARGET_FILE:${library}>")
   endforeach()
   target_link_options(${target} PRIVATE "LINKER:--whole-archive" ${archives}

@@ -31,18 +31,21 @@ struct ObjectTally {
 
 }  // namespace
 
-const FieldRanges<MotOptions>& MotOptions::Ranges() {
-  static const FieldRanges<MotOptions> ranges = {
-      {"match_iou", &MotOptions::match_iou, Range::AboveUpTo(0, 1)},
-      {"min_visible", &MotOptions::min_visible, Range::Closed(0, 1)},
-      {"min_area", &MotOptions::min_area, Range::AtLeast(0)},
-      {"mostly_tracked", &MotOptions::mostly_tracked, Range::Closed(0, 1)},
-      {"mostly_lost", &MotOptions::mostly_lost, Range::Closed(0, 1)}};
-  return ranges;
+const OptionFields<MotOptions>& MotOptions::Fields() {
+  using O = MotOptions;
+  static const OptionFields<MotOptions> fields = {
+      {"match_iou", &O::match_iou, Range::AboveUpTo(0, 1), "a target matches an object at this IoU"},
+      {"min_visible", &O::min_visible, Range::Closed(0, 1),
+       "an object counts in a frame when at least this share of it is visible"},
+      {"min_area", &O::min_area, Range::AtLeast(0), "... and its box holds at least this, px"},
+      {"mostly_tracked", &O::mostly_tracked, Range::Closed(0, 1),
+       "share of an object's frames matched at or above which it is mostly tracked"},
+      {"mostly_lost", &O::mostly_lost, Range::Closed(0, 1), "... below which mostly lost"}};
+  return fields;
 }
 
 std::string MotOptions::Check() const {
-  const std::string error = CheckFieldRanges(*this, Ranges());
+  const std::string error = CheckFieldRanges(*this, Fields());
   if (!error.empty()) return error;
   if (mostly_lost > mostly_tracked) return "mostly_lost must be <= mostly_tracked";
   return "";

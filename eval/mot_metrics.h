@@ -42,7 +42,7 @@
 #include "eval/run_evaluation.h"
 #include "io/ground_truth.h"
 #include "pipeline/frame_record.h"
-#include "util/field_ranges.h"
+#include "util/option_fields.h"
 
 namespace attend {
 
@@ -55,7 +55,7 @@ struct MotOptions {
   double mostly_lost = 0.2;     // ML below
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-  static const FieldRanges<MotOptions>& Ranges();
+  static const OptionFields<MotOptions>& Fields();
 };
 
 struct MotScores {

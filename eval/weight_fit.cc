@@ -14,7 +14,7 @@ namespace {
 void Combine(const FitSample& sample, const std::vector<double>& weights,
              const SaliencyOptions& saliency, cv::Mat* out) {
   const cv::Size size = sample.features[0].size();
-  if (saliency.combination == "product") {
+  if (saliency.combination == SaliencyCombination::kProduct) {
     MultiplyMaps(sample.features, weights, size, out);
   } else {
     CombineMaps(sample.features, weights, size, out);

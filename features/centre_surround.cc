@@ -1,5 +1,7 @@
 #include "features/centre_surround.h"
 
+#include "config/read_fields.h"
+
 #include <opencv2/imgproc.hpp>
 
 namespace attend {
@@ -29,10 +31,11 @@ void MinMaxInPlace(cv::Mat* map) {
 
 }  // namespace
 
-const FieldRanges<CentreSurroundOptions>& CentreSurroundOptions::Ranges() {
-  static const FieldRanges<CentreSurroundOptions> ranges = {
-      {"surround", &CentreSurroundOptions::surround, Range::AboveUpTo(1, 50)}};
-  return ranges;
+const OptionFields<CentreSurroundOptions>& CentreSurroundOptions::Fields() {
+  using O = CentreSurroundOptions;
+  static const OptionFields<CentreSurroundOptions> fields = {
+      {"surround", &O::surround, Range::AboveUpTo(1, 50), "surround sigma over centre sigma"}};
+  return fields;
 }
 
 std::string CentreSurroundOptions::Check() const {
@@ -40,7 +43,7 @@ std::string CentreSurroundOptions::Check() const {
   for (const double c : scales) {
     if (!ScaleRange().Contains(c)) return "scales: each " + ScaleRange().Describe();
   }
-  return CheckFieldRanges(*this, Ranges());
+  return CheckFieldRanges(*this, Fields());
 }
 
 void CentreSurroundMap(const cv::Mat& bgr, const CentreSurroundOptions& options, cv::Mat* out) {
@@ -72,8 +75,7 @@ std::unique_ptr<FeatureMap> CreateCentreSurroundFeature(const ParamBlock& params
   CentreSurroundOptions options;
   options.scales =
       params.GetDoubles("scales", options.scales, CentreSurroundOptions::ScaleRange());
-  options.surround = params.GetDouble("surround", options.surround,
-                                      RangeOf(CentreSurroundOptions::Ranges(), "surround"));
+  ReadFields(params, CentreSurroundOptions::Fields(), &options);
   const std::string error = options.Check();
   if (!error.empty()) params.FailCheck(error);
   return std::make_unique<CentreSurroundFeature>(options);

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "features/feature_map.h"
-#include "util/field_ranges.h"
+#include "util/option_fields.h"
 
 namespace attend {
 
@@ -22,10 +22,10 @@ struct CentreSurroundOptions {
   double surround = 4.0;                         // surround sigma / centre sigma
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-  // The range of each of `scales`, and of the numeric fields (util/field_ranges.h); Check and
+  // The range of each of `scales`, and of the numeric fields (util/option_fields.h); Check and
   // the feature's keys apply them.
   static Range ScaleRange() { return Range::AboveUpTo(0, 200); }
-  static const FieldRanges<CentreSurroundOptions>& Ranges();
+  static const OptionFields<CentreSurroundOptions>& Fields();
 };
 
 // `bgr`: 8-bit BGR. Fills `out` (CV_32FC1, [0, 1]).

@@ -8,7 +8,9 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/objdetect.hpp>
 
+#include "config/read_fields.h"
 #include "util/box.h"
+#include "util/enum_table.h"
 
 namespace attend {
 
@@ -123,50 +125,43 @@ class ObjectFeature final : public FeatureMap {
   std::unique_ptr<ObjectChannel> channel_;
 };
 
-// In the order of DetectorGate.
-const std::vector<std::string>& GateNames() {
-  static const std::vector<std::string> names = {"attended", "frame"};
-  return names;
-}
-
 // The keys both channels share; `defaults` are the channel's own.
 ObjectChannelOptions ReadChannelOptions(const ParamBlock& params,
                                         const ObjectChannelOptions& defaults) {
   ObjectChannelOptions options = defaults;
-  const FieldRanges<ObjectChannelOptions>& ranges = ObjectChannelOptions::Ranges();
-  options.gate =
-      params.GetChoice("gate", GateNames()[static_cast<int>(defaults.gate)], GateNames()) == "frame"
-          ? DetectorGate::kFrame
-          : DetectorGate::kAttended;
-  options.margin = params.GetDouble("margin", options.margin, RangeOf(ranges, "margin"));
-  options.every = params.GetInt("every", options.every, RangeOf(ranges, "every"));
-  options.scan_every =
-      params.GetInt("scan_every", options.scan_every, RangeOf(ranges, "scan_every"));
-  options.min_height =
-      params.GetInt("min_height", options.min_height, RangeOf(ranges, "min_height"));
-  options.max_height =
-      params.GetInt("max_height", options.max_height, RangeOf(ranges, "max_height"));
-  options.blur = params.GetDouble("blur", options.blur, RangeOf(ranges, "blur"));
+  ReadFields(params, ObjectChannelOptions::Fields(), &options);
   const std::string error = options.Check();
   if (!error.empty()) params.FailCheck(error);
   return options;
 }
 
+constexpr EnumTable<DetectorGate, 2> kGates = {{{
+    {DetectorGate::kAttended, "attended"},
+    {DetectorGate::kFrame, "frame"},
+}}};
+
 }  // namespace
 
-const FieldRanges<ObjectChannelOptions>& ObjectChannelOptions::Ranges() {
-  static const FieldRanges<ObjectChannelOptions> ranges = {
-      {"margin", &ObjectChannelOptions::margin, Range::Closed(0, 4)},
-      {"every", &ObjectChannelOptions::every, Range::Closed(1, 1000)},
-      {"scan_every", &ObjectChannelOptions::scan_every, Range::Closed(0, 1000)},
-      {"min_height", &ObjectChannelOptions::min_height, Range::Closed(4, 10000)},
-      {"max_height", &ObjectChannelOptions::max_height, Range::Closed(0, 10000)},
-      {"blur", &ObjectChannelOptions::blur, Range::Closed(0, 1)}};
-  return ranges;
+const OptionFields<ObjectChannelOptions>& ObjectChannelOptions::Fields() {
+  using O = ObjectChannelOptions;
+  static const OptionFields<ObjectChannelOptions> fields = {
+      {"gate", EnumField<&O::gate, kGates>(),
+       "attended: search where attention looked; frame: the whole frame"},
+      {"margin", &O::margin, Range::Closed(0, 4),
+       "a looked-at region's crop grows by this times its size on each side"},
+      {"every", &O::every, Range::Closed(1, 1000), "frame gate: search every this many frames"},
+      {"scan_every", &O::scan_every, Range::Closed(0, 1000),
+       "attended gate: also search the whole frame every this many frames; 0: never"},
+      {"min_height", &O::min_height, Range::Closed(4, 10000), "smallest object searched for, px"},
+      {"max_height", &O::max_height, Range::Closed(0, 10000),
+       "largest object searched for, px; 0: no bound"},
+      {"blur", &O::blur, Range::Closed(0, 1),
+       "sigma of a Gaussian on the map, share of the larger side; 0: none"}};
+  return fields;
 }
 
 std::string ObjectChannelOptions::Check() const {
-  const std::string error = CheckFieldRanges(*this, Ranges());
+  const std::string error = CheckFieldRanges(*this, Fields());
   if (!error.empty()) return error;
   if (max_height != 0 && max_height < min_height) {
     return "max_height must be 0 or at least min_height (" + std::to_string(min_height) + ")";
@@ -174,15 +169,21 @@ std::string ObjectChannelOptions::Check() const {
   return "";
 }
 
-const FieldRanges<HogPeopleOptions>& HogPeopleOptions::Ranges() {
-  static const FieldRanges<HogPeopleOptions> ranges = {
-      {"hit_threshold", &HogPeopleOptions::hit_threshold, Range::Closed(-10, 10)},
-      {"min_neighbours", &HogPeopleOptions::min_neighbours, Range::Closed(0, 100)},
-      {"scale", &HogPeopleOptions::scale, Range::AboveUpTo(1, 2)},
-      {"stride", &HogPeopleOptions::stride, Range::Closed(8, 64)},
-      {"box_width", &HogPeopleOptions::box_width, Range::AboveUpTo(0, 2)},
-      {"box_height", &HogPeopleOptions::box_height, Range::AboveUpTo(0, 2)}};
-  return ranges;
+const OptionFields<HogPeopleOptions>& HogPeopleOptions::Fields() {
+  using O = HogPeopleOptions;
+  static const OptionFields<HogPeopleOptions> fields = {
+      {"model", &O::model, "default: 64x128 (INRIA); daimler: 48x96", &HogPeopleOptions::Models},
+      {"hit_threshold", &O::hit_threshold, Range::Closed(-10, 10),
+       "SVM margin a window needs to count as a hit"},
+      {"min_neighbours", &O::min_neighbours, Range::Closed(0, 100),
+       "a detection needs more than this many overlapping hit windows"},
+      {"scale", &O::scale, Range::AboveUpTo(1, 2), "step between pyramid levels"},
+      {"stride", &O::stride, Range::Closed(8, 64), "window stride, px, a multiple of 8"},
+      {"box_width", &O::box_width, Range::AboveUpTo(0, 2),
+       "the person's share of the window's width"},
+      {"box_height", &O::box_height, Range::AboveUpTo(0, 2),
+       "the person's share of the window's height"}};
+  return fields;
 }
 
 const std::vector<std::string>& HogPeopleOptions::Models() {
@@ -201,24 +202,24 @@ HogPeopleOptions HogPeopleOptions::ForModel(const std::string& model) {
 }
 
 std::string HogPeopleOptions::Check() const {
-  const std::string error = CheckFieldRanges(*this, Ranges());
+  const std::string error = CheckFieldRanges(*this, Fields());
   if (!error.empty()) return error;
-  if (std::find(Models().begin(), Models().end(), model) == Models().end()) {
-    return "model must be default or daimler, got " + model;
-  }
   // OpenCV's HOG moves the window in steps of its block stride, 8 px.
   if (stride % 8 != 0) return "stride must be a multiple of 8";
   return "";
 }
 
-const FieldRanges<FaceCascadeOptions>& FaceCascadeOptions::Ranges() {
-  static const FieldRanges<FaceCascadeOptions> ranges = {
-      {"min_neighbours", &FaceCascadeOptions::min_neighbours, Range::Closed(0, 100)},
-      {"scale", &FaceCascadeOptions::scale, Range::AboveUpTo(1, 2)}};
-  return ranges;
+const OptionFields<FaceCascadeOptions>& FaceCascadeOptions::Fields() {
+  using O = FaceCascadeOptions;
+  // `model` is a path the feature resolves itself (CreateFacesFeature).
+  static const OptionFields<FaceCascadeOptions> fields = {
+      {"min_neighbours", &O::min_neighbours, Range::Closed(0, 100),
+       "a detection needs more than this many overlapping hits"},
+      {"scale", &O::scale, Range::AboveUpTo(1, 2), "step between pyramid levels"}};
+  return fields;
 }
 
-std::string FaceCascadeOptions::Check() const { return CheckFieldRanges(*this, Ranges()); }
+std::string FaceCascadeOptions::Check() const { return CheckFieldRanges(*this, Fields()); }
 
 ObjectChannel::ObjectChannel(const ObjectChannelOptions& options, const DetectorGeometry& geometry,
                              std::string label, ObjectSearch search)
@@ -440,17 +441,10 @@ ObjectSearch MakeFaceCascadeSearch(const FaceCascadeOptions& options, const Para
 
 std::unique_ptr<FeatureMap> CreatePeopleFeature(const ParamBlock& params, const FeatureSetup&) {
   const ObjectChannelOptions channel = ReadChannelOptions(params, ObjectChannelOptions());
+  // The model first: it sets the defaults of the box shares (ForModel).
   HogPeopleOptions hog = HogPeopleOptions::ForModel(
       params.GetChoice("model", HogPeopleOptions().model, HogPeopleOptions::Models()));
-  const FieldRanges<HogPeopleOptions>& ranges = HogPeopleOptions::Ranges();
-  hog.hit_threshold =
-      params.GetDouble("hit_threshold", hog.hit_threshold, RangeOf(ranges, "hit_threshold"));
-  hog.min_neighbours =
-      params.GetInt("min_neighbours", hog.min_neighbours, RangeOf(ranges, "min_neighbours"));
-  hog.scale = params.GetDouble("scale", hog.scale, RangeOf(ranges, "scale"));
-  hog.stride = params.GetInt("stride", hog.stride, RangeOf(ranges, "stride"));
-  hog.box_width = params.GetDouble("box_width", hog.box_width, RangeOf(ranges, "box_width"));
-  hog.box_height = params.GetDouble("box_height", hog.box_height, RangeOf(ranges, "box_height"));
+  ReadFields(params, HogPeopleOptions::Fields(), &hog);
   const std::string error = hog.Check();
   if (!error.empty()) params.FailCheck(error);
   return std::make_unique<ObjectFeature>(std::make_unique<ObjectChannel>(
@@ -463,7 +457,6 @@ std::unique_ptr<FeatureMap> CreateFacesFeature(const ParamBlock& params,
   defaults.min_height = 16;
   const ObjectChannelOptions channel = ReadChannelOptions(params, defaults);
   FaceCascadeOptions cascade;
-  const FieldRanges<FaceCascadeOptions>& ranges = FaceCascadeOptions::Ranges();
   const std::string model = params.GetString("model", kDefaultFaceCascade);
   if (model.empty()) params.Fail("model", "must not be empty");
   cascade.model = setup.FindPath(model);
@@ -472,9 +465,7 @@ std::unique_ptr<FeatureMap> CreateFacesFeature(const ParamBlock& params,
         fs::path(model).is_absolute() ? "" : " (looked in " + setup.PlacesSearched() + ")";
     params.Fail("model", "no such file: " + model + places + "; " + kOpencvDataHint);
   }
-  cascade.min_neighbours =
-      params.GetInt("min_neighbours", cascade.min_neighbours, RangeOf(ranges, "min_neighbours"));
-  cascade.scale = params.GetDouble("scale", cascade.scale, RangeOf(ranges, "scale"));
+  ReadFields(params, FaceCascadeOptions::Fields(), &cascade);
   const std::string error = cascade.Check();
   if (!error.empty()) params.FailCheck(error);
   DetectorGeometry geometry;

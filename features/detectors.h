@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "features/feature_map.h"
-#include "util/field_ranges.h"
+#include "util/option_fields.h"
 
 namespace attend {
 
@@ -50,8 +50,8 @@ struct ObjectChannelOptions {
   double blur = 0.0;    // sigma of a Gaussian on the map, share of the larger side; 0: none
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-  // The numeric fields' ranges (util/field_ranges.h), which Check and the configuration apply.
-  static const FieldRanges<ObjectChannelOptions>& Ranges();
+  // The fields (util/option_fields.h), which Check and the configuration apply.
+  static const OptionFields<ObjectChannelOptions>& Fields();
 };
 
 // The HOG pedestrian detector of the `people` channel.
@@ -70,7 +70,7 @@ struct HogPeopleOptions {
   double box_width = 0.52;
   double box_height = 0.8;
   std::string Check() const;
-  static const FieldRanges<HogPeopleOptions>& Ranges();
+  static const OptionFields<HogPeopleOptions>& Fields();
   static const std::vector<std::string>& Models();
   // The defaults with `model` and its box shares.
   static HogPeopleOptions ForModel(const std::string& model);
@@ -82,7 +82,7 @@ struct FaceCascadeOptions {
   int min_neighbours = 3;  // a detection needs more than this many overlapping hits
   double scale = 1.1;      // step between pyramid levels
   std::string Check() const;
-  static const FieldRanges<FaceCascadeOptions>& Ranges();
+  static const OptionFields<FaceCascadeOptions>& Fields();
 };
 
 // The default model of `faces`: the frontal-face Haar cascade of Debian's opencv-data.

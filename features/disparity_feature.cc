@@ -1,5 +1,6 @@
 #include "features/disparity_feature.h"
 
+#include "config/read_fields.h"
 #include "features/skin.h"
 #include "stereo/disparity.h"
 
@@ -28,20 +29,12 @@ class DisparityFeature : public FeatureMap {
 }  // namespace
 
 const std::vector<std::string>& DisparityOptionKeys() {
-  static const std::vector<std::string> keys = {"max_disparity",    "window",       "subpixel",
-                                                "left_right_check", "lr_tolerance", "smoothness",
-                                                "jump_penalty"};
+  static const std::vector<std::string> keys = FieldKeys(DisparityOptions::Fields());
   return keys;
 }
 
 DisparityOptions ReadDisparityOptions(const ParamBlock& block, DisparityOptions options) {
-  options.max_disparity = block.GetInt("max_disparity", options.max_disparity);
-  options.window = block.GetInt("window", options.window);
-  options.subpixel = block.GetBool("subpixel", options.subpixel);
-  options.left_right_check = block.GetBool("left_right_check", options.left_right_check);
-  options.lr_tolerance = block.GetInt("lr_tolerance", options.lr_tolerance);
-  options.smoothness = block.GetString("smoothness", options.smoothness);
-  options.jump_penalty = static_cast<float>(block.GetDouble("jump_penalty", options.jump_penalty));
+  ReadFields(block, DisparityOptions::Fields(), &options);
   const std::string error = options.Check();
   if (!error.empty()) block.FailCheck(error);
   return options;

@@ -13,13 +13,12 @@
 
 namespace attend {
 
-// The keys of DisparityOptions, as the `disparity` feature and `attend disparity --set
-// disparity.KEY=VALUE` name them: max_disparity, window, subpixel, left_right_check,
-// lr_tolerance, smoothness, jump_penalty.
+// The keys of DisparityOptions (DisparityOptions::Fields), as the `disparity` feature and
+// `attend disparity --set disparity.KEY=VALUE` name them.
 const std::vector<std::string>& DisparityOptionKeys();
 
-// The one binding of DisparityOptions: the keys above read from `block` over `options`, then
-// DisparityOptions::Check, whose ranges are the only ones. A wrong type, or a value Check
+// The one binding of DisparityOptions: its fields read from `block` over `options`, then
+// DisparityOptions::Check. A wrong type, or a value Check
 // refuses: ConfigError naming the key and where it was written. Other keys are left to the
 // caller (CheckNoUnknownKeys).
 DisparityOptions ReadDisparityOptions(const ParamBlock& block, DisparityOptions options = {});

@@ -1,6 +1,7 @@
 #include "features/feature_map.h"
 
 #include <filesystem>
+#include <utility>
 
 #include "util/error.h"
 #include "util/strings.h"
@@ -59,27 +60,7 @@ std::vector<std::string> FeatureRegistry::Names() const {
 
 void FeatureRegistry::AddNormalisation(const std::string& name, const std::string& summary,
                                        MapNormalisation normalise) {
-  if (name.empty()) {
-    throw ConfigError(origin_ + ": registers a normalisation with an empty name");
-  }
-  const auto found = normalisations_.find(name);
-  if (found != normalisations_.end()) {
-    throw ConfigError(origin_ + ": registers normalisation '" + name + "', which " +
-                      found->second.origin + " already registered");
-  }
-  normalisations_[name] = NormalisationEntry{name, summary, std::move(normalise), origin_};
-}
-
-const FeatureRegistry::NormalisationEntry* FeatureRegistry::FindNormalisation(
-    const std::string& name) const {
-  const auto found = normalisations_.find(name);
-  return found == normalisations_.end() ? nullptr : &found->second;
-}
-
-std::vector<std::string> FeatureRegistry::NormalisationNames() const {
-  std::vector<std::string> names;
-  for (const auto& [name, entry] : normalisations_) names.push_back(name);
-  return names;
+  normalisations_.Add(name, summary, origin_, std::move(normalise));
 }
 
 std::unique_ptr<FeatureMap> FeatureRegistry::Create(const FeatureSpec& spec,

@@ -17,6 +17,7 @@
 #include "config/feature_list.h"
 #include "config/param_block.h"
 #include "features/frame_context.h"
+#include "saliency/normalisation.h"
 
 namespace attend {
 
@@ -83,10 +84,6 @@ struct FeatureSetup {
 using FeatureFactory =
     std::function<std::unique_ptr<FeatureMap>(const ParamBlock& params, const FeatureSetup& setup)>;
 
-// Turns a feature's map (CV_32FC1, any scale) into `out`: CV_32FC1 of the same size with values
-// in [0, 1], before the weighted sum (SPEC 2.3). A feature chooses one by name
-// (`normalisation:` in its entry); saliency.normalisation is the default.
-using MapNormalisation = std::function<void(const cv::Mat& map, cv::Mat* out)>;
 
 class FeatureRegistry {
  public:
@@ -105,19 +102,15 @@ class FeatureRegistry {
   const Entry* Find(const std::string& name) const;
   std::vector<std::string> Names() const;
 
-  // Normalisations beside the built-in ones (minmax and local_maxima, saliency/saliency.h),
-  // which the pipeline adds; a plugin library adds its own in its register function. A name
-  // already taken: ConfigError naming both origins.
-  struct NormalisationEntry {
-    std::string name;
-    std::string summary;
-    MapNormalisation normalise;
-    std::string origin;
-  };
+  // Adds a normalisation (saliency/normalisation.h: it turns a feature's map, CV_32FC1 of any
+  // scale, into CV_32FC1 of the same size in [0, 1]) under the current origin: a plugin
+  // library adds its own in its register function, and `saliency.normalisation` or a
+  // feature's `normalisation:` names it. A name already taken, built in or by another library:
+  // ConfigError naming both.
   void AddNormalisation(const std::string& name, const std::string& summary,
                         MapNormalisation normalise);
-  const NormalisationEntry* FindNormalisation(const std::string& name) const;
-  std::vector<std::string> NormalisationNames() const;
+  // Every normalisation: the built-in ones and the libraries'.
+  const NormalisationRegistry& normalisations() const { return normalisations_; }
 
   // Creates the plugin of `spec` and checks that it read all of its parameters. An unknown
   // name: ConfigError at the entry's `name`, with the closest known name and the full list.
@@ -125,7 +118,7 @@ class FeatureRegistry {
 
  private:
   std::map<std::string, Entry> entries_;
-  std::map<std::string, NormalisationEntry> normalisations_;
+  NormalisationRegistry normalisations_;
   std::string origin_ = "built-in";
 };
 

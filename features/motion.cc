@@ -1,5 +1,7 @@
 #include "features/motion.h"
 
+#include "config/read_fields.h"
+
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -45,18 +47,24 @@ class MotionFeature final : public FeatureMap {
 
 }  // namespace
 
-const FieldRanges<MotionOptions>& MotionOptions::Ranges() {
-  static const FieldRanges<MotionOptions> ranges = {
-      {"blur", &MotionOptions::blur, Range::Closed(0, 50)},
-      {"rate", &MotionOptions::rate, Range::AboveUpTo(0, 1)},
-      {"min_change", &MotionOptions::min_change, Range::Closed(0, 255)},
-      {"noise_factor", &MotionOptions::noise_factor, Range::Closed(0, 100)},
-      {"window", &MotionOptions::window, Range::Closed(1, 201)}};
-  return ranges;
+const OptionFields<MotionOptions>& MotionOptions::Fields() {
+  using O = MotionOptions;
+  static const OptionFields<MotionOptions> fields = {
+      {"blur", &O::blur, Range::Closed(0, 50), "sigma of the Gaussian on the luminance, px"},
+      {"rate", &O::rate, Range::AboveUpTo(0, 1),
+       "background update rate; 1: the previous frame"},
+      {"min_change", &O::min_change, Range::Closed(0, 255),
+       "luminance change always treated as noise, grey levels"},
+      {"noise_factor", &O::noise_factor, Range::Closed(0, 100),
+       "change below this many robust noise sigmas is noise"},
+      {"window", &O::window, Range::Closed(1, 201),
+       "side of the box filter on the change, odd, px; 1: none"},
+      {"per_region", &O::per_region, "average the change over each colour region"}};
+  return fields;
 }
 
 std::string MotionOptions::Check() const {
-  const std::string error = CheckFieldRanges(*this, Ranges());
+  const std::string error = CheckFieldRanges(*this, Fields());
   if (!error.empty()) return error;
   if (window % 2 == 0) return "window must be odd";
   return "";
@@ -155,17 +163,9 @@ void MotionDetector::Compute(int frame_index, const cv::Mat& bgr,
 
 std::unique_ptr<FeatureMap> CreateMotionFeature(const ParamBlock& params, const FeatureSetup&) {
   MotionOptions options;
-  const FieldRanges<MotionOptions>& ranges = MotionOptions::Ranges();
-  options.blur = params.GetDouble("blur", options.blur, RangeOf(ranges, "blur"));
-  options.rate = params.GetDouble("rate", options.rate, RangeOf(ranges, "rate"));
-  options.min_change =
-      params.GetDouble("min_change", options.min_change, RangeOf(ranges, "min_change"));
-  options.noise_factor =
-      params.GetDouble("noise_factor", options.noise_factor, RangeOf(ranges, "noise_factor"));
-  options.window = params.GetInt("window", options.window, RangeOf(ranges, "window"));
+  ReadFields(params, MotionOptions::Fields(), &options);
   const std::string error = options.Check();
   if (!error.empty()) params.FailCheck(error);
-  options.per_region = params.GetBool("per_region", options.per_region);
   return std::make_unique<MotionFeature>(options);
 }
 

@@ -22,7 +22,7 @@
 #include <opencv2/core.hpp>
 
 #include "features/feature_map.h"
-#include "util/field_ranges.h"
+#include "util/option_fields.h"
 
 namespace attend {
 
@@ -35,8 +35,8 @@ struct MotionOptions {
   bool per_region = false;    // average the change over each BIP colour region instead
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-  // The numeric fields' ranges (util/field_ranges.h), which Check and the configuration apply.
-  static const FieldRanges<MotionOptions>& Ranges();
+  // The fields (util/option_fields.h), which Check and the configuration apply.
+  static const OptionFields<MotionOptions>& Fields();
 };
 
 // The stateful computation behind the plugin, usable without a FrameContext. `segmentation`

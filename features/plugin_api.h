@@ -23,7 +23,7 @@
 
 #include "features/feature_map.h"
 
-#define ATTEND_PLUGIN_ABI_VERSION 4
+#define ATTEND_PLUGIN_ABI_VERSION 5
 
 extern "C" {
 

@@ -76,20 +76,26 @@ void SkinDistanceMap(const cv::Mat& tsl, const SkinModel& model, cv::Mat* out) {
   }
 }
 
-const FieldRanges<SkinRegionOptions>& SkinRegionOptions::Ranges() {
+const OptionFields<SkinRegionOptions>& SkinRegionOptions::Fields() {
   using O = SkinRegionOptions;
-  static const FieldRanges<SkinRegionOptions> ranges = {
-      {"confident", &O::confident, Range::Closed(0.001, 1)},
-      {"min_confident_share", &O::min_confident_share, Range::Closed(0, 1)},
-      {"max_mean_distance", &O::max_mean_distance, Range::Closed(0, 1)},
-      {"min_solidity", &O::min_solidity, Range::Closed(0, 1)},
-      {"max_aspect_ratio", &O::max_aspect_ratio, Range::Closed(1, 1000)},
-      {"max_area_fraction", &O::max_area_fraction, Range::AboveUpTo(0, 1)},
-      {"min_area", &O::min_area, Range::Closed(1, 1e8)}};
-  return ranges;
+  static const OptionFields<SkinRegionOptions> fields = {
+      {"confident", &O::confident, Range::Closed(0.001, 1),
+       "a pixel is confident skin when d^2 < this x T_s"},
+      {"min_confident_share", &O::min_confident_share, Range::Closed(0, 1),
+       "share of the region's pixels that are confident skin"},
+      {"max_mean_distance", &O::max_mean_distance, Range::Closed(0, 1),
+       "the region's mean of min(1, sqrt(d^2 / T_s)) at most this"},
+      {"min_solidity", &O::min_solidity, Range::Closed(0, 1),
+       "area over the convex hull's area at least this"},
+      {"max_aspect_ratio", &O::max_aspect_ratio, Range::Closed(1, 1000),
+       "long over short side of the minimum-area rectangle at most this"},
+      {"max_area_fraction", &O::max_area_fraction, Range::AboveUpTo(0, 1),
+       "share of the image at most this"},
+      {"min_area", &O::min_area, Range::Closed(1, 1e8), "area at least this, px"}};
+  return fields;
 }
 
-std::string SkinRegionOptions::Check() const { return CheckFieldRanges(*this, Ranges(), ": "); }
+std::string SkinRegionOptions::Check() const { return CheckFieldRanges(*this, Fields(), ": "); }
 
 std::string SkinRegionVerdict::Describe() const {
   char line[256];

@@ -13,7 +13,7 @@
 
 #include "colour/skin_model.h"
 #include "features/feature_map.h"
-#include "util/field_ranges.h"
+#include "util/option_fields.h"
 
 namespace attend {
 
@@ -50,8 +50,8 @@ struct SkinRegionOptions {
   int min_area = 30;                // px: fewer is noise, not a face or a hand
   // "" when valid; otherwise "KEY: what is wrong".
   std::string Check() const;
-  // The numeric fields' ranges (util/field_ranges.h), which Check and the configuration apply.
-  static const FieldRanges<SkinRegionOptions>& Ranges();
+  // The fields (util/option_fields.h), which Check and the configuration apply.
+  static const OptionFields<SkinRegionOptions>& Fields();
 };
 
 // The measurements behind the decision, and the first test that failed.

@@ -481,19 +481,24 @@ int SequenceOptions::SourceCount() const {
          (video.empty() ? 0 : 1) + (images.empty() ? 0 : 1);
 }
 
-const FieldRanges<SequenceOptions>& SequenceOptions::Ranges() {
-  static const FieldRanges<SequenceOptions> ranges = {
-      {"first_frame", &SequenceOptions::first_frame, Range::Closed(0, 1e9)},
-      {"last_frame", &SequenceOptions::last_frame, Range::Closed(-1, 1e9)},
-      {"stride", &SequenceOptions::stride, Range::Closed(1, 1e6)}};
-  return ranges;
-}
-
-const FieldRanges<SequenceOptions>& SequenceOptions::SizeRanges() {
-  static const FieldRanges<SequenceOptions> ranges = {
-      {"width", &SequenceOptions::width, Range::AboveUpTo(0, 16384)},
-      {"height", &SequenceOptions::height, Range::AboveUpTo(0, 16384)}};
-  return ranges;
+const OptionFields<SequenceOptions>& SequenceOptions::Fields() {
+  using O = SequenceOptions;
+  static const OptionFields<SequenceOptions> fields = {
+      {"folder", &O::folder, "sequence folder with left/ and right/ (or left/ alone)"},
+      {"left_video", &O::left_video, "left video of a stereo pair (with right_video)"},
+      {"right_video", &O::right_video, "right video of a stereo pair"},
+      {"side_by_side_video", &O::side_by_side_video, "one video, the left view in its left half"},
+      {"video", &O::video, "a monocular video"},
+      {"images", &O::images, "a plain folder of frames, monocular, in sorted name order"},
+      {"first_frame", &O::first_frame, Range::Closed(0, 1e9), "first frame of the range"},
+      {"last_frame", &O::last_frame, Range::Closed(-1, 1e9),
+       "last frame of the range, inclusive; -1: to the end"},
+      {"stride", &O::stride, Range::Closed(1, 1e6), "take every n-th frame of the range"},
+      {"width", &O::width, Range::AboveUpTo(0, 16384), "working width, px"},
+      {"height", &O::height, Range::AboveUpTo(0, 16384), "working height, px"},
+      {"resize", &O::resize, "fit: keep the aspect ratio; stretch: exactly; native: no scaling",
+       &SequenceOptions::ResizeModes}};
+  return fields;
 }
 
 std::string SequenceOptions::Check() const {
@@ -509,22 +514,21 @@ std::string SequenceOptions::Check() const {
     return left_video.empty() ? "left_video must be set together with right_video"
                               : "right_video must be set together with left_video";
   }
-  const std::string error = CheckFieldRanges(*this, Ranges());
+  // The working size is checked below, and only unless resize is native.
+  SequenceOptions sized = *this;
+  sized.width = SequenceOptions().width;
+  sized.height = SequenceOptions().height;
+  const std::string error = CheckFieldRanges(sized, Fields());
   if (!error.empty()) return error;
   if (last_frame != -1 && last_frame < first_frame) {
     return "last_frame must be -1 (to the end) or >= first_frame (" + std::to_string(first_frame) +
            "), got " + std::to_string(last_frame);
   }
-  const std::vector<std::string>& modes = ResizeModes();
-  if (std::find(modes.begin(), modes.end(), resize) == modes.end()) {
-    return "resize must be one of " + Join(modes, ", ") + ", got '" + resize + "'" +
-           DidYouMean(resize, modes);
-  }
   if (resize != "native") {
-    for (const FieldRange<SequenceOptions>& field : SizeRanges()) {
-      const int side = this->*std::get<int SequenceOptions::*>(field.member);
-      if (!field.range.Contains(side)) {
-        return std::string(field.name) + " " + field.range.DescribeBreach(side) +
+    for (const auto& [name, side] : {std::pair<const char*, int>{"width", width}, {"height", height}}) {
+      const Range& range = RangeOf(Fields(), name);
+      if (!range.Contains(side)) {
+        return std::string(name) + " " + range.DescribeBreach(side) +
                " unless resize is native, got " + std::to_string(side);
       }
     }

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "util/field_ranges.h"
+#include "util/option_fields.h"
 
 namespace attend {
 
@@ -40,11 +40,9 @@ struct SequenceOptions {
 
   // Empty when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-  // The numeric fields' ranges (util/field_ranges.h), which Check and the configuration apply.
-  static const FieldRanges<SequenceOptions>& Ranges();
-  // Those of width and height, which Check applies only unless resize is native (the
-  // configuration always).
-  static const FieldRanges<SequenceOptions>& SizeRanges();
+  // The fields (util/option_fields.h), which Check and the configuration apply; Check applies
+  // the ranges of width and height only unless resize is native (the configuration always).
+  static const OptionFields<SequenceOptions>& Fields();
   // How many sources are set (a video pair counts once).
   int SourceCount() const;
   // The values of `resize`.

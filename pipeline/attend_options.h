@@ -32,6 +32,8 @@ struct OutputOptions {
   std::string Check() const;
   bool Dumps(const std::string& kind) const;
   bool WritesMapFormat(const std::string& format) const;
+  // The fields (util/option_fields.h): the output section's keys.
+  static const OptionFields<OutputOptions>& Fields();
 };
 
 struct AttendOptions {
@@ -50,6 +52,8 @@ struct AttendOptions {
   // Threads for the stages that can share a frame's work (the feature plugins): 0 = one per
   // core, 1 = everything on the calling thread. Results do not depend on it.
   int threads = 0;
+  // The top-level keys plugins and threads (the sections have their structs' tables).
+  static const OptionFields<AttendOptions>& Fields();
 };
 
 }  // namespace attend

@@ -8,7 +8,7 @@
 #include "features/disparity_feature.h"
 #include "features/plugin_loader.h"
 #include "io/skin_files.h"
-#include "saliency/saliency.h"
+#include "saliency/saliency_stage.h"
 #include "util/error.h"
 #include "util/strings.h"
 #include "util/timer.h"
@@ -39,18 +39,41 @@ SkinModel LoadAttentionSkinModel(const std::string& path, const FeatureSetup& se
   }
 }
 
-// A plugin's normalisation must give CV_32FC1 of the map's size with values in [0, 1]; anything
-// else is a configuration error naming the feature and the library (a broken plugin was
-// configured), as for a feature's own map (CheckFeatureOutput).
-void CheckNormalisedMap(const std::string& feature, const std::string& origin,
-                        const cv::Mat& normalised, cv::Size size) {
-  const std::string who = "the normalisation of feature '" + feature + "' (" + origin + ")";
-  if (normalised.type() != CV_32FC1 || normalised.size() != size) {
-    throw ConfigError(who + " returned a map that is not CV_32FC1 of the feature map's size");
+// The normalisation called `name` (`where` names the key for messages); `fail` reports an
+// unknown name.
+template <typename Fail>
+const NormalisationRegistry::Entry* FindNormalisation(const NormalisationRegistry& registry,
+                                                      const std::string& name, Fail&& fail) {
+  const NormalisationRegistry::Entry* entry = registry.Find(name);
+  if (entry == nullptr) {
+    const std::vector<std::string> known = registry.Names();
+    fail("unknown normalisation '" + name + "'" + DidYouMean(name, known) +
+         "; known: " + Join(known, ", "));
   }
-  if (!cv::checkRange(normalised, true, nullptr, 0.0, std::nextafter(1.0, 2.0))) {
-    throw ConfigError(who + " returned values outside [0, 1] or not finite");
+  return entry;
+}
+
+// The saliency stage of the enabled features, each with its normalisation.
+SaliencyStage MakeSaliencyStage(const AttendOptions& options, const FeatureRegistry& registry) {
+  const NormalisationRegistry& normalisations = registry.normalisations();
+  const NormalisationRegistry::Entry* fallback = FindNormalisation(
+      normalisations, options.saliency.normalisation, [](const std::string& message) {
+        throw ConfigError("saliency.normalisation: " + message);
+      });
+  std::vector<SaliencyInput> inputs;
+  for (const FeatureSpec& spec : options.features) {
+    if (!spec.enabled) continue;
+    SaliencyInput input;
+    input.name = spec.name;
+    input.weight = spec.weight;
+    if (!spec.normalisation.empty()) {
+      input.normalisation = *FindNormalisation(
+          normalisations, spec.normalisation,
+          [&spec](const std::string& message) { spec.params.Fail("normalisation", message); });
+    }
+    inputs.push_back(input);
   }
+  return SaliencyStage(options.saliency, *fallback, std::move(inputs));
 }
 
 }  // namespace
@@ -60,45 +83,13 @@ FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry
     : options_(options),
       context_(options.segmentation),
       features_(options.features, registry, setup),
+      saliency_(MakeSaliencyStage(options, registry)),
       attention_(options.attention, LoadAttentionSkinModel(options.attention.skin_model, setup)) {
   // The run's disparity (FrameContext::disparity_options) is the `disparity` feature's.
   for (const FeatureSpec& spec : options.features) {
     if (spec.enabled && spec.name == "disparity") {
       context_.set_disparity_options(ReadDisparityOptions(spec.params));
     }
-  }
-  normalised_.resize(features_.results().size());
-  for (const FeatureResult& result : features_.results()) weights_.push_back(result.weight);
-  // Each feature's normalisation: the built-in ones by name, then the registry's (plugins').
-  const std::vector<std::string>& builtin = SaliencyOptions::Normalisations();
-  std::vector<std::string> known = builtin;
-  for (const std::string& name : registry.NormalisationNames()) {
-    if (std::find(builtin.begin(), builtin.end(), name) != builtin.end()) {
-      throw ConfigError(registry.FindNormalisation(name)->origin + ": registers normalisation '" +
-                        name + "', which is built in");
-    }
-    known.push_back(name);
-  }
-  for (const FeatureSpec& spec : options.features) {
-    if (!spec.enabled) continue;
-    const std::string& name = spec.normalisation;
-    ChosenNormalisation chosen_normalisation;
-    MapNormalisation& normalise = chosen_normalisation.normalise;
-    if (std::find(builtin.begin(), builtin.end(), name) != builtin.end()) {
-      SaliencyOptions chosen = options.saliency;
-      chosen.normalisation = name;
-      normalise = [chosen](const cv::Mat& map, cv::Mat* out) { NormaliseMap(map, chosen, out); };
-    } else if (!name.empty()) {
-      const FeatureRegistry::NormalisationEntry* entry = registry.FindNormalisation(name);
-      if (entry == nullptr) {
-        spec.params.Fail("normalisation", "unknown normalisation '" + name + "'" +
-                                              DidYouMean(name, known) +
-                                              "; known: " + Join(known, ", "));
-      }
-      normalise = entry->normalise;
-      chosen_normalisation.plugin = entry->origin;
-    }
-    normalisers_.push_back(std::move(chosen_normalisation));
   }
 }
 
@@ -143,7 +134,8 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   for (const FeatureResult& result : features_.results()) {
     detections_.insert(detections_.end(), result.detections.begin(), result.detections.end());
   }
-  attention_.Select(frame.left, context_.SkinDistance(attention_.skin_model()), tracked_, saliency_,
+  attention_.Select(frame.left, context_.SkinDistance(attention_.skin_model()), tracked_,
+                    saliency_.saliency(),
                     context_.Regions(), &attended_, detections_);
   record->timings.Add("track", attended_.track_ms);
   record->timings.Add("inhibit", attended_.inhibit_ms);
@@ -153,38 +145,10 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
 }
 
 void FramePipeline::Saliency(const StereoFrame& frame) {
-  const std::vector<FeatureResult>& results = features_.results();
-  for (size_t i = 0; i < results.size(); ++i) {
-    const ChosenNormalisation& chosen = normalisers_[i];
-    if (!chosen.normalise) {
-      NormaliseMap(results[i].map, options_.saliency, &normalised_[i]);
-      continue;
-    }
-    chosen.normalise(results[i].map, &normalised_[i]);
-    if (!chosen.plugin.empty()) {
-      CheckNormalisedMap(results[i].name, chosen.plugin, normalised_[i], results[i].map.size());
-    }
-  }
-  // SPEC 2.3 divides by the sum of all weights. A grey frame has no colour, so there colour
-  // features measure nothing rather than "no contrast"; counting their weights would cap the
-  // saliency of grey input at the share of the other features, below select.min_saliency for
-  // a plainly bright object (docs/ATTENTION.md, "Real and grey input"). Colour frames keep the
-  // weights as configured.
+  maps_.clear();
+  for (const FeatureResult& result : features_.results()) maps_.push_back(&result.map);
   grey_ = IsGreyImage(frame.left);
-  frame_weights_ = weights_;
-  if (grey_) {
-    for (size_t i = 0; i < results.size(); ++i) {
-      double low = 0.0, high = 0.0;
-      cv::minMaxLoc(results[i].map, &low, &high);
-      if (!(high > low)) frame_weights_[i] = 0.0;
-    }
-  }
-  if (options_.saliency.combination == "product") {
-    MultiplyMaps(normalised_, frame_weights_, context_.size(), &saliency_);
-  } else {
-    CombineMaps(normalised_, frame_weights_, context_.size(), &saliency_);
-  }
-  SmoothSaliency(options_.saliency, &saliency_);
+  saliency_.Combine(maps_, grey_, context_.size());
 }
 
 void FramePipeline::RecordTargets(FrameRecord* record) const {
@@ -197,8 +161,8 @@ void FramePipeline::RecordTargets(FrameRecord* record) const {
     out.saliency = target.saliency;
     out.state = target.state;
     out.kind = target.skin ? "skin" : "object";
-    const bool bip = options_.attention.tracker.kind == TrackerKind::kBip;
-    out.similarity = !bip ? "appearance" : target.skin ? "skin" : "hsv";
+    const TrackerKindInfo& kind = TrackerKindOf(options_.attention.tracker.kind);
+    out.similarity = target.skin ? kind.skin_similarity : kind.colour_similarity;
     out.tracker = attention_.tracker_name();
     out.reason = target.reason;
     out.absent_frames = target.absent_frames;

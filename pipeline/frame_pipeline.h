@@ -12,6 +12,7 @@
 #include "io/sequence.h"
 #include "pipeline/attend_options.h"
 #include "pipeline/frame_record.h"
+#include "saliency/saliency_stage.h"
 #include "semiattentive/attention.h"
 
 namespace attend {
@@ -40,8 +41,8 @@ class FramePipeline {
   const FrameContext& context() const { return context_; }
   const std::vector<FeatureResult>& features() const { return features_.results(); }
   // Each feature's map normalised to [0, 1], in the order of features().
-  const std::vector<cv::Mat>& normalised() const { return normalised_; }
-  const cv::Mat& saliency() const { return saliency_; }
+  const std::vector<cv::Mat>& normalised() const { return saliency_.normalised(); }
+  const cv::Mat& saliency() const { return saliency_.saliency(); }
   // Whether the last frame was grey (colour/grey.h): on a grey frame a feature whose map is
   // constant (colour contrast and skin, which are 0 there) gets weight 0 in its saliency, so
   // it does not dilute the features that see something.
@@ -51,7 +52,7 @@ class FramePipeline {
   int targets_attended() const { return attention_.targets_attended(); }
 
  private:
-  // The feature maps normalised, weighted and combined into saliency_ (SPEC 2.3).
+  // The feature maps normalised, weighted and combined by saliency_ (SPEC 2.3).
   void Saliency(const StereoFrame& frame);
   // The attention stage's targets as the frame's records (SPEC 3.3).
   void RecordTargets(FrameRecord* record) const;
@@ -59,18 +60,9 @@ class FramePipeline {
   const AttendOptions options_;
   LazyFrameContext context_;
   FeatureSet features_;
-  std::vector<cv::Mat> normalised_;
-  // Per feature: its normalisation when it chose one (empty: saliency.normalisation), and the
-  // library it came from when a plugin added it ("" otherwise; a plugin's output is checked).
-  struct ChosenNormalisation {
-    MapNormalisation normalise;
-    std::string plugin;
-  };
-  std::vector<ChosenNormalisation> normalisers_;
-  std::vector<double> weights_;
+  SaliencyStage saliency_;
+  std::vector<const cv::Mat*> maps_;  // the features' maps, for saliency_
   bool grey_ = false;
-  std::vector<double> frame_weights_;
-  cv::Mat saliency_;
   AttentionStage attention_;
   TrackedTargets tracked_;  // what attention_ tracked in this frame
   std::vector<Detection> detections_;  // the top-down channels' detections in this frame

@@ -1,6 +1,7 @@
-// The one place where YAML meets the options structs: every configuration key is bound to
-// its field here, for reading, for writing the effective configuration and for listing the
-// keys (the documentation test checks configs/README.md against that list).
+// The one place where YAML meets the options structs: each section of the configuration binds
+// the field tables of its structs here, for reading, for writing the effective configuration
+// and for listing and describing the keys (the documentation test checks configs/README.md
+// against that list).
 #pragma once
 
 #include <string>
@@ -22,8 +23,12 @@ AttendOptions LoadOptions(const std::string& path, const std::vector<std::string
 // the same options.
 std::string OptionsToYaml(const AttendOptions& options);
 
-// Every scalar or list key the configuration knows, as dotted paths ("sequence.width"),
-// except the per-plugin keys inside `features`.
+// Every key the configuration knows, as dotted paths ("sequence.width"), except the
+// per-plugin keys inside `features`, in file order.
 std::vector<std::string> ConfigurationKeys();
+
+// The same keys with their type, range, default and a line of doc, from the options structs'
+// field tables (util/option_fields.h): what `attend run --list-keys` prints.
+std::vector<FieldDescription> DescribeConfiguration();
 
 }  // namespace attend

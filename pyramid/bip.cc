@@ -101,10 +101,17 @@ ATTEND_VECTOR_CLONES void DivideByArea(const int32_t* __restrict area, int count
 
 }  // namespace
 
-std::string BipOptions::Check() const {
-  if (max_levels < 1) return "max_levels must be >= 1, got " + std::to_string(max_levels);
-  return "";
+const OptionFields<BipOptions>& BipOptions::Fields() {
+  using O = BipOptions;
+  static const OptionFields<BipOptions> fields = {
+      {"link_across_kinds", &O::link_across_kinds,
+       "orphans also link to and twine with neighbours of the other kind (not the thesis's)"},
+      CodeOnly<O>({"max_levels", &O::max_levels, Range::Closed(1, 1e6),
+                   "a bound on the number of levels"})};
+  return fields;
 }
+
+std::string BipOptions::Check() const { return CheckFieldRanges(*this, Fields()); }
 
 int BipLevel::CountRegular() const { return num_regular; }
 

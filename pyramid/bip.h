@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "pyramid/similarity.h"
+#include "util/option_fields.h"
 
 namespace attend {
 
@@ -38,6 +39,8 @@ struct BipOptions {
 
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+  // The fields (util/option_fields.h): link_across_kinds is the segmentation's key.
+  static const OptionFields<BipOptions>& Fields();
 };
 
 // One level of the pyramid. Indexed by vertex id (see above).

@@ -11,15 +11,18 @@
 
 namespace attend {
 
-const FieldRanges<SegmentationOptions>& SegmentationOptions::Ranges() {
-  static const FieldRanges<SegmentationOptions> ranges = {
-      {"t_max", &SegmentationOptions::t_max, Range::Closed(0.001, 1000)},
-      {"min_region_area", &SegmentationOptions::min_region_area, Range::Closed(0, 1e6)}};
-  return ranges;
+const OptionFields<SegmentationOptions>& SegmentationOptions::Fields() {
+  using O = SegmentationOptions;
+  static const OptionFields<SegmentationOptions> fields = {
+      {"t_max", &O::t_max, Range::Closed(0.001, 1000),
+       "T_max of the threshold schedule, HSV cylinder units"},
+      {"min_region_area", &O::min_region_area, Range::Closed(0, 1e6),
+       "smaller regions merge into their closest neighbour, px; 0: keep the roots"}};
+  return fields;
 }
 
 std::string SegmentationOptions::Check() const {
-  const std::string error = CheckFieldRanges(*this, Ranges());
+  const std::string error = CheckFieldRanges(*this, Fields());
   return error.empty() ? bip.Check() : error;
 }
 

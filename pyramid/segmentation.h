@@ -9,7 +9,7 @@
 #include "colour/colour.h"
 #include "pyramid/bip.h"
 #include "pyramid/regions.h"
-#include "util/field_ranges.h"
+#include "util/option_fields.h"
 
 namespace attend {
 
@@ -25,8 +25,8 @@ struct SegmentationOptions {
 
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-  // The numeric fields' ranges (util/field_ranges.h), which Check and the configuration apply.
-  static const FieldRanges<SegmentationOptions>& Ranges();
+  // The fields (util/option_fields.h), which Check and the configuration apply.
+  static const OptionFields<SegmentationOptions>& Fields();
 };
 
 // Segments images; keeps the pyramid and all scratch buffers between calls, so one Segmenter

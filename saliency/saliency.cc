@@ -2,6 +2,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "util/enum_table.h"
 #include "util/error.h"
 
 namespace attend {
@@ -50,24 +51,34 @@ const std::vector<std::string>& SaliencyOptions::Normalisations() {
   return names;
 }
 
-const FieldRanges<SaliencyOptions>& SaliencyOptions::Ranges() {
-  static const FieldRanges<SaliencyOptions> ranges = {
-      {"local_maxima_window", &SaliencyOptions::local_maxima_window, Range::Closed(3, 1001)},
-      {"blur", &SaliencyOptions::blur, Range::Closed(0, 1)}};
-  return ranges;
+namespace {
+
+constexpr EnumTable<SaliencyCombination, 2> kCombinations = {{{
+    {SaliencyCombination::kSum, "sum"},
+    {SaliencyCombination::kProduct, "product"},
+}}};
+
+}  // namespace
+
+const OptionFields<SaliencyOptions>& SaliencyOptions::Fields() {
+  using O = SaliencyOptions;
+  static const OptionFields<SaliencyOptions> fields = {
+      {"normalisation", &O::normalisation,
+       "each feature's normalisation unless it names its own: minmax, local_maxima or a "
+       "plugin's"},
+      {"local_maxima_window", &O::local_maxima_window, Range::Closed(3, 1001),
+       "local_maxima: the odd window side, px"},
+      {"blur", &O::blur, Range::Closed(0, 1),
+       "the combined map's Gaussian blur, a share of the image's larger side; 0: none"},
+      {"combination", EnumField<&O::combination, kCombinations>(),
+       "sum: the weighted mean (the thesis); product: the weighted geometric mean"}};
+  return fields;
 }
 
 std::string SaliencyOptions::Check() const {
-  if (std::find(Normalisations().begin(), Normalisations().end(), normalisation) ==
-      Normalisations().end()) {
-    return "normalisation '" + normalisation + "' is not minmax or local_maxima";
-  }
-  const std::string error = CheckFieldRanges(*this, Ranges());
+  const std::string error = CheckFieldRanges(*this, Fields());
   if (!error.empty()) return error;
   if (local_maxima_window % 2 == 0) return "local_maxima_window must be odd";
-  if (combination != "sum" && combination != "product") {
-    return "combination '" + combination + "' is not sum or product";
-  }
   return "";
 }
 

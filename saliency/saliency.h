@@ -14,9 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "util/field_ranges.h"
+#include "util/option_fields.h"
 
 namespace attend {
+
+// How the normalised feature maps combine (SaliencyOptions::combination).
+enum class SaliencyCombination { kSum, kProduct };
 
 struct SaliencyOptions {
   std::string normalisation = "minmax";  // one of Normalisations()
@@ -26,17 +29,17 @@ struct SaliencyOptions {
   // hard edges, and people look near a salient thing, not exactly at it; not in the
   // thesis.
   double blur = 0.0;
-  // How the normalised maps combine: "sum" (SPEC 2.3, the thesis: the weighted mean) or
-  // "product" (the weighted geometric mean, prod_i (n_i + 0.01)^(w_i / sum w), less its value
+  // How the normalised maps combine: sum (SPEC 2.3, the thesis: the weighted mean) or
+  // product (the weighted geometric mean, prod_i (n_i + 0.01)^(w_i / sum w), less its value
   // where every map is 0: a map that is low somewhere, such as a centre bias, vetoes there
   // rather than only adding elsewhere; not in the thesis).
-  std::string combination = "sum";
+  SaliencyCombination combination = SaliencyCombination::kSum;
 
   static const std::vector<std::string>& Normalisations();
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-  // The numeric fields' ranges (util/field_ranges.h), which Check and the configuration apply.
-  static const FieldRanges<SaliencyOptions>& Ranges();
+  // The fields (util/option_fields.h), which Check and the configuration apply.
+  static const OptionFields<SaliencyOptions>& Fields();
 };
 
 // Normalises `map` (CV_32FC1) into `out` (CV_32FC1, [0, 1]).

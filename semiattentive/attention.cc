@@ -11,72 +11,106 @@
 #include "pyramid/similarity.h"
 #include "util/assignment.h"
 #include "util/box.h"
+#include "util/enum_table.h"
 #include "util/error.h"
 #include "util/timer.h"
 
 namespace attend {
 
 
-const std::vector<std::string>& SelectOptions::Seeds() {
-  static const std::vector<std::string> seeds = {"region", "object", "detection"};
-  return seeds;
-}
+namespace {
 
-const FieldRanges<SelectOptions>& SelectOptions::Ranges() {
+constexpr EnumTable<SeedKind, 3> kSeedKinds = {{{
+    {SeedKind::kRegion, "region"},
+    {SeedKind::kObject, "object"},
+    {SeedKind::kDetection, "detection"},
+}}};
+
+}  // namespace
+
+const char* SeedKindName(SeedKind seed) { return kSeedKinds.Name(seed); }
+
+const OptionFields<SelectOptions>& SelectOptions::Fields() {
   using O = SelectOptions;
-  static const FieldRanges<SelectOptions> ranges = {
-      {"min_saliency", &O::min_saliency, Range::Closed(0, 1)},
-      {"min_area", &O::min_area, Range::Closed(1, 1e8)},
-      {"max_new", &O::max_new, Range::Closed(1, 1000)},
-      {"max_targets", &O::max_targets, Range::Closed(1, 1000)},
-      {"max_area_fraction", &O::max_area_fraction, Range::Closed(0.001, 1)},
-      {"max_inhibited_fraction", &O::max_inhibited_fraction, Range::Closed(0.001, 1)},
-      {"saliency_t_max", &O::saliency_t_max, Range::Closed(0.001, 1000)},
-      {"seed_share", &O::seed_share, Range::Closed(0.01, 1)},
-      {"seed_level", &O::seed_level, Range::Closed(0.01, 1)},
-      {"detection_taken", &O::detection_taken, Range::Closed(0, 1)},
-      {"reanchor_min_iou", &O::reanchor_min_iou, Range::Closed(0, 1)},
-      {"reanchor_max_iou", &O::reanchor_max_iou, Range::Closed(0, 1)},
-      {"reanchor_min_similarity", &O::reanchor_min_similarity, Range::Closed(0, 1)},
-      {"group_min_speed", &O::group_min_speed, Range::Closed(0, 1000)},
-      {"group_flow_tolerance", &O::group_flow_tolerance, Range::Closed(0, 10)}};
-  return ranges;
+  static const OptionFields<SelectOptions> fields = {
+      {"min_saliency", &O::min_saliency, Range::Closed(0, 1),
+       "a candidate region's mean inhibited saliency at least this"},
+      {"min_area", &O::min_area, Range::Closed(1, 1e8), "a candidate's area at least this, px"},
+      {"max_new", &O::max_new, Range::Closed(1, 1000), "targets started in one frame"},
+      {"max_targets", &O::max_targets, Range::Closed(1, 1000), "targets active at once"},
+      {"max_area_fraction", &O::max_area_fraction, Range::Closed(0.001, 1),
+       "a colour region larger than this share of the image is background"},
+      {"max_inhibited_fraction", &O::max_inhibited_fraction, Range::Closed(0.001, 1),
+       "no new target while the inhibition would cover more of the image; 1: no bound"},
+      {"saliency_t_max", &O::saliency_t_max, Range::Closed(0.001, 1000),
+       "T_max of the BIP that segments the saliency map (saliency x 255)"},
+      {"seed", EnumField<&O::seed, kSeedKinds>(),
+       "what a candidate starts as: its colour region, the object around it, or a detection"},
+      {"seed_share", &O::seed_share, Range::Closed(0.01, 1),
+       "object/detection: a colour region joins the seed when this share of it lies inside"},
+      {"seed_level", &O::seed_level, Range::Closed(0.01, 1),
+       "object: the salient region is where saliency is at least this times the mean"},
+      {"detection_taken", &O::detection_taken, Range::Closed(0, 1),
+       "detection: a detection an active target covers by this share belongs to it"},
+      {"detected_only", &O::detected_only,
+       "detection: a candidate under no detection starts nothing"},
+      {"reanchor_min_iou", &O::reanchor_min_iou, Range::Closed(0, 1),
+       "a found target restarts on a detection overlapping it at least this (IoU); 0: never"},
+      {"reanchor_max_iou", &O::reanchor_max_iou, Range::Closed(0, 1),
+       "... and below this IoU"},
+      {"reanchor_min_similarity", &O::reanchor_min_similarity, Range::Closed(0, 1),
+       "... and when the detection looks at least this like the target; 0: any look"},
+      {"group_min_speed", &O::group_min_speed, Range::Closed(0, 1000),
+       "object: motion grouping above this speed, px a frame; 0: off"},
+      {"group_flow_tolerance", &O::group_flow_tolerance, Range::Closed(0, 10),
+       "motion grouping: a region joins when its flow differs by at most this times the speed"}};
+  return fields;
 }
 
-const FieldRanges<DropOptions>& DropOptions::Ranges() {
-  static const FieldRanges<DropOptions> ranges = {
-      {"min_saliency", &DropOptions::min_saliency, Range::Closed(0, 1)},
-      {"frames", &DropOptions::frames, Range::Closed(1, 1e6)},
-      {"max_shared", &DropOptions::max_shared, Range::Closed(0, 1)},
-      {"unrecognised_frames", &DropOptions::unrecognised_frames, Range::Closed(0, 1e6)}};
-  return ranges;
+const OptionFields<DropOptions>& DropOptions::Fields() {
+  using O = DropOptions;
+  static const OptionFields<DropOptions> fields = {
+      {"min_saliency", &O::min_saliency, Range::Closed(0, 1),
+       "a target below this uninhibited saliency for `frames` frames is released"},
+      {"frames", &O::frames, Range::Closed(1, 1e6), "frames of low saliency before release"},
+      {"max_shared", &O::max_shared, Range::Closed(0, 1),
+       "a target more of whose mask older targets hold is a duplicate; 1: never"},
+      {"unrecognised_frames", &O::unrecognised_frames, Range::Closed(0, 1e6),
+       "a labelled target no detection overlapped this many frames is released; 0: never"}};
+  return fields;
 }
 
-const FieldRanges<InhibitionOptions>& InhibitionOptions::Ranges() {
-  static const FieldRanges<InhibitionOptions> ranges = {
-      {"margin", &InhibitionOptions::margin, Range::Closed(0, 1000)}};
-  return ranges;
+const OptionFields<InhibitionOptions>& InhibitionOptions::Fields() {
+  using O = InhibitionOptions;
+  static const OptionFields<InhibitionOptions> fields = {
+      {"margin", &O::margin, Range::Closed(0, 1000), "dilation around each tracked mask, px"},
+      {"keep_occluded", &O::keep_occluded, "occluded targets inhibit their last box"},
+      {"occluded_search", &O::occluded_search,
+       "... and the area their tracker searched them in"}};
+  return fields;
 }
 
-const FieldRanges<AttentionOptions>& AttentionOptions::Ranges() {
-  static const FieldRanges<AttentionOptions> ranges = {
-      {"skin_fraction", &AttentionOptions::skin_fraction, Range::Closed(0, 1)},
-      {"label_overlap", &AttentionOptions::label_overlap, Range::Closed(0, 1)}};
-  return ranges;
+const OptionFields<AttentionOptions>& AttentionOptions::Fields() {
+  using O = AttentionOptions;
+  static const OptionFields<AttentionOptions> fields = {
+      {"label_overlap", &O::label_overlap, Range::Closed(0, 1),
+       "a target takes a detection's label when their boxes overlap by this share"},
+      {"skin_fraction", &O::skin_fraction, Range::Closed(0, 1),
+       "a target is a skin target when this share of its region is skin"},
+      {"skin_model", &O::skin_model, "the skin model file (attend skin-train)"},
+      {"skin_check", &O::skin_check,
+       "a skin target's region must also be confident, skin-shaped skin"}};
+  return fields;
 }
 
 std::string AttentionOptions::Check() const {
-  std::string error = CheckFieldRanges(select, SelectOptions::Ranges());
+  std::string error = CheckFieldRanges(select, SelectOptions::Fields());
   if (!error.empty()) return "select." + error;
-  if (std::find(SelectOptions::Seeds().begin(), SelectOptions::Seeds().end(), select.seed) ==
-      SelectOptions::Seeds().end()) {
-    return "select.seed must be region, object or detection";
-  }
-  error = CheckFieldRanges(drop, DropOptions::Ranges());
+  error = CheckFieldRanges(drop, DropOptions::Fields());
   if (!error.empty()) return "drop." + error;
-  error = CheckFieldRanges(inhibition, InhibitionOptions::Ranges());
+  error = CheckFieldRanges(inhibition, InhibitionOptions::Fields());
   if (!error.empty()) return "inhibition." + error;
-  error = CheckFieldRanges(*this, Ranges());
+  error = CheckFieldRanges(*this, Fields());
   if (!error.empty()) return error;
   error = skin_region.Check();
   if (!error.empty()) return "select.skin_region: " + error;
@@ -555,7 +589,7 @@ void AttentionStage::Impl::StartTargets(const Frame& in, int inhibited_pixels,
   selection.inhibited_area = inhibited_pixels;
   selection.max_inhibited = options_.select.max_inhibited_fraction * in.bgr.total();
   // The boxes of the targets followed now: a detection they already cover is attended.
-  if (options_.select.seed == "detection") {
+  if (options_.select.seed == SeedKind::kDetection) {
     for (const AttendedTarget& t : frame->targets) {
       if (t.state == TargetState::kTracked || t.state == TargetState::kOccluded) {
         selection.followed.push_back(t.box);
@@ -604,8 +638,8 @@ bool AttentionStage::Impl::SeedOf(const Frame& in, const Candidates& c, size_t k
     return false;
   }
   const int r = c.ranked[k].second;
-  const bool detection_seed = options_.select.seed == "detection";
-  const bool object_seed = options_.select.seed == "object" || detection_seed;
+  const bool detection_seed = options_.select.seed == SeedKind::kDetection;
+  const bool object_seed = options_.select.seed == SeedKind::kObject || detection_seed;
   // The detection under the candidate's most salient pixel, if any (the most confident).
   const Detection* under = nullptr;
   int under_index = -1;

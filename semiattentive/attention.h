@@ -43,6 +43,11 @@ namespace attend {
 // spans the image and is released ("spans_image").
 constexpr double kSpansImageFraction = 0.9;
 
+// What a candidate starts as (SelectOptions::seed).
+enum class SeedKind { kRegion, kObject, kDetection };
+// "region", "object", "detection" (the select.seed key).
+const char* SeedKindName(SeedKind seed);
+
 struct SelectOptions {
   float min_saliency = 0.2f;  // mean inhibited saliency of a candidate region, 0..1
   int min_area = 120;         // pixels, at the working size
@@ -64,7 +69,7 @@ struct SelectOptions {
   // lies inside that box (a whole person), and a candidate inside a detection that an active
   // target already covers by `detection_taken` of its box is part of that target, not a new
   // one; elsewhere as "object".
-  std::string seed = "region";
+  SeedKind seed = SeedKind::kRegion;
   float detection_taken = 0.3f;
   // "detection" only: a candidate under no detection starts nothing (the channels are told
   // where it is, through the look regions, and recognise it in the next frames), so that
@@ -92,10 +97,9 @@ struct SelectOptions {
   // 0: off (the thesis's stage has no motion).
   float group_min_speed = 0.f;
   float group_flow_tolerance = 0.5f;
-  static const std::vector<std::string>& Seeds();
-  // The numeric fields' ranges (util/field_ranges.h), for AttentionOptions::Check and the
-  // configuration's `select` section.
-  static const FieldRanges<SelectOptions>& Ranges();
+  // The fields (util/option_fields.h), for AttentionOptions::Check and the configuration's
+  // `select` section.
+  static const OptionFields<SelectOptions>& Fields();
 };
 
 struct DropOptions {
@@ -109,7 +113,7 @@ struct DropOptions {
   // 0.3 when that is 0) for this many frames in a row while the channels reported detections
   // is released ("unrecognised"): its tracker has left the object. 0: never.
   int unrecognised_frames = 0;
-  static const FieldRanges<DropOptions>& Ranges();
+  static const OptionFields<DropOptions>& Fields();
 };
 
 struct InhibitionOptions {
@@ -118,7 +122,7 @@ struct InhibitionOptions {
   // ... and the area their tracker searched them in this frame (the box and its ROI border):
   // an object that reappears there is the occluded target coming back, not a new one.
   bool occluded_search = true;
-  static const FieldRanges<InhibitionOptions>& Ranges();
+  static const OptionFields<InhibitionOptions>& Fields();
 };
 
 struct AttentionOptions {
@@ -142,8 +146,8 @@ struct AttentionOptions {
   float label_overlap = 0.5f;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-  // The ranges of this struct's own numeric fields (skin_fraction, label_overlap).
-  static const FieldRanges<AttentionOptions>& Ranges();
+  // This struct's own fields (the `select` keys label_overlap, skin_*).
+  static const OptionFields<AttentionOptions>& Fields();
 };
 
 // One target in one frame (SPEC 3.3).

@@ -6,18 +6,23 @@
 
 namespace attend {
 
-const FieldRanges<ObjectFileOptions>& ObjectFileOptions::Ranges() {
+const OptionFields<ObjectFileOptions>& ObjectFileOptions::Fields() {
   using O = ObjectFileOptions;
-  static const FieldRanges<ObjectFileOptions> ranges = {
-      {"memory_frames", &O::memory_frames, Range::Closed(0, 100000)},
-      {"memory_gate", &O::gate, Range::Closed(0, 100)},
-      {"memory_max_size_ratio", &O::max_size_ratio, Range::Closed(1, 100)},
-      {"memory_min_similarity", &O::min_similarity, Range::Closed(0, 1)},
-      {"memory_velocity_decay", &O::velocity_decay, Range::Closed(0, 1)}};
-  return ranges;
+  static const OptionFields<ObjectFileOptions> fields = {
+      {"memory_frames", &O::memory_frames, Range::Closed(0, 100000),
+       "frames an object file is kept; 0: no object files"},
+      {"memory_gate", &O::gate, Range::Closed(0, 100),
+       "a new target's centre within this many box sides of the predicted centre"},
+      {"memory_max_size_ratio", &O::max_size_ratio, Range::Closed(1, 100),
+       "its box's sides within this factor of the remembered ones"},
+      {"memory_min_similarity", &O::min_similarity, Range::Closed(0, 1),
+       "its appearance at least this like the remembered one"},
+      {"memory_velocity_decay", &O::velocity_decay, Range::Closed(0, 1),
+       "the remembered velocity's factor each frame unseen"}};
+  return fields;
 }
 
-std::string ObjectFileOptions::Check() const { return CheckFieldRanges(*this, Ranges()); }
+std::string ObjectFileOptions::Check() const { return CheckFieldRanges(*this, Fields()); }
 
 ObjectAppearance ObjectAppearance::Of(const cv::Mat& bgr, const cv::Mat& mask,
                                       const cv::Rect& box) {

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "util/field_ranges.h"
+#include "util/option_fields.h"
 
 namespace attend {
 
@@ -42,7 +42,7 @@ struct ObjectFileOptions {
   float velocity_decay = 0.9f;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-  static const FieldRanges<ObjectFileOptions>& Ranges();
+  static const OptionFields<ObjectFileOptions>& Fields();
 };
 
 // What an object looked like: a hue-saturation-value histogram of its pixels (mass 1; value

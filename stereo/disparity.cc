@@ -7,6 +7,8 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "stereo/disparity_internal.h"
+#include "util/enum_table.h"
 #include "util/error.h"
 #include "util/timer.h"
 #include "util/vector_clones.h"
@@ -254,16 +256,41 @@ class CostRows {
 
 }  // namespace
 
+namespace {
+
+constexpr EnumTable<DisparitySmoothness, 2> kSmoothness = {{{
+    {DisparitySmoothness::kHard, "hard"},
+    {DisparitySmoothness::kPenalty, "penalty"},
+}}};
+
+}  // namespace
+
+const char* DisparitySmoothnessName(DisparitySmoothness smoothness) {
+  return kSmoothness.Name(smoothness);
+}
+
+const OptionFields<DisparityOptions>& DisparityOptions::Fields() {
+  using O = DisparityOptions;
+  static const OptionFields<DisparityOptions> fields = {
+      {"max_disparity", &O::max_disparity, Range::Closed(1, kMaxDisparity),
+       "D: disparities 0..D-1 are searched; below the image width"},
+      {"window", &O::window, Range::Closed(1, 31), "side of the square ZNCC window, odd"},
+      {"subpixel", &O::subpixel, "parabola through the correlation peak: fractions of a pixel"},
+      {"left_right_check", &O::left_right_check,
+       "left-right consistency check, then fill from the farther valid neighbour"},
+      {"lr_tolerance", &O::lr_tolerance, Range::AtLeast(0),
+       "the check's tolerance, px"},
+      {"smoothness", EnumField<&O::smoothness, kSmoothness>(),
+       "hard: the thesis's |d(x) - d(x-1)| <= 1; penalty: jumps at jump_penalty"},
+      {"jump_penalty", &O::jump_penalty, Range::AtLeast(0),
+       "penalty: the cost of a jump, ZNCC units"}};
+  return fields;
+}
+
 std::string DisparityOptions::Check() const {
-  if (max_disparity < 1 || max_disparity > kMaxDisparity) {
-    return "max_disparity must be in 1.." + std::to_string(kMaxDisparity);
-  }
-  if (window < 1 || window > 31 || window % 2 == 0) return "window must be odd, 1..31";
-  if (lr_tolerance < 0) return "lr_tolerance must be >= 0";
-  if (smoothness != "hard" && smoothness != "penalty") {
-    return "smoothness must be hard or penalty, not '" + smoothness + "'";
-  }
-  if (!(jump_penalty >= 0.f)) return "jump_penalty must be >= 0";
+  const std::string error = CheckFieldRanges(*this, Fields());
+  if (!error.empty()) return error;
+  if (window % 2 == 0) return "window must be odd";
   return "";
 }
 
@@ -430,7 +457,7 @@ void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right
   const int depth = options_.max_disparity;
   const int packed = (depth + 3) / 4;
   const bool both = options_.left_right_check;
-  const float jump_penalty = options_.smoothness == "penalty" ? options_.jump_penalty : -1.f;
+  const float jump_penalty = options_.smoothness == DisparitySmoothness::kPenalty ? options_.jump_penalty : -1.f;
 
   constexpr float kNone = -std::numeric_limits<float>::infinity();
   b.codes.resize(static_cast<size_t>(packed) * 4);

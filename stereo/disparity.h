@@ -19,7 +19,14 @@
 #include <string>
 #include <vector>
 
+#include "util/option_fields.h"
+
 namespace attend {
+
+// Stage 1's smoothness along rows (DisparityOptions::smoothness).
+enum class DisparitySmoothness { kHard, kPenalty };
+// "hard", "penalty".
+const char* DisparitySmoothnessName(DisparitySmoothness smoothness);
 
 struct DisparityOptions {
   // The largest D: the cost volume's back-pointers take width x height x D / 4 bytes
@@ -42,15 +49,17 @@ struct DisparityOptions {
   // costs about a sixth of the time (docs/DISPARITY.md). The thesis has no such check.
   bool left_right_check = true;
   int lr_tolerance = 1;
-  // Stage 1's smoothness along rows: "hard", the thesis's |d(x) - d(x-1)| <= 1, which forces a
-  // ramp of k columns at every depth edge of k pixels; or "penalty", which also lets d jump
+  // Stage 1's smoothness along rows: hard, the thesis's |d(x) - d(x-1)| <= 1, which forces a
+  // ramp of k columns at every depth edge of k pixels; or penalty, which also lets d jump
   // from the previous column's best disparity at the cost `jump_penalty` (in ZNCC units, which
   // are in [-1, 1] per pixel) and so keeps depth edges sharp (a departure, docs/DISPARITY.md).
-  std::string smoothness = "hard";
+  DisparitySmoothness smoothness = DisparitySmoothness::kHard;
   float jump_penalty = 1.0f;
 
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+  // The fields (util/option_fields.h): the keys of the disparity feature and of --set.
+  static const OptionFields<DisparityOptions>& Fields();
 
   bool operator==(const DisparityOptions&) const = default;
 };
@@ -85,24 +94,5 @@ class DisparityEstimator {
   std::unique_ptr<Buffers> buffers_;
   double milliseconds_ = 0.0;
 };
-
-// The ZNCC of the window around left (x, y) and right (x - d, y), both CV_8UC1, computed
-// directly from its definition (for tests): window x window pixels, borders replicated. 0 when
-// either window is flat.
-double DirectZncc(const cv::Mat& left, const cv::Mat& right, int x, int y, int d, int window);
-
-// The ZNCC slice of disparity d for every pixel (CV_32FC1), by box filtering, as the estimator
-// computes it; pixels whose right window would leave the image (x - d < 0) get -1.
-void ZnccSlice(const cv::Mat& left, const cv::Mat& right, int d, int window, cv::Mat* out);
-
-// The left-right consistency check: a left pixel x with disparity d whose match x - round(d)
-// lies outside the image, or whose right-view disparity there differs from d by more than
-// `tolerance`, is set to -1 (invalid). `right_view` is the right image's disparity map.
-void CheckLeftRight(const cv::Mat& right_view, int tolerance, cv::Mat* disparity);
-
-// Fills invalid (negative) pixels from the nearest valid pixels on their row, taking the
-// smaller (farther) disparity of the two sides, as occluded pixels see the background; a row
-// without valid pixels becomes 0.
-void FillInvalidDisparities(cv::Mat* disparity);
 
 }  // namespace attend

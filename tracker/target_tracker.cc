@@ -1,46 +1,87 @@
 #include "tracker/target_tracker.h"
 
 #include <algorithm>
-#include <map>
-#include <opencv2/imgproc.hpp>
-#include <opencv2/tracking.hpp>
-#include <opencv2/video/tracking.hpp>
+#include <opencv2/core.hpp>
 
-#include "util/enum_table.h"
+#include "tracker/tracker_kinds.h"
 #include "util/error.h"
-#include "util/timer.h"
 
 namespace attend {
 
 namespace {
 
-constexpr EnumTable<TrackerKind, 3> kTrackerKinds = {{{
-    {TrackerKind::kBip, "bip"},
-    {TrackerKind::kKcf, "kcf"},
-    {TrackerKind::kCsrt, "csrt"},
-}}};
+bool UsesBipKeys(std::string_view key) {
+  return HasKey(TrackerOptions::Fields(), key);
+}
+bool UsesKcfKeys(std::string_view key) {
+  return HasKey(OpenCvTrackerOptions::Fields(), key);
+}
+bool UsesCsrtKeys(std::string_view key) { return key == "lost_frames"; }
 
 }  // namespace
 
-const char* TrackerKindName(TrackerKind kind) { return kTrackerKinds.Name(kind); }
+const std::vector<TrackerKindInfo>& TrackerKinds() {
+  // One row a kind. The record's similarity: that of a colour target, then of a skin target.
+  static const std::vector<TrackerKindInfo> kinds = {
+      {TrackerKind::kBip, "bip", "hsv", "skin", &UsesBipKeys, &CreateBipTracker},
+      {TrackerKind::kKcf, "kcf", "appearance", "appearance", &UsesKcfKeys, &CreateKcfTracker},
+      {TrackerKind::kCsrt, "csrt", "appearance", "appearance", &UsesCsrtKeys, &CreateCsrtTracker},
+  };
+  return kinds;
+}
+
+const TrackerKindInfo& TrackerKindOf(TrackerKind kind) {
+  for (const TrackerKindInfo& info : TrackerKinds()) {
+    if (info.kind == kind) return info;
+  }
+  ATTEND_CHECK(false) << "a tracker kind without a row in TrackerKinds()";
+  return TrackerKinds().front();
+}
+
+const char* TrackerKindName(TrackerKind kind) { return TrackerKindOf(kind).name; }
 
 const std::vector<std::string>& TrackerKindNames() {
-  static const std::vector<std::string> names = kTrackerKinds.Names();
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> result;
+    for (const TrackerKindInfo& info : TrackerKinds()) result.emplace_back(info.name);
+    return result;
+  }();
   return names;
 }
 
-bool TrackerKindFromName(const std::string& name, TrackerKind* kind) {
-  return kTrackerKinds.FromName(name, kind);
+bool TrackerKindFromName(std::string_view name, TrackerKind* kind) {
+  for (const TrackerKindInfo& info : TrackerKinds()) {
+    if (name == info.name) {
+      *kind = info.kind;
+      return true;
+    }
+  }
+  return false;
 }
 
-const FieldRanges<OpenCvTrackerOptions>& OpenCvTrackerOptions::Ranges() {
-  static const FieldRanges<OpenCvTrackerOptions> ranges = {
-      {"lost_frames", &OpenCvTrackerOptions::lost_frames, Range::Closed(1, 1e6)},
-      {"kcf_detect_thresh", &OpenCvTrackerOptions::kcf_detect_thresh, Range::Closed(0, 1)}};
-  return ranges;
+const OptionFields<OpenCvTrackerOptions>& OpenCvTrackerOptions::Fields() {
+  using O = OpenCvTrackerOptions;
+  static const OptionFields<OpenCvTrackerOptions> fields = {
+      {"lost_frames", &O::lost_frames, Range::Closed(1, 1e6),
+       "kcf, csrt: a target whose tracker fails this many frames in a row is lost"},
+      {"kcf_detect_thresh", &O::kcf_detect_thresh, Range::Closed(0, 1),
+       "kcf: the peak response below which KCF reports failure"}};
+  return fields;
 }
 
-std::string OpenCvTrackerOptions::Check() const { return CheckFieldRanges(*this, Ranges()); }
+std::string OpenCvTrackerOptions::Check() const { return CheckFieldRanges(*this, Fields()); }
+
+const OptionFields<TargetTrackerOptions>& TargetTrackerOptions::Fields() {
+  using O = TargetTrackerOptions;
+  static const OptionFields<TargetTrackerOptions> fields = {
+      {"kind",
+       EnumMember<O>{
+           [](const O& o) { return std::string(TrackerKindName(o.kind)); },
+           [](O* o, std::string_view name) { return TrackerKindFromName(name, &o->kind); },
+           &TrackerKindNames, [](const O& o) -> const void* { return &o.kind; }},
+       "the tracker: bip (the thesis's, chapter 4), or OpenCV's kcf or csrt"}};
+  return fields;
+}
 
 std::string TargetTrackerOptions::Check() const {
   return kind == TrackerKind::kBip ? bip.Check() : opencv.Check();
@@ -55,177 +96,10 @@ int TargetTracker::StartFromRegion(const cv::Mat& frame, const cv::Mat& labels, 
   return StartFromMask(frame, mask, similarity, skin);
 }
 
-namespace {
-
-// ---------------------------------------------------------------------------------------------
-// bip: MultiTracker as it is.
-
-class BipTargetTracker final : public TargetTracker {
- public:
-  explicit BipTargetTracker(const TrackerOptions& options) : tracker_(options) {}
-
-  int StartFromBox(const cv::Mat& frame, const cv::Rect& box, TrackSimilarity similarity,
-                   const cv::Mat& skin) override {
-    return tracker_.StartFromBox(frame, box, similarity, skin);
-  }
-  int StartFromMask(const cv::Mat& frame, const cv::Mat& mask, TrackSimilarity similarity,
-                    const cv::Mat& skin) override {
-    return tracker_.StartFromMask(frame, mask, similarity, skin);
-  }
-  int StartFromRegion(const cv::Mat& frame, const cv::Mat& labels, int region,
-                      TrackSimilarity similarity, const cv::Mat& skin) override {
-    return tracker_.StartFromRegion(frame, labels, region, similarity, skin);
-  }
-  void Track(const cv::Mat& frame, std::vector<TrackResult>* results, const cv::Mat& skin,
-             const cv::Mat& cylinder) override {
-    tracker_.Track(frame, results, skin, cylinder);
-  }
-  cv::Mat Mask(int id) const override { return tracker_.Mask(id); }
-  void Remove(int id) override { tracker_.Remove(id); }
-  std::vector<int> ids() const override { return tracker_.ids(); }
-  TrackerKind kind() const override { return TrackerKind::kBip; }
-  double milliseconds() const override { return tracker_.milliseconds(); }
-  double segmentation_milliseconds() const override { return tracker_.segmentation_milliseconds(); }
-
- private:
-  MultiTracker tracker_;
-};
-
-// ---------------------------------------------------------------------------------------------
-// kcf, csrt: one OpenCV tracker per target.
-
-class OpenCvTargetTracker final : public TargetTracker {
- public:
-  OpenCvTargetTracker(TrackerKind kind, const OpenCvTrackerOptions& options)
-      : kind_(kind), options_(options) {}
-
-  int StartFromBox(const cv::Mat& frame, const cv::Rect& box, TrackSimilarity,
-                   const cv::Mat&) override {
-    const cv::Rect inside = box & cv::Rect(0, 0, frame.cols, frame.rows);
-    if (inside.empty()) return -1;
-    return Start(frame, inside, cv::Mat(inside.size(), CV_8UC1, cv::Scalar(255)));
-  }
-
-  int StartFromMask(const cv::Mat& frame, const cv::Mat& mask, TrackSimilarity,
-                    const cv::Mat&) override {
-    ATTEND_CHECK(mask.type() == CV_8UC1 && mask.size() == frame.size())
-        << "mask must be CV_8UC1 of the frame's size";
-    const cv::Rect box = cv::boundingRect(mask);
-    if (box.empty()) return -1;
-    cv::Mat shape = mask(box) != 0;
-    return Start(frame, box, shape);
-  }
-
-  void Track(const cv::Mat& frame, std::vector<TrackResult>* results, const cv::Mat&,
-             const cv::Mat&) override {
-    const Stopwatch stopwatch;
-    const cv::Rect image(0, 0, frame.cols, frame.rows);
-    std::vector<int> lost;
-    for (auto& [id, target] : targets_) {
-      cv::Rect box = target.box;
-      bool found = false;
-      try {
-        found = target.tracker->update(frame, box);
-      } catch (const cv::Exception&) {
-        found = false;  // OpenCV refuses a degenerate window: a failure like any other
-      }
-      box &= image;
-      found = found && !box.empty();
-      TrackResult result;
-      result.id = id;
-      if (found) {
-        target.box = box;
-        target.failures = 0;
-        target.mask = ShapeMask(target.shape, box, frame.size());
-        result.state = TrackState::kFound;
-        result.area = cv::countNonZero(target.mask);
-      } else {
-        target.mask.release();
-        ++target.failures;
-        result.state =
-            target.failures >= options_.lost_frames ? TrackState::kLost : TrackState::kOccluded;
-        if (result.state == TrackState::kLost) lost.push_back(id);
-      }
-      result.box = target.box;
-      result.roi = target.box;
-      result.centroid = cv::Point2f(target.box.x + 0.5f * target.box.width,
-                                    target.box.y + 0.5f * target.box.height);
-      results->push_back(result);
-    }
-    for (const int id : lost) targets_.erase(id);
-    milliseconds_ = stopwatch.ElapsedMs();
-  }
-
-  cv::Mat Mask(int id) const override {
-    const auto it = targets_.find(id);
-    return it == targets_.end() ? cv::Mat() : it->second.mask;
-  }
-  void Remove(int id) override { targets_.erase(id); }
-  std::vector<int> ids() const override {
-    std::vector<int> result;
-    for (const auto& [id, target] : targets_) result.push_back(id);
-    return result;
-  }
-  TrackerKind kind() const override { return kind_; }
-  double milliseconds() const override { return milliseconds_; }
-
- private:
-  struct Target {
-    cv::Ptr<cv::Tracker> tracker;
-    cv::Rect box;      // the last box found
-    cv::Mat shape;     // CV_8UC1 of the start box's size: the target's start shape
-    cv::Mat mask;      // frame size; empty when not found in the last frame
-    int failures = 0;  // failed updates in a row
-  };
-
-  cv::Ptr<cv::Tracker> MakeTracker() const {
-    if (kind_ == TrackerKind::kKcf) {
-      cv::TrackerKCF::Params params;
-      params.detect_thresh = options_.kcf_detect_thresh;
-      return cv::TrackerKCF::create(params);
-    }
-    return cv::TrackerCSRT::create();
-  }
-
-  // The start shape resized to `box` and placed there, in a mask of `size`.
-  static cv::Mat ShapeMask(const cv::Mat& shape, const cv::Rect& box, const cv::Size& size) {
-    cv::Mat mask(size, CV_8UC1, cv::Scalar(0));
-    cv::Mat inside = mask(box);
-    cv::resize(shape, inside, box.size(), 0, 0, cv::INTER_NEAREST);
-    return mask;
-  }
-
-  int Start(const cv::Mat& frame, const cv::Rect& box, const cv::Mat& shape) {
-    ATTEND_CHECK(frame.type() == CV_8UC3) << "frames must be 8-bit BGR";
-    Target target;
-    target.tracker = MakeTracker();
-    try {
-      target.tracker->init(frame, box);
-    } catch (const cv::Exception&) {
-      return -1;  // a box too small for the tracker's features
-    }
-    target.box = box;
-    target.shape = shape;
-    target.mask = ShapeMask(shape, box, frame.size());
-    const int id = next_id_++;
-    targets_.emplace(id, std::move(target));
-    return id;
-  }
-
-  TrackerKind kind_;
-  OpenCvTrackerOptions options_;
-  std::map<int, Target> targets_;
-  int next_id_ = 1;
-  double milliseconds_ = 0.0;
-};
-
-}  // namespace
-
 std::unique_ptr<TargetTracker> TargetTracker::Create(const TargetTrackerOptions& options) {
   const std::string error = options.Check();
   if (!error.empty()) throw ConfigError("tracker." + error);
-  if (options.kind == TrackerKind::kBip) return std::make_unique<BipTargetTracker>(options.bip);
-  return std::make_unique<OpenCvTargetTracker>(options.kind, options.opencv);
+  return TrackerKindOf(options.kind).create(options);
 }
 
 }  // namespace attend

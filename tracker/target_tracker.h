@@ -30,19 +30,22 @@
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tracker/tracker.h"
 
 namespace attend {
 
+// The tracker kinds. Adding one: a value here, its class and factory in a file of its own
+// (as opencv_target_tracker.cc), and its row in TrackerKinds() (target_tracker.cc).
 enum class TrackerKind { kBip, kKcf, kCsrt };
 // "bip", "kcf", "csrt" (the tracker.kind key and the records).
 const char* TrackerKindName(TrackerKind kind);
-// Every kind's name, in enum order.
+// Every kind's name, in the order of TrackerKinds().
 const std::vector<std::string>& TrackerKindNames();
 // The kind called `name`; false when there is none.
-bool TrackerKindFromName(const std::string& name, TrackerKind* kind);
+bool TrackerKindFromName(std::string_view name, TrackerKind* kind);
 
 // Options of the OpenCV kinds (kcf, csrt).
 struct OpenCvTrackerOptions {
@@ -54,8 +57,8 @@ struct OpenCvTrackerOptions {
   float kcf_detect_thresh = 0.5f;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-  // The numeric fields' ranges (util/field_ranges.h), for Check and the configuration.
-  static const FieldRanges<OpenCvTrackerOptions>& Ranges();
+  // The fields (util/option_fields.h), for Check and the configuration.
+  static const OptionFields<OpenCvTrackerOptions>& Fields();
 };
 
 struct TargetTrackerOptions {
@@ -68,7 +71,26 @@ struct TargetTrackerOptions {
   // "" when valid; otherwise names the field ("mode", "t_colour", "lost_frames", ...) and the
   // broken constraint. Checks only the options of `kind`.
   std::string Check() const;
+  // The field `kind` (the blocks have their own tables).
+  static const OptionFields<TargetTrackerOptions>& Fields();
 };
+
+class TargetTracker;
+
+// A tracker kind's row: its name, what the records call its similarity, which keys of the
+// configuration's tracker section it reads (its option block: TrackerOptions for bip,
+// OpenCvTrackerOptions for the OpenCV kinds) and its factory.
+struct TrackerKindInfo {
+  TrackerKind kind;
+  const char* name;
+  const char* colour_similarity;  // the record's similarity of a colour target
+  const char* skin_similarity;    // ... and of a skin target
+  bool (*uses_key)(std::string_view key);
+  std::unique_ptr<TargetTracker> (*create)(const TargetTrackerOptions& options);
+};
+// Every kind, one row each.
+const std::vector<TrackerKindInfo>& TrackerKinds();
+const TrackerKindInfo& TrackerKindOf(TrackerKind kind);
 
 class TargetTracker {
  public:

@@ -16,9 +16,10 @@
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "util/field_ranges.h"
+#include "util/option_fields.h"
 
 namespace attend {
 
@@ -29,7 +30,7 @@ enum class TrackerMode { kThesis, kBounded };
 const char* TrackerModeName(TrackerMode mode);
 const std::vector<std::string>& TrackerModeNames();
 // The mode called `name`; false when there is none.
-bool TrackerModeFromName(const std::string& name, TrackerMode* mode);
+bool TrackerModeFromName(std::string_view name, TrackerMode* mode);
 
 struct TrackerOptions {
   TrackerMode mode = TrackerMode::kThesis;
@@ -87,9 +88,9 @@ struct TrackerOptions {
   int EpsilonMaxPixels(int width) const;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
-  // The numeric fields' ranges (util/field_ranges.h), which Check and the `tracker` section of
+  // The fields (util/option_fields.h), which Check and the `tracker` section of
   // the configuration both apply.
-  static const FieldRanges<TrackerOptions>& Ranges();
+  static const OptionFields<TrackerOptions>& Fields();
 };
 
 // TrackerOptions with mode = kBounded, the other fields at their defaults.

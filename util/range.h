@@ -1,5 +1,5 @@
 // An interval that a numeric value must lie in, open or closed at each end: the range of an
-// option (util/field_ranges.h) and of a configuration key (config/param_block.h).
+// option (util/option_fields.h) and of a configuration key (config/param_block.h).
 #pragma once
 
 #include <limits>

@@ -64,6 +64,12 @@ std::string ShortestNumber(double value) {
   return std::string(buffer, result.ptr);
 }
 
+std::string ShortestFloat(float value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
+}
+
 std::string Lowercase(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

@@ -32,6 +32,8 @@ size_t NonPrintableAt(std::string_view text);
 
 // The shortest text that reads back as exactly `value` (std::to_chars).
 std::string ShortestNumber(double value);
+// The same for a float: the shortest text that reads back as `value` as a float ("0.2").
+std::string ShortestFloat(float value);
 
 // `text` with ASCII letters in lower case (file extensions, case-blind names).
 std::string Lowercase(std::string text);

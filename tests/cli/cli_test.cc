@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "pipeline/options_io.h"
 #include "tests/cli/attend_cli.h"
 #include "tests/support/attend_process.h"
 #include "tests/support/sequence_maker.h"
@@ -54,6 +55,21 @@ TEST(Cli, VersionHelpAndUsageErrors) {
   r = Attend(dir, {"run", "--frames", "9:2", "--sequence", "x"});
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(Contains(r.err, "--frames 9:2")) << r.err;
+}
+
+// --list-keys prints every configuration key, one a line, with its type and default.
+TEST(Cli, RunListsEveryConfigurationKeyWithItsTypeAndDefault) {
+  testing::TempDir dir;
+  const Result r = Attend(dir, {"run", "--list-keys"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const std::string& key : ConfigurationKeys()) {
+    EXPECT_NE(r.out.find("\n  " + key + " "), std::string::npos) << key;
+  }
+  EXPECT_NE(r.out.find("tracker.kind"), std::string::npos);
+  EXPECT_NE(r.out.find("bip|kcf|csrt, default bip:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("int in [1, 1000], default 2: targets started in one frame"),
+            std::string::npos)
+      << r.out;
 }
 
 TEST(Cli, ConfigurationErrorsExitTwoNamingFileLineAndKey) {

@@ -33,7 +33,8 @@ std::vector<FitSample> Samples() {
 TEST(FitWeights, PutsTheWeightOnTheFeatureThatPredictsTheFixations) {
   for (const bool product : {false, true}) {
     WeightFitOptions options;
-    options.saliency.combination = product ? "product" : "sum";
+    options.saliency.combination =
+        product ? SaliencyCombination::kProduct : SaliencyCombination::kSum;
     options.step = 0.25;
     const WeightFit fit = FitWeights(Samples(), options);
     ASSERT_EQ(fit.weights.size(), 2u);

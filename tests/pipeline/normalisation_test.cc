@@ -7,6 +7,7 @@
 
 #include "features/builtin.h"
 #include "pipeline/frame_pipeline.h"
+#include "pipeline/options_io.h"
 #include "saliency/saliency.h"
 #include "tests/support/error_message.h"
 #include "tests/support/pipeline_options.h"
@@ -63,6 +64,31 @@ TEST(Normalisation, AFeatureUsesTheNormalisationItsEntryNames) {
   EXPECT_EQ(cv::norm(pipeline.normalised()[2], expected, cv::NORM_INF), 0.0);
 }
 
+// saliency.normalisation names a plugin's normalisation as well as a built-in one: it is then
+// every feature's that names none. Without plugins, an unknown name is refused at its line.
+TEST(Normalisation, SaliencyNormalisationMayNameAPluginsNormalisation) {
+  AttendOptions options = WithFeatures("[{name: intensity_contrast}, {name: colour_contrast}]");
+  options.saliency.normalisation = "constant";
+  FramePipeline pipeline(options, WithConstantNormalisation(0.5f), MonocularSetup());
+  FrameRecord record;
+  pipeline.Process(Frame(), &record);
+  for (const cv::Mat& map : pipeline.normalised()) EXPECT_EQ(cv::countNonZero(map != 0.5f), 0);
+  EXPECT_NEAR(pipeline.saliency().at<float>(0, 0), 0.5f, 1e-6);
+
+  std::string message = testing::ConfigErrorOf([&] {
+    FramePipeline unknown(options, BuiltinFeatures(), MonocularSetup());
+  });
+  EXPECT_NE(message.find("saliency.normalisation: unknown normalisation 'constant'"),
+            std::string::npos)
+      << message;
+  message = testing::ConfigErrorOf(
+      [] { ReadOptions(ParamBlock::Parse("saliency:\n  normalisation: minmx\n", "n.yaml")); });
+  EXPECT_NE(message.find("n.yaml:2: saliency.normalisation: 'minmx' is not one of minmax, "
+                         "local_maxima (did you mean 'minmax'?)"),
+            std::string::npos)
+      << message;
+}
+
 TEST(Normalisation, UnknownOrClashingNamesAndBrokenResultsAreConfigurationErrors) {
   std::string message = testing::ConfigErrorOf([] {
     FramePipeline pipeline(WithFeatures("[{name: intensity_contrast, normalisation: constnt}]"),
@@ -71,11 +97,11 @@ TEST(Normalisation, UnknownOrClashingNamesAndBrokenResultsAreConfigurationErrors
   EXPECT_NE(message.find("test.yaml:1"), std::string::npos) << message;
   EXPECT_NE(message.find("did you mean 'constant'"), std::string::npos) << message;
 
+  // A library that registers a built-in name is refused when it registers it.
   FeatureRegistry clash = BuiltinFeatures();
   clash.SetOrigin("libclash.so");
-  clash.AddNormalisation("minmax", "", [](const cv::Mat& map, cv::Mat* out) { *out = map; });
   message = testing::ConfigErrorOf([&] {
-    FramePipeline pipeline(WithFeatures("[{name: intensity_contrast}]"), clash, MonocularSetup());
+    clash.AddNormalisation("minmax", "", [](const cv::Mat& map, cv::Mat* out) { *out = map; });
   });
   EXPECT_NE(message.find("libclash.so"), std::string::npos) << message;
   EXPECT_NE(message.find("built in"), std::string::npos) << message;

@@ -1,5 +1,5 @@
 // The ranges of the configuration's numeric keys are written once, in the options structs
-// (util/field_ranges.h): for every listed field, a value just outside its range is refused
+// (util/option_fields.h): for every listed field, a value just outside its range is refused
 // both by the configuration, naming the key and its line, and by the struct's Check().
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
@@ -16,7 +16,7 @@
 #include "tests/support/error_message.h"
 #include "tracker/target_tracker.h"
 #include "tracker/tracker.h"
-#include "util/field_ranges.h"
+#include "util/option_fields.h"
 
 namespace attend {
 namespace {
@@ -35,17 +35,20 @@ std::vector<double> Outside(const Range& range, bool whole) {
   return values;
 }
 
-// Every field of `fields`, bound to the key `prefix + name`: each value outside its range is a
+// Every numeric field of `fields`, bound to the key `prefix + name`: each value outside its range is a
 // configuration error at that key, and Check() of `whole` (the struct holding the fields, set
 // through `at`) refuses it too. The fields' own struct accepts its float bounds as stored.
 template <typename Options, typename Whole, typename At>
-void ExpectRangesAppliedBothWays(const std::string& prefix, const FieldRanges<Options>& fields,
+void ExpectRangesAppliedBothWays(const std::string& prefix, const OptionFields<Options>& fields,
                                  At at) {
-  for (const FieldRange<Options>& field : fields) {
+  for (const OptionField<Options>& field : fields) {
     const std::string key = prefix + std::string(field.name);
     std::visit(
         [&](auto member) {
+          using M = decltype(member);
+          if constexpr (std::is_member_object_pointer_v<M>) {
           using T = std::remove_cvref_t<decltype(std::declval<Options>().*member)>;
+          if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
           for (const double value : Outside(field.range, std::is_same_v<T, int>)) {
             const std::string text = ShortestNumber(value);
             const std::string message = testing::ConfigErrorOf([&] {
@@ -67,6 +70,8 @@ void ExpectRangesAppliedBothWays(const std::string& prefix, const FieldRanges<Op
               EXPECT_EQ(CheckFieldRanges(options, fields), "") << key << " at its minimum";
             }
           }
+          }
+          }
         },
         field.member);
   }
@@ -74,31 +79,29 @@ void ExpectRangesAppliedBothWays(const std::string& prefix, const FieldRanges<Op
 
 TEST(OptionRanges, EveryRangedKeyIsRefusedOutsideItsRangeByTheFileAndByCheck) {
   ExpectRangesAppliedBothWays<SequenceOptions, SequenceOptions>(
-      "sequence.", SequenceOptions::Ranges(), [](SequenceOptions* o) { return o; });
-  ExpectRangesAppliedBothWays<SequenceOptions, SequenceOptions>(
-      "sequence.", SequenceOptions::SizeRanges(), [](SequenceOptions* o) { return o; });
+      "sequence.", SequenceOptions::Fields(), [](SequenceOptions* o) { return o; });
   ExpectRangesAppliedBothWays<SegmentationOptions, SegmentationOptions>(
-      "segmentation.", SegmentationOptions::Ranges(), [](SegmentationOptions* o) { return o; });
+      "segmentation.", SegmentationOptions::Fields(), [](SegmentationOptions* o) { return o; });
   ExpectRangesAppliedBothWays<SaliencyOptions, SaliencyOptions>(
-      "saliency.", SaliencyOptions::Ranges(), [](SaliencyOptions* o) { return o; });
+      "saliency.", SaliencyOptions::Fields(), [](SaliencyOptions* o) { return o; });
   ExpectRangesAppliedBothWays<SelectOptions, AttentionOptions>(
-      "select.", SelectOptions::Ranges(), [](AttentionOptions* o) { return &o->select; });
+      "select.", SelectOptions::Fields(), [](AttentionOptions* o) { return &o->select; });
   ExpectRangesAppliedBothWays<AttentionOptions, AttentionOptions>(
-      "select.", AttentionOptions::Ranges(), [](AttentionOptions* o) { return o; });
+      "select.", AttentionOptions::Fields(), [](AttentionOptions* o) { return o; });
   ExpectRangesAppliedBothWays<SkinRegionOptions, AttentionOptions>(
-      "select.skin_", SkinRegionOptions::Ranges(),
+      "select.skin_", SkinRegionOptions::Fields(),
       [](AttentionOptions* o) { return &o->skin_region; });
   ExpectRangesAppliedBothWays<DropOptions, AttentionOptions>(
-      "drop.", DropOptions::Ranges(), [](AttentionOptions* o) { return &o->drop; });
+      "drop.", DropOptions::Fields(), [](AttentionOptions* o) { return &o->drop; });
   ExpectRangesAppliedBothWays<InhibitionOptions, AttentionOptions>(
-      "inhibition.", InhibitionOptions::Ranges(),
+      "inhibition.", InhibitionOptions::Fields(),
       [](AttentionOptions* o) { return &o->inhibition; });
   ExpectRangesAppliedBothWays<ObjectFileOptions, AttentionOptions>(
-      "attention.", ObjectFileOptions::Ranges(), [](AttentionOptions* o) { return &o->memory; });
+      "attention.", ObjectFileOptions::Fields(), [](AttentionOptions* o) { return &o->memory; });
   ExpectRangesAppliedBothWays<TrackerOptions, AttentionOptions>(
-      "tracker.", TrackerOptions::Ranges(), [](AttentionOptions* o) { return &o->tracker.bip; });
+      "tracker.", TrackerOptions::Fields(), [](AttentionOptions* o) { return &o->tracker.bip; });
   ExpectRangesAppliedBothWays<OpenCvTrackerOptions, TargetTrackerOptions>(
-      "tracker.", OpenCvTrackerOptions::Ranges(), [](TargetTrackerOptions* o) {
+      "tracker.", OpenCvTrackerOptions::Fields(), [](TargetTrackerOptions* o) {
         o->kind = TrackerKind::kKcf;  // Check() checks the options of the chosen kind
         return &o->opencv;
       });

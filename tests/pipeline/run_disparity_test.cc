@@ -21,7 +21,7 @@ TEST(RunDisparity, TheDisparityFeaturesEntryChoosesTheContextsOptions) {
   const DisparityOptions& options = pipeline.context().disparity_options();
   EXPECT_EQ(options.max_disparity, 24);
   EXPECT_EQ(options.window, 9);
-  EXPECT_EQ(options.smoothness, "penalty");
+  EXPECT_EQ(options.smoothness, DisparitySmoothness::kPenalty);
 }
 
 TEST(RunDisparity, WithoutTheFeatureOrWithItDisabledTheOptionsAreTheDefaults) {

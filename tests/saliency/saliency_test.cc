@@ -1,4 +1,7 @@
+#include "saliency/normalisation.h"
 #include "saliency/saliency.h"
+#include "saliency/saliency_stage.h"
+#include "util/error.h"
 
 #include <gtest/gtest.h>
 
@@ -95,11 +98,58 @@ TEST(Saliency, NoWeightGivesZero) {
 TEST(Saliency, OptionsAreChecked) {
   SaliencyOptions options;
   EXPECT_EQ(options.Check(), "");
-  options.normalisation = "itti";
-  EXPECT_NE(options.Check().find("itti"), std::string::npos);
-  options = {};
   options.local_maxima_window = 4;
   EXPECT_NE(options.Check().find("odd"), std::string::npos);
+}
+
+// One registry holds the built-in normalisations and the plugins'; a name is taken once.
+TEST(Saliency, TheRegistryHoldsTheBuiltInNormalisationsAndRefusesATakenName) {
+  NormalisationRegistry registry;
+  EXPECT_EQ(registry.Names(), (std::vector<std::string>{"minmax", "local_maxima"}));
+  EXPECT_EQ(registry.Find("itti"), nullptr);
+  ASSERT_NE(registry.Find("minmax"), nullptr);
+  EXPECT_TRUE(registry.Find("minmax")->built_in);
+  const auto half = [](const cv::Mat& map, cv::Mat* out) { *out = cv::Mat(map.size(), CV_32FC1, 0.5f); };
+  registry.Add("half", "every pixel 0.5", "libhalf.so", half);
+  EXPECT_EQ(registry.Names(), (std::vector<std::string>{"minmax", "local_maxima", "half"}));
+  try {
+    registry.Add("minmax", "", "libclash.so", half);
+    ADD_FAILURE() << "a built-in name was taken again";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("libclash.so"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("is built in"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(registry.Add("half", "", "libother.so", half), ConfigError);
+}
+
+// The stage normalises each map by its own normalisation or the default one, and on a grey
+// frame a constant map weighs 0: a map 0..1 and a constant one combine to the first at half
+// weight on a colour frame, and to the first alone on a grey frame.
+TEST(Saliency, TheStageWeighsAConstantMapZeroOnAGreyFrame) {
+  NormalisationRegistry registry;
+  SaliencyInput ramp{"ramp", 1.0, {}};
+  SaliencyInput flat{"flat", 1.0, {}};
+  SaliencyStage stage(SaliencyOptions(), *registry.Find("minmax"), {ramp, flat});
+  const cv::Mat a = Row({0.f, 2.f, 4.f}), b = Row({3.f, 3.f, 3.f});
+  stage.Combine({&a, &b}, false, a.size());
+  EXPECT_NEAR(stage.saliency().at<float>(0, 2), 0.5f, 1e-6);
+  EXPECT_EQ(stage.weights(), (std::vector<double>{1.0, 1.0}));
+  stage.Combine({&a, &b}, true, a.size());
+  EXPECT_NEAR(stage.saliency().at<float>(0, 1), 0.5f, 1e-6);
+  EXPECT_NEAR(stage.saliency().at<float>(0, 2), 1.0f, 1e-6);
+  EXPECT_EQ(stage.weights(), (std::vector<double>{1.0, 0.0}));
+
+  // A plugin's normalisation that leaves [0, 1] is a configuration error naming the feature.
+  registry.Add("two", "", "libtwo.so",
+               [](const cv::Mat& map, cv::Mat* out) { *out = cv::Mat(map.size(), CV_32FC1, 2.f); });
+  SaliencyInput broken{"broken", 1.0, *registry.Find("two")};
+  SaliencyStage bad(SaliencyOptions(), *registry.Find("minmax"), {broken});
+  try {
+    bad.Combine({&a}, false, a.size());
+    ADD_FAILURE() << "values outside [0, 1] were accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("'broken' (libtwo.so)"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Saliency, ProductIsTheWeightedGeometricMeanAndAZeroVetoes) {
@@ -127,8 +177,6 @@ TEST(Saliency, BlurSpreadsAPeakAndKeepsItsHeight) {
   EXPECT_NEAR(high, 0.8, 1e-5);
   EXPECT_EQ(at, cv::Point(20, 20));
   EXPECT_GT(map.at<float>(20, 22), 0.2f);  // exp(-1/2) x 0.8 two px away
-  options.combination = "mean";
-  EXPECT_NE(options.Check().find("combination"), std::string::npos);
 }
 
 }  // namespace

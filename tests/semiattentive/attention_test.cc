@@ -467,9 +467,10 @@ TEST(Attention, AnObjectSeedTakesEveryColourRegionOfTheSalientObject) {
   const cv::Rect top(50, 30, 30, 24), bottom(50, 54, 30, 30), beside(80, 40, 24, 40);
   const cv::Scalar red(40, 40, 210), blue(200, 70, 40), green(60, 180, 50);
   const Drawn d = Draw({{top, red}, {bottom, blue}, {beside, green}}, {top | bottom}, 0);
-  for (const std::string seed : {"region", "object"}) {
+  for (const SeedKind kind : {SeedKind::kRegion, SeedKind::kObject}) {
+    const std::string seed = SeedKindName(kind);
     AttentionOptions options;
-    options.select.seed = seed;
+    options.select.seed = kind;
     options.select.max_new = 1;
     AttentionStage stage(options, ShippedSkinModel());
     const AttentionFrame frame = Step(&stage, d);
@@ -496,7 +497,7 @@ TEST(Attention, AnObjectSeedLargerThanTheAreaBoundFallsBackToItsRegion) {
   const cv::Scalar red(40, 40, 210), blue(200, 70, 40);
   const Drawn d = Draw({{top, red}, {bottom, blue}}, {top | bottom}, 0);
   AttentionOptions options;
-  options.select.seed = "object";
+  options.select.seed = SeedKind::kObject;
   options.select.max_area_fraction = 0.2f;  // 3840 px: each half fits, both (4800) do not
   options.select.max_inhibited_fraction = 1.f;
   options.select.max_new = 1;
@@ -581,7 +582,7 @@ TEST(Attention, MotionGroupingJoinsTheRegionsThatMoveWithTheSeedAndNoOthers) {
   for (const float speed : {1.f, 0.f}) {
     SCOPED_TRACE(::testing::Message() << "group_min_speed " << speed);
     AttentionOptions options;
-    options.select.seed = "object";
+    options.select.seed = SeedKind::kObject;
     options.select.group_min_speed = speed;
     options.select.max_new = 1;
     AttentionStage stage(options, ShippedSkinModel());

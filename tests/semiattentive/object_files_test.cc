@@ -196,7 +196,7 @@ TEST(ObjectFilesInTheStage, AnotherLookingObjectInTheSamePlaceIsNew) {
 TEST(ObjectFilesInTheStage, TwoPeopleWhoCrossKeepTheirIdsAndNoThirdTargetStarts) {
   AttentionOptions options;
   options.memory.memory_frames = 40;
-  options.select.seed = "object";
+  options.select.seed = SeedKind::kObject;
   options.select.max_new = 1;
   Stage stage(options);
   const cv::Scalar trousers_a(90, 50, 50), trousers_b(40, 110, 110);
@@ -244,9 +244,10 @@ TEST(DetectionSeeds, ADetectionBoxOverATwoColourObjectSeedsOneTargetOnBothColour
   const cv::Rect top(50, 30, 30, 24), bottom(50, 54, 30, 30), beside(80, 40, 24, 40);
   const Step step = Draw({{top, kRed}, {bottom, kBlue}, {beside, kGreen}}, {top}, 0);
   const Detection person{top | bottom, "person", 0.9f};
-  for (const std::string seed : {"object", "detection"}) {
+  for (const SeedKind kind : {SeedKind::kObject, SeedKind::kDetection}) {
+    const std::string seed = SeedKindName(kind);
     AttentionOptions options;
-    options.select.seed = seed;
+    options.select.seed = kind;
     options.select.max_new = 1;
     Stage stage(options);
     const AttentionFrame frame = stage.Run(step, {person});
@@ -272,7 +273,7 @@ TEST(DetectionSeeds, APartOfADetectedObjectAlreadyFollowedStartsNothing) {
   const cv::Rect top(50, 30, 30, 24), bottom(50, 54, 30, 30);
   for (const bool detected : {true, false}) {
     AttentionOptions options;
-    options.select.seed = "detection";
+    options.select.seed = SeedKind::kDetection;
     options.select.max_new = 1;
     Stage stage(options);
     const Detection person{top | bottom, "person", 0.9f};

@@ -1,4 +1,5 @@
 #include "stereo/disparity.h"
+#include "stereo/disparity_internal.h"
 
 #include <gtest/gtest.h>
 
@@ -244,7 +245,7 @@ TEST(Disparity, SynthGroundTruthBadPixelRateIsBounded) {
   checked.Compute(frame.left, frame.right, &disparity);
   const double default_bad1 = EvaluateDisparity(disparity, frame.disparity).bad1;
   EXPECT_LT(default_bad1, 0.09);
-  defaults.smoothness = "penalty";
+  defaults.smoothness = DisparitySmoothness::kPenalty;
   DisparityEstimator penalty(defaults);
   penalty.Compute(frame.left, frame.right, &disparity);
   EXPECT_LT(EvaluateDisparity(disparity, frame.disparity).bad1, 0.07);

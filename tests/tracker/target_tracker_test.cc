@@ -74,6 +74,34 @@ TEST(TargetTracker, KindNamesRoundTrip) {
   EXPECT_EQ(kind, TrackerKind::kKcf);
 }
 
+// The kinds' table: each row's factory makes its kind, every key of the two option blocks is
+// read by some kind, and the bip kind reads exactly the BIP block.
+TEST(TargetTracker, EachKindsRowMakesItAndEveryBlockKeyHasAKind) {
+  for (const TrackerKindInfo& info : TrackerKinds()) {
+    TargetTrackerOptions options;
+    options.kind = info.kind;
+    EXPECT_EQ(info.create(options)->kind(), info.kind) << info.name;
+    EXPECT_EQ(&TrackerKindOf(info.kind), &info);
+  }
+  const auto used = [](std::string_view key) {
+    int kinds = 0;
+    for (const TrackerKindInfo& info : TrackerKinds()) kinds += info.uses_key(key) ? 1 : 0;
+    return kinds;
+  };
+  for (const OptionField<TrackerOptions>& field : TrackerOptions::Fields()) {
+    if (!field.is_key) continue;
+    EXPECT_EQ(used(field.name), 1) << field.name;
+    EXPECT_TRUE(TrackerKindOf(TrackerKind::kBip).uses_key(field.name)) << field.name;
+  }
+  for (const OptionField<OpenCvTrackerOptions>& field : OpenCvTrackerOptions::Fields()) {
+    EXPECT_GE(used(field.name), 1) << field.name;
+    EXPECT_FALSE(TrackerKindOf(TrackerKind::kBip).uses_key(field.name)) << field.name;
+  }
+  EXPECT_FALSE(TrackerKindOf(TrackerKind::kCsrt).uses_key("kcf_detect_thresh"));
+  EXPECT_STREQ(TrackerKindOf(TrackerKind::kBip).skin_similarity, "skin");
+  EXPECT_STREQ(TrackerKindOf(TrackerKind::kKcf).colour_similarity, "appearance");
+}
+
 TEST(TargetTracker, InvalidOptionsOfTheChosenKindAreConfigErrors) {
   TargetTrackerOptions options;
   options.kind = TrackerKind::kCsrt;

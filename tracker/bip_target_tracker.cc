@@ -1,0 +1,47 @@
+// The bip kind of TargetTracker: MultiTracker (tracker/tracker.h) as it is.
+#include <memory>
+
+#include "tracker/tracker_kinds.h"
+
+namespace attend {
+
+namespace {
+
+class BipTargetTracker final : public TargetTracker {
+ public:
+  explicit BipTargetTracker(const TrackerOptions& options) : tracker_(options) {}
+
+  int StartFromBox(const cv::Mat& frame, const cv::Rect& box, TrackSimilarity similarity,
+                   const cv::Mat& skin) override {
+    return tracker_.StartFromBox(frame, box, similarity, skin);
+  }
+  int StartFromMask(const cv::Mat& frame, const cv::Mat& mask, TrackSimilarity similarity,
+                    const cv::Mat& skin) override {
+    return tracker_.StartFromMask(frame, mask, similarity, skin);
+  }
+  int StartFromRegion(const cv::Mat& frame, const cv::Mat& labels, int region,
+                      TrackSimilarity similarity, const cv::Mat& skin) override {
+    return tracker_.StartFromRegion(frame, labels, region, similarity, skin);
+  }
+  void Track(const cv::Mat& frame, std::vector<TrackResult>* results, const cv::Mat& skin,
+             const cv::Mat& cylinder) override {
+    tracker_.Track(frame, results, skin, cylinder);
+  }
+  cv::Mat Mask(int id) const override { return tracker_.Mask(id); }
+  void Remove(int id) override { tracker_.Remove(id); }
+  std::vector<int> ids() const override { return tracker_.ids(); }
+  TrackerKind kind() const override { return TrackerKind::kBip; }
+  double milliseconds() const override { return tracker_.milliseconds(); }
+  double segmentation_milliseconds() const override { return tracker_.segmentation_milliseconds(); }
+
+ private:
+  MultiTracker tracker_;
+};
+
+}  // namespace
+
+std::unique_ptr<TargetTracker> CreateBipTracker(const TargetTrackerOptions& options) {
+  return std::make_unique<BipTargetTracker>(options.bip);
+}
+
+}  // namespace attend
