@@ -21,7 +21,6 @@ namespace fs = std::filesystem;
 constexpr int kShiftVarianceWindow = 128;
 constexpr int kShiftVarianceMaxShift = 10;
 
-
 // The labels as a 16-bit PNG: region indices 0..R-1 must fit in 16 bits.
 cv::Mat SixteenBitLabels(const std::string& image_path, const Segmentation& segmentation) {
   const size_t regions = segmentation.regions.size();
@@ -33,6 +32,34 @@ cv::Mat SixteenBitLabels(const std::string& image_path, const Segmentation& segm
   cv::Mat labels16;
   segmentation.labels.convertTo(labels16, CV_16UC1);
   return labels16;
+}
+
+}  // namespace
+
+namespace {
+
+// The quality measures of one segmentation (F, Q and the shift variance, or why the image is
+// too small for it) into `image` and its report entry.
+void AddMetrics(const cv::Mat& bgr, const Segmentation& segmentation,
+                const SegmentFunction& segment_window, SegmentedImage* image,
+                nlohmann::json* entry) {
+  image->quality = EvaluateSegmentation(bgr, segmentation.labels);
+  (*entry)["f"] = image->quality->f;
+  (*entry)["q"] = image->quality->q;
+  const int window =
+      std::min(kShiftVarianceWindow, std::min(bgr.cols, bgr.rows) - kShiftVarianceMaxShift);
+  if (window > kShiftVarianceMaxShift) {
+    image->shift_variance = ShiftVariance(bgr, segment_window, window, kShiftVarianceMaxShift);
+    (*entry)["shift_variance"] = *image->shift_variance;
+    return;
+  }
+  const int needed = 2 * kShiftVarianceMaxShift + 1;
+  (*entry)["shift_variance"] = nullptr;
+  (*entry)["shift_variance_note"] =
+      "the image is " + std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) +
+      "; shift variance needs at least " + std::to_string(needed) + "x" + std::to_string(needed) +
+      " pixels (a window wider than the " + std::to_string(kShiftVarianceMaxShift) +
+      "-pixel shift, plus the shift)";
 }
 
 }  // namespace
@@ -85,25 +112,7 @@ void SegmentImages(const SegmentRequest& request,
                             {"regions", segmentation.regions.size()},
                             {"pyramid_levels", segmentation.pyramid_levels},
                             {"milliseconds", segmentation.milliseconds}};
-    if (request.metrics) {
-      image.quality = EvaluateSegmentation(bgr, segmentation.labels);
-      entry["f"] = image.quality->f;
-      entry["q"] = image.quality->q;
-      const int window =
-          std::min(kShiftVarianceWindow, std::min(bgr.cols, bgr.rows) - kShiftVarianceMaxShift);
-      if (window > kShiftVarianceMaxShift) {
-        image.shift_variance = ShiftVariance(bgr, segment_window, window, kShiftVarianceMaxShift);
-        entry["shift_variance"] = *image.shift_variance;
-      } else {
-        const int needed = 2 * kShiftVarianceMaxShift + 1;
-        entry["shift_variance"] = nullptr;
-        entry["shift_variance_note"] =
-            "the image is " + std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) +
-            "; shift variance needs at least " + std::to_string(needed) + "x" +
-            std::to_string(needed) + " pixels (a window wider than the " +
-            std::to_string(kShiftVarianceMaxShift) + "-pixel shift, plus the shift)";
-      }
-    }
+    if (request.metrics) AddMetrics(bgr, segmentation, segment_window, &image, &entry);
     entries.push_back(entry);
     if (on_image) on_image(image);
   }

@@ -56,7 +56,8 @@ cv::Mat DrawTrackOverlay(const cv::Mat& frame, int index, const std::vector<Targ
     const bool found = view.state == TrackState::kFound;
     if (!view.roi.empty()) cv::rectangle(overlay, view.roi, colour, 1, cv::LINE_4);
     cv::rectangle(overlay, view.box, colour, found ? 2 : 1, cv::LINE_8);
-    DrawTargetLabel(&overlay, view.id, view.box, found ? "" : std::string(" (") + TrackStateName(view.state) + ")", font_scale);
+    DrawTargetLabel(&overlay, view.id, view.box,
+                    found ? "" : std::string(" (") + TrackStateName(view.state) + ")", font_scale);
   }
   DrawCaption(&overlay, "frame " + std::to_string(index), font_scale);
   return overlay;
@@ -130,6 +131,30 @@ std::unique_ptr<TrackObserver> MakeOverlayDump(const std::string& out) {
   return std::make_unique<OverlayDump>(out);
 }
 
+namespace {
+
+// A frame's results as rows of tracks.csv and views for the observers (`views` replaced); the
+// ids reported lost are appended to `lost`.
+void RecordResults(int frame, const std::vector<TrackResult>& results, const TargetTracker& tracker,
+                   std::vector<TrackRow>* rows, std::vector<TargetView>* views,
+                   std::vector<int>* lost) {
+  views->clear();
+  for (const TrackResult& result : results) {
+    rows->push_back({frame, result.id, cv::Rect2d(result.box), TrackStateName(result.state)});
+    if (result.state == TrackState::kLost) lost->push_back(result.id);
+    const cv::Mat mask = result.state == TrackState::kFound ? tracker.Mask(result.id) : cv::Mat();
+    views->push_back({result.id, result.state, result.box, result.roi, mask});
+  }
+}
+
+void WriteSummary(const std::string& path, const nlohmann::json& summary) {
+  std::ofstream file(path);
+  file << JsonText(summary, 2) << "\n";
+  if (!file) throw OutputError(path + ": cannot write the summary");
+}
+
+}  // namespace
+
 nlohmann::json TrackSequence(const TrackRequest& request,
                              const std::vector<TrackObserver*>& observers) {
   ATTEND_CHECK(request.box_texts.size() == request.boxes.size()) << "one text per box";
@@ -180,15 +205,7 @@ nlohmann::json TrackSequence(const TrackRequest& request,
       track_ms += tracker->milliseconds();
       ++frames;
       last_frame = frame.index;
-      views.clear();
-      for (const TrackResult& result : results) {
-        rows.push_back({frame.index, result.id, cv::Rect2d(result.box),
-                        TrackStateName(result.state)});
-        if (result.state == TrackState::kLost) lost.push_back(result.id);
-        const cv::Mat mask =
-            result.state == TrackState::kFound ? tracker->Mask(result.id) : cv::Mat();
-        views.push_back({result.id, result.state, result.box, result.roi, mask});
-      }
+      RecordResults(frame.index, results, *tracker, &rows, &views, &lost);
       tell(views);
     }
   } catch (const InputError& e) {
@@ -208,10 +225,7 @@ nlohmann::json TrackSequence(const TrackRequest& request,
                                   {"lost", lost},
                                   {"ms_per_frame", frames > 1 ? track_ms / (frames - 1) : 0.0}};
   // The same summary beside tracks.csv, so that the folder says which kind tracked.
-  const std::string summary_path = (out / "track.json").string();
-  std::ofstream summary_file(summary_path);
-  summary_file << JsonText(summary, 2) << "\n";
-  if (!summary_file) throw OutputError(summary_path + ": cannot write the summary");
+  WriteSummary((out / "track.json").string(), summary);
   return summary;
 }
 

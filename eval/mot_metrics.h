@@ -41,7 +41,7 @@
 
 #include "eval/run_evaluation.h"
 #include "io/ground_truth.h"
-#include "pipeline/frame_record.h"
+#include "io/frame_record.h"
 #include "util/option_fields.h"
 
 namespace attend {

@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "eval/run_evaluation.h"
-#include "pipeline/frame_record.h"
+#include "io/frame_record.h"
 
 namespace attend {
 

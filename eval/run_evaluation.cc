@@ -8,6 +8,49 @@
 
 namespace attend {
 
+namespace {
+
+// The new targets of `record` whose best-overlapping visible object (IoU at least
+// `match_iou`) another active target was already on: revisits, whether or not they won the
+// object in the matching.
+int CountRevisits(const FrameRecord& record, const std::vector<const GtObject*>& visible,
+                  const std::set<int>& active_objects, double match_iou) {
+  int revisits = 0;
+  for (const TargetRecord& target : record.targets) {
+    if (target.state != TargetState::kNew) continue;
+    const GtObject* best = nullptr;
+    double best_iou = match_iou;
+    for (const GtObject* object : visible) {
+      const double iou = BoxIou(cv::Rect2d(target.bbox), object->box);
+      if (iou >= best_iou) best = object, best_iou = iou;
+    }
+    if (best != nullptr && active_objects.count(best->id) > 0) ++revisits;
+  }
+  return revisits;
+}
+
+// The per-object scores into the totals of `scores` (objects, attended, switches) and its
+// means (coverage, latency, IoU over `scores->matches` matches summing `iou_sum`).
+void TallyObjects(const std::map<int, ObjectScore>& objects, double iou_sum,
+                  AttentionScores* scores) {
+  double latency = 0.0;
+  for (const auto& [id, score] : objects) {
+    ++scores->objects;
+    if (score.first_attended >= 0) {
+      ++scores->attended;
+      latency += std::max(0, score.first_attended - score.first_visible);
+    }
+    scores->identity_switches += score.switches;
+    scores->per_object.push_back(score);
+  }
+  scores->coverage =
+      scores->objects > 0 ? static_cast<double>(scores->attended) / scores->objects : 0.0;
+  scores->mean_latency = scores->attended > 0 ? latency / scores->attended : 0.0;
+  scores->mean_iou = scores->matches > 0 ? iou_sum / scores->matches : 0.0;
+}
+
+}  // namespace
+
 AttentionScores EvaluateAttention(const std::vector<FrameRecord>& frames,
                                   const std::vector<GtObject>& truth,
                                   const EvaluationOptions& options) {
@@ -75,34 +118,9 @@ AttentionScores EvaluateAttention(const std::vector<FrameRecord>& frames,
       current_target[best->id] = target.id;
       object_of_target[target.id] = best->id;
     }
-    // A new target whose best-overlapping object another active target was already on is a
-    // revisit, whether or not it won the object in the matching.
-    for (const TargetRecord& target : record.targets) {
-      if (target.state != TargetState::kNew) continue;
-      const GtObject* best = nullptr;
-      double best_iou = options.match_iou;
-      for (const GtObject* object : visible) {
-        const double iou = BoxIou(cv::Rect2d(target.bbox), object->box);
-        if (iou >= best_iou) best = object, best_iou = iou;
-      }
-      if (best != nullptr && active_objects.count(best->id) > 0) ++scores.revisits;
-    }
+    scores.revisits += CountRevisits(record, visible, active_objects, options.match_iou);
   }
-
-  double latency = 0.0;
-  for (const auto& [id, score] : objects) {
-    ++scores.objects;
-    if (score.first_attended >= 0) {
-      ++scores.attended;
-      latency += std::max(0, score.first_attended - score.first_visible);
-    }
-    scores.identity_switches += score.switches;
-    scores.per_object.push_back(score);
-  }
-  scores.coverage =
-      scores.objects > 0 ? static_cast<double>(scores.attended) / scores.objects : 0.0;
-  scores.mean_latency = scores.attended > 0 ? latency / scores.attended : 0.0;
-  scores.mean_iou = scores.matches > 0 ? iou_sum / scores.matches : 0.0;
+  TallyObjects(objects, iou_sum, &scores);
   return scores;
 }
 

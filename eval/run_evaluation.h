@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "io/ground_truth.h"
-#include "pipeline/frame_record.h"
+#include "io/frame_record.h"
 
 namespace attend {
 

@@ -75,6 +75,8 @@ MotionDetector::MotionDetector(const MotionOptions& options) : options_(options)
   CV_Assert(error.empty());
 }
 
+// Longer than most on purpose: the per-pixel steps (luminance, change, the robust noise level,
+// the threshold and the box filter) share the detector's buffers in order, once a frame.
 void MotionDetector::Compute(int frame_index, const cv::Mat& bgr,
                              const Segmentation* segmentation, cv::Mat* out) {
   CV_Assert(bgr.type() == CV_8UC3 && !bgr.empty());

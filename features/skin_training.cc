@@ -86,6 +86,55 @@ ThresholdRule ThresholdRule::Parse(const std::string& text) {
   throw ConfigError("threshold rule '" + text + "': expected youden or tpr:X with X in (0, 1]");
 }
 
+namespace {
+
+// The Youden threshold over the sorted squared distances of the training samples (true: a skin
+// sample): the one that maximises TPR - FPR.
+double YoudenThreshold(const std::vector<std::pair<double, bool>>& distances, size_t n,
+                       size_t nonskin) {
+  const double infinity = std::numeric_limits<double>::infinity();
+  double threshold = infinity;
+  // Sweep the candidate thresholds: after each run of equal distances, everything up to it
+  // is accepted. Ties in J keep the first, the smaller threshold.
+  const double skin_count = static_cast<double>(n);
+  const double nonskin_count = static_cast<double>(nonskin);
+  int64_t true_positives = 0, false_positives = 0;
+  double best_j = -infinity;
+  for (size_t i = 0; i < distances.size(); ++i) {
+    (distances[i].second ? true_positives : false_positives) += 1;
+    const bool run_ends = i + 1 == distances.size() || distances[i + 1].first > distances[i].first;
+    if (!run_ends) continue;
+    const double j = true_positives / skin_count - false_positives / nonskin_count;
+    if (j > best_j) {
+      best_j = j;
+      threshold = ThresholdBetween(distances[i].first,
+                                   i + 1 < distances.size() ? distances[i + 1].first : infinity);
+    }
+  }
+  return threshold;
+}
+
+// The threshold that accepts `target_tpr` of the skin samples (tpr:X).
+double TprThreshold(const std::vector<std::pair<double, bool>>& distances, size_t n,
+                    double target_tpr) {
+  const double infinity = std::numeric_limits<double>::infinity();
+  // The k-th nearest skin sample, k = ceil(target n), must be accepted. The small slack keeps
+  // 0.95 * 40000 = 38000.000000000004 from asking for 38001.
+  const int64_t k = std::clamp<int64_t>(static_cast<int64_t>(std::ceil(target_tpr * n - 1e-9)), 1,
+                                        static_cast<int64_t>(n));
+  int64_t seen = 0;
+  size_t i = 0;
+  for (; i < distances.size(); ++i) {
+    if (distances[i].second && ++seen == k) break;
+  }
+  // Equal distances are accepted together; the threshold goes past the whole run.
+  while (i + 1 < distances.size() && distances[i + 1].first == distances[i].first) ++i;
+  return ThresholdBetween(distances[i].first,
+                          i + 1 < distances.size() ? distances[i + 1].first : infinity);
+}
+
+}  // namespace
+
 SkinModel FitSkinModel(const SkinSamples& training, const ThresholdRule& rule) {
   const size_t n = training.skin.size();
   if (n < 3) {
@@ -131,42 +180,10 @@ SkinModel FitSkinModel(const SkinSamples& training, const ThresholdRule& rule) {
     distances.emplace_back(classifier.SquaredDistance(ts[0], ts[1]), false);
   }
   std::sort(distances.begin(), distances.end());
-  const double infinity = std::numeric_limits<double>::infinity();
 
-  if (rule.kind == ThresholdRule::Kind::kYouden) {
-    // Sweep the candidate thresholds: after each run of equal distances, everything up to it
-    // is accepted. Ties in J keep the first, the smaller threshold.
-    const double skin_count = static_cast<double>(n);
-    const double nonskin_count = static_cast<double>(training.nonskin.size());
-    int64_t true_positives = 0, false_positives = 0;
-    double best_j = -infinity;
-    for (size_t i = 0; i < distances.size(); ++i) {
-      (distances[i].second ? true_positives : false_positives) += 1;
-      const bool run_ends =
-          i + 1 == distances.size() || distances[i + 1].first > distances[i].first;
-      if (!run_ends) continue;
-      const double j = true_positives / skin_count - false_positives / nonskin_count;
-      if (j > best_j) {
-        best_j = j;
-        model.threshold = ThresholdBetween(
-            distances[i].first, i + 1 < distances.size() ? distances[i + 1].first : infinity);
-      }
-    }
-  } else {
-    // The k-th nearest skin sample, k = ceil(target n), must be accepted. The small slack keeps
-    // 0.95 * 40000 = 38000.000000000004 from asking for 38001.
-    const int64_t k = std::clamp<int64_t>(
-        static_cast<int64_t>(std::ceil(rule.target_tpr * n - 1e-9)), 1, static_cast<int64_t>(n));
-    int64_t seen = 0;
-    size_t i = 0;
-    for (; i < distances.size(); ++i) {
-      if (distances[i].second && ++seen == k) break;
-    }
-    // Equal distances are accepted together; the threshold goes past the whole run.
-    while (i + 1 < distances.size() && distances[i + 1].first == distances[i].first) ++i;
-    model.threshold = ThresholdBetween(
-        distances[i].first, i + 1 < distances.size() ? distances[i + 1].first : infinity);
-  }
+  model.threshold = rule.kind == ThresholdRule::Kind::kYouden
+                        ? YoudenThreshold(distances, n, training.nonskin.size())
+                        : TprThreshold(distances, n, rule.target_tpr);
 
   SkinModel::Provenance& provenance = model.provenance;
   provenance.rule = rule.Describe();

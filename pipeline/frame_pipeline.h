@@ -11,7 +11,7 @@
 #include "features/lazy_frame_context.h"
 #include "io/sequence.h"
 #include "pipeline/attend_options.h"
-#include "pipeline/frame_record.h"
+#include "io/frame_record.h"
 #include "saliency/saliency_stage.h"
 #include "semiattentive/attention.h"
 

@@ -52,10 +52,11 @@ void VisitSaliency(AttendOptions* o, Visitor& v) {
   // plugins the name must be a built-in one.
   const std::vector<std::string>& built_in = SaliencyOptions::Normalisations();
   const std::string& name = o->saliency.normalisation;
-  v.Require("normalisation",
-            !o->plugins.empty() || std::find(built_in.begin(), built_in.end(), name) != built_in.end(),
-            "'" + name + "' is not one of " + Join(built_in, ", ") + DidYouMean(name, built_in) +
-                " (or a normalisation of a library in plugins)");
+  v.Require(
+      "normalisation",
+      !o->plugins.empty() || std::find(built_in.begin(), built_in.end(), name) != built_in.end(),
+      "'" + name + "' is not one of " + Join(built_in, ", ") + DidYouMean(name, built_in) +
+          " (or a normalisation of a library in plugins)");
   v.EndSection([o] { return o->saliency.Check(); });
 }
 
@@ -210,16 +211,17 @@ class Writer {
   template <typename Options>
   void Fields(Options* options, const OptionFields<Options>& fields, const std::string& prefix = "",
               std::string_view only = {}) {
-    ForEachField(Selected(fields, only), [&](const OptionField<Options>& field, const auto& member) {
-      if (!field.is_key) return;
-      out_ << YAML::Key << prefix + std::string(field.name) << YAML::Value;
-      using M = std::remove_cvref_t<decltype(member)>;
-      if constexpr (std::is_member_object_pointer_v<M>) {
-        Emit(options->*member);
-      } else {
-        Emit(member.get(*options));
-      }
-    });
+    ForEachField(Selected(fields, only),
+                 [&](const OptionField<Options>& field, const auto& member) {
+                   if (!field.is_key) return;
+                   out_ << YAML::Key << prefix + std::string(field.name) << YAML::Value;
+                   using M = std::remove_cvref_t<decltype(member)>;
+                   if constexpr (std::is_member_object_pointer_v<M>) {
+                     Emit(options->*member);
+                   } else {
+                     Emit(member.get(*options));
+                   }
+                 });
   }
   void Features(const std::string& key, std::vector<FeatureSpec>* specs) {
     out_ << YAML::Key << key << YAML::Value << YAML::BeginSeq;

@@ -5,7 +5,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "pipeline/frame_record.h"
+#include "io/frame_record.h"
 
 namespace attend {
 

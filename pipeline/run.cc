@@ -75,8 +75,7 @@ class MapDumps final : public RunObserver {
     const bool pfm = output_.WritesMapFormat("pfm");
     const bool png = output_.WritesMapFormat("png");
     if (output_.Dumps("regions")) {
-      folder_->WriteImage("regions", frame.index,
-                          FalseColour(pipeline.context().Regions().labels));
+      folder_->WriteImage("regions", frame.index, FalseColour(pipeline.context().Regions().labels));
     }
     if (output_.Dumps("features")) {
       for (size_t i = 0; i < pipeline.features().size(); ++i) {
@@ -110,8 +109,7 @@ class OverlayDump final : public RunObserver {
   OverlayDump(bool video, double fps, RunFolder* folder)
       : video_(video), fps_(fps), folder_(folder) {}
 
-  void OnFrame(const StereoFrame& frame, const FramePipeline&,
-               const FrameRecord& record) override {
+  void OnFrame(const StereoFrame& frame, const FramePipeline&, const FrameRecord& record) override {
     const cv::Mat overlay = DrawOverlay(frame.left, record);
     folder_->WriteImage("overlay", frame.index, overlay);
     if (video_) folder_->AppendVideoFrame("overlay", overlay, fps_);
@@ -165,6 +163,37 @@ std::string DefaultRunFolder(const std::string& parent, const std::string& confi
   return candidate;
 }
 
+namespace {
+
+// The next frame of `source` through the pipeline and the observers, its record appended to
+// the run folder and the scanpath and its timings to `totals`; false at the end of the source.
+bool RunFrame(FrameSource* source, FramePipeline* pipeline,
+              const std::vector<RunObserver*>& observers, RunFolder* folder,
+              nlohmann::ordered_json* scanpath, StageTimes* totals) {
+  FrameRecord record;
+  Stopwatch stage;
+  StereoFrame frame;
+  if (!source->Next(&frame)) return false;
+  record.frame = frame.index;
+  record.timings.Add("read", stage.ElapsedMs());
+
+  pipeline->Process(frame, &record);
+
+  stage.Restart();
+  for (RunObserver* observer : observers) observer->OnFrame(frame, *pipeline, record);
+  record.timings.Add("write", stage.ElapsedMs());
+  // The pipeline and the overlay work at the working size; the record is written in the
+  // pixels of the input frames (SPEC 3.3).
+  const SequenceInfo& info = source->info();
+  const FrameRecord input = InputFromWorking(record, info.scale_x, info.scale_y, info.native_size);
+  folder->AppendFrame(input);
+  AppendScanpath(input, scanpath);
+  for (const auto& [name, ms] : record.timings.stages()) totals->Add(name, ms);
+  return true;
+}
+
+}  // namespace
+
 RunSummary RunSequence(const RunRequest& request) {
   const AttendOptions& options = request.options;
   std::unique_ptr<FrameSource> source = FrameSource::Open(options.sequence);
@@ -213,26 +242,7 @@ RunSummary RunSequence(const RunRequest& request) {
         summary.interrupted = true;
         break;
       }
-      FrameRecord record;
-      Stopwatch stage;
-      StereoFrame frame;
-      if (!source->Next(&frame)) break;
-      record.frame = frame.index;
-      record.timings.Add("read", stage.ElapsedMs());
-
-      pipeline.Process(frame, &record);
-
-      stage.Restart();
-      for (RunObserver* observer : observers) observer->OnFrame(frame, pipeline, record);
-      record.timings.Add("write", stage.ElapsedMs());
-      // The pipeline and the overlay work at the working size; the record is written in the
-      // pixels of the input frames (SPEC 3.3).
-      const FrameRecord input =
-          InputFromWorking(record, info.scale_x, info.scale_y, info.native_size);
-      folder.AppendFrame(input);
-      AppendScanpath(input, &scanpath);
-
-      for (const auto& [name, ms] : record.timings.stages()) totals.Add(name, ms);
+      if (!RunFrame(source.get(), &pipeline, observers, &folder, &scanpath, &totals)) break;
       ++summary.frames;
       summary.targets_attended = pipeline.targets_attended();
       if (request.on_progress) {

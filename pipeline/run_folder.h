@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "pipeline/frame_record.h"
+#include "io/frame_record.h"
 
 namespace cv {
 class VideoWriter;

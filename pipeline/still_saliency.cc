@@ -4,7 +4,7 @@
 
 #include "io/sequence.h"
 #include "pipeline/frame_pipeline.h"
-#include "pipeline/frame_record.h"
+#include "io/frame_record.h"
 
 namespace attend {
 

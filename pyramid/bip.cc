@@ -358,6 +358,8 @@ void BipBuilder::Link(int l, int id, int parented, float parented_d2, int orphan
 
 // Stage 2, in raster order: parent search (condition 1), else intra-level twining
 // (condition 2).
+// Longer than most on purpose: the raster scan applies the thesis's conditions 1 and 2 to
+// each orphan in turn, each reading what the earlier ones of the scan linked.
 void BipBuilder::RegularOrphans(int l, float t2) {
   BipLevel& cur = levels_[l];
   const bool across = options_.link_across_kinds;

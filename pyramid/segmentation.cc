@@ -238,6 +238,9 @@ void Segmenter::Workspace::BuildGraph(int num_regions, RegionGraph* graph) {
 // colour, smallest first, until none is left that has a neighbour. Relabels `labels` (regions
 // numbered by first appearance) and updates `regions` and edges exactly, without another
 // pass over the pixels. Merged regions stay connected. Returns the new number of regions.
+// Longer than most on purpose: one merge updates the queue, the labels, the region statistics
+// and the edge lists together, in one pass; split, the parts would pass the same dozen
+// buffers to each other.
 int Segmenter::Workspace::MergeFlat(int min_area, cv::Mat* labels,
                                     std::vector<RegionStats>* regions) {
   const int count = static_cast<int>(regions->size());

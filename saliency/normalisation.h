@@ -25,8 +25,7 @@ class NormalisationRegistry {
     std::string summary;
     std::string origin;  // "built-in" or the library that registered it
     // The built-ins read the saliency options (local_maxima_window); a plugin's ignores them.
-    std::function<void(const cv::Mat& map, const SaliencyOptions& options, cv::Mat* out)>
-        normalise;
+    std::function<void(const cv::Mat& map, const SaliencyOptions& options, cv::Mat* out)> normalise;
     bool built_in = false;
   };
 

@@ -13,8 +13,8 @@ namespace {
 // else is a configuration error naming the feature and the library (a broken plugin was
 // configured), as for a feature's own map.
 void CheckNormalisedMap(const SaliencyInput& input, const cv::Mat& normalised, cv::Size size) {
-  const std::string who = "the normalisation of feature '" + input.name + "' (" +
-                          input.normalisation.origin + ")";
+  const std::string who =
+      "the normalisation of feature '" + input.name + "' (" + input.normalisation.origin + ")";
   if (normalised.type() != CV_32FC1 || normalised.size() != size) {
     throw ConfigError(who + " returned a map that is not CV_32FC1 of the feature map's size");
   }

@@ -34,7 +34,7 @@
 #include "features/feature_map.h"
 #include "pyramid/segmentation.h"
 #include "semiattentive/object_files.h"
-#include "semiattentive/target_state.h"
+#include "io/target_state.h"
 #include "tracker/target_tracker.h"
 
 namespace attend {

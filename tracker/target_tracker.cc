@@ -10,12 +10,8 @@ namespace attend {
 
 namespace {
 
-bool UsesBipKeys(std::string_view key) {
-  return HasKey(TrackerOptions::Fields(), key);
-}
-bool UsesKcfKeys(std::string_view key) {
-  return HasKey(OpenCvTrackerOptions::Fields(), key);
-}
+bool UsesBipKeys(std::string_view key) { return HasKey(TrackerOptions::Fields(), key); }
+bool UsesKcfKeys(std::string_view key) { return HasKey(OpenCvTrackerOptions::Fields(), key); }
 bool UsesCsrtKeys(std::string_view key) { return key == "lost_frames"; }
 
 }  // namespace

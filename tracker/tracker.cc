@@ -10,6 +10,7 @@
 #include "pyramid/bip.h"
 #include "pyramid/segmentation.h"
 #include "pyramid/similarity.h"
+#include "tracker/tracker_impl.h"
 #include "util/enum_table.h"
 #include "util/error.h"
 #include "util/timer.h"
@@ -17,12 +18,9 @@
 
 namespace attend {
 
-namespace {
+using namespace tracker_internal;
 
-// Pyramids are built over a crop of the frame whose origin is a multiple of this, so that a
-// cell of level l <= kMaxTemplateLevel has the same absolute position in every frame.
-constexpr int kMaxTemplateLevel = 6;
-constexpr int kAlignment = 1 << kMaxTemplateLevel;
+namespace {
 
 float SquaredDistance(const float* a, const float* b) {
   const float d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
@@ -36,61 +34,6 @@ cv::Rect CellsInside(const cv::Rect& box, int l) {
   const int x1 = (box.x + box.width) >> l, y1 = (box.y + box.height) >> l;
   return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
 }
-
-// One level of a template: a window of absolute cells with each vertex's colour, area and
-// weight (weight 0: no vertex).
-struct TemplateLevel {
-  cv::Rect cells;  // absolute cell coordinates of the window
-  std::vector<float> colour;
-  std::vector<int> area;
-  std::vector<float> weight;
-
-  size_t Index(int x, int y) const {
-    return static_cast<size_t>(y - cells.y) * cells.width + (x - cells.x);
-  }
-  double TotalArea() const {
-    double total = 0.0;
-    for (size_t i = 0; i < weight.size(); ++i) total += weight[i] > 0.f ? area[i] : 0;
-    return total;
-  }
-  bool Empty() const {
-    return std::none_of(weight.begin(), weight.end(), [](float w) { return w > 0.f; });
-  }
-};
-
-// A pyramid built over a crop of the frame, with the region (root) of every vertex.
-struct Hierarchy {
-  cv::Point origin;  // the crop's top-left pixel in the frame, a multiple of kAlignment
-  cv::Size size;
-  BipBuilder builder;
-  const Bip* bip = nullptr;
-  std::vector<std::vector<int32_t>> region;  // per level, per vertex id: root index, -1 none
-  int regions = 0;
-
-  // Region of every vertex, from the top level down.
-  void LabelRegions() {
-    const int levels = bip->num_levels();
-    region.resize(levels);
-    regions = 0;
-    for (int l = levels - 1; l >= 0; --l) {
-      const BipLevel& level = bip->level(l);
-      std::vector<int32_t>& labels = region[l];
-      labels.assign(level.num_ids(), -1);
-      for (int id = 0; id < level.num_ids(); ++id) {
-        if (!level.Exists(id)) continue;
-        const int parent = level.parent[id];
-        labels[id] = parent < 0 ? regions++ : region[l + 1][parent];
-      }
-    }
-  }
-  // The cell of level l at absolute cell (x, y), or -1 outside the crop.
-  int Cell(int l, int x, int y) const {
-    const BipLevel& level = bip->level(l);
-    const int cx = x - (origin.x >> l), cy = y - (origin.y >> l);
-    if (cx < 0 || cy < 0 || cx >= level.cols || cy >= level.rows) return -1;
-    return cy * level.cols + cx;
-  }
-};
 
 // `bounds` grown to the top left to the nearest multiple of kAlignment, so that cells keep their
 // absolute positions from frame to frame.
@@ -153,110 +96,9 @@ ATTEND_VECTOR_CLONES int64_t PlacedOverlap(const float* t0, const float* t1, con
   return score;
 }
 
-// The grey standard deviation below which a target's appearance model is taken as flat.
-constexpr double kMinAppearanceDeviation = 10.0;
-
 // The colour overlap an appearance match needs besides its score: the correlation alone
 // may follow an occluder or the background that took the target's place.
 constexpr double kMinAppearanceOverlap = 0.1;
-
-// Template weights in the search are fixed point, 1 = kWeightOne, so that sums are exact and
-// do not depend on their order.
-constexpr double kWeightOne = 65536.0;
-
-// Bins of the HSV cylinder for the bounded mode's colour statistics: 32 units a side on each
-// axis (S cos H and S sin H in [-255, 255], V in [0, 255]).
-constexpr int kChromaBins = 16, kValueBins = 8;
-constexpr int kColourBins = kChromaBins * kChromaBins * kValueBins;
-int ColourBin(const float* f) {
-  const int bx = std::clamp(static_cast<int>((f[0] + 256.f) / 32.f), 0, kChromaBins - 1);
-  const int by = std::clamp(static_cast<int>((f[1] + 256.f) / 32.f), 0, kChromaBins - 1);
-  const int bv = std::clamp(static_cast<int>(f[2] / 32.f), 0, kValueBins - 1);
-  return (bx * kChromaBins + by) * kValueBins + bv;
-}
-
-// One level's search data, reused from call to call: the template over its occupied cells and
-// the ROI's cells, both as planes of colour components.
-struct LevelSearch {
-  cv::Rect occupied;  // absolute cells of the template's vertices (weight > 0)
-  std::vector<float> colour[3];
-  std::vector<int32_t> weight;
-  int64_t total = 0;
-  std::vector<float> roi[3];  // the ROI cells, row by row; NaN where no regular vertex
-  std::vector<cv::Point> displacements;
-  std::vector<int> distance;  // per displacement of the range, in scan order
-  std::vector<int> bucket;    // counting sort by distance
-
-  // The displacements of [dx0, dx1] x [dy0, dy1] ordered by squared distance to `prior`, those
-  // at equal distance in scan order (rows, then columns): a stable counting sort.
-  const std::vector<cv::Point>& Order(int dx0, int dx1, int dy0, int dy1, cv::Point prior) {
-    distance.clear();
-    int largest = 0;
-    for (int dy = dy0; dy <= dy1; ++dy) {
-      for (int dx = dx0; dx <= dx1; ++dx) {
-        const int ex = dx - prior.x, ey = dy - prior.y;
-        distance.push_back(ex * ex + ey * ey);
-        largest = std::max(largest, distance.back());
-      }
-    }
-    bucket.assign(static_cast<size_t>(largest) + 2, 0);
-    for (const int d : distance) ++bucket[static_cast<size_t>(d) + 1];
-    for (size_t i = 1; i < bucket.size(); ++i) bucket[i] += bucket[i - 1];
-    displacements.resize(distance.size());
-    size_t i = 0;
-    for (int dy = dy0; dy <= dy1; ++dy) {
-      for (int dx = dx0; dx <= dx1; ++dx, ++i) {
-        displacements[static_cast<size_t>(bucket[static_cast<size_t>(distance[i])]++)] = {dx, dy};
-      }
-    }
-    return displacements;
-  }
-
-  // `distinct` (bounded mode; may be empty) scales each template weight by how distinctive
-  // its colour is of the target against its surroundings (ColourBin()).
-  void Load(const TemplateLevel& t, const BipLevel& level, const cv::Rect& roi_cells, int ox,
-            int oy, const std::vector<float>& distinct) {
-    int x0 = std::numeric_limits<int>::max(), y0 = x0, x1 = -1, y1 = -1;
-    for (int y = 0; y < t.cells.height; ++y) {
-      const float* w = &t.weight[static_cast<size_t>(y) * t.cells.width];
-      for (int x = 0; x < t.cells.width; ++x) {
-        if (!(w[x] > 0.f)) continue;
-        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = y;
-      }
-    }
-    total = 0;
-    occupied = cv::Rect();
-    if (x1 < 0) return;
-    occupied = cv::Rect(t.cells.x + x0, t.cells.y + y0, x1 - x0 + 1, y1 - y0 + 1);
-    const size_t cells = static_cast<size_t>(occupied.area());
-    for (auto& plane : colour) plane.assign(cells, 0.f);
-    weight.assign(cells, 0);
-    for (int y = occupied.y; y < occupied.y + occupied.height; ++y) {
-      for (int x = occupied.x; x < occupied.x + occupied.width; ++x) {
-        const size_t i = t.Index(x, y);
-        if (t.weight[i] <= 0.f) continue;
-        const size_t j = static_cast<size_t>(y - occupied.y) * occupied.width + (x - occupied.x);
-        for (int c = 0; c < 3; ++c) colour[c][j] = t.colour[3 * i + c];
-        const float scale = distinct.empty() ? 1.f : distinct[ColourBin(&t.colour[3 * i])];
-        weight[j] = std::max<int32_t>(
-            1, static_cast<int32_t>(std::lround(t.weight[i] * scale * kWeightOne)));
-        total += weight[j];
-      }
-    }
-    const float none = std::numeric_limits<float>::quiet_NaN();
-    for (auto& plane : roi) plane.resize(static_cast<size_t>(roi_cells.area()));
-    size_t j = 0;
-    for (int y = roi_cells.y; y < roi_cells.y + roi_cells.height; ++y) {
-      const int row = (y - oy) * level.cols - ox;
-      for (int x = roi_cells.x; x < roi_cells.x + roi_cells.width; ++x, ++j) {
-        const int cell = row + x;
-        const bool regular = level.hom[cell] != 0;
-        const float* f = level.Feature(cell);
-        for (int c = 0; c < 3; ++c) roi[c][j] = regular ? f[c] : none;
-      }
-    }
-  }
-};
 
 }  // namespace
 
@@ -288,8 +130,7 @@ const OptionFields<TrackerOptions>& TrackerOptions::Fields() {
        "T_co: T_max of the ROI's over-segmentation"},
       {"t_refine", &O::t_refine, Range::Closed(0, 1000),
        "T_cr: colour threshold of the target refinement"},
-      {"alpha", &O::alpha, Range::Closed(0.001, 1),
-       "forgetting constant of the template weights"},
+      {"alpha", &O::alpha, Range::Closed(0.001, 1), "forgetting constant of the template weights"},
       {"epsilon", &O::epsilon, Range::Closed(0, 1000),
        "ROI border, px at a width of 128 (scaled with the width)"},
       {"epsilon_max", &O::epsilon_max, Range::Closed(0, 1000),
@@ -358,865 +199,559 @@ const char* TrackStateName(TrackState state) {
   return "lost";
 }
 
-struct MultiTracker::Impl {
-  struct Target {
-    int id = 0;
-    TrackSimilarity similarity = TrackSimilarity::kColour;
-    std::vector<TemplateLevel> levels;
-    cv::Rect box;
-    cv::Point2f centroid;
-    int border = 0;    // the ROI's border around `box` for the next frame
-    cv::Point motion;  // the last displacement found, pixels (d_f of 4.2.3)
-    cv::Rect roi;      // the ROI of the current frame
-    cv::Mat mask;      // pixels of the last frame; empty when not found
-    // Bounded mode: per colour bin, the share of the target's pixels among the target's and
-    // its surroundings' (each normalised by its count); empty: every weight counts wholly.
-    std::vector<float> distinct;
-    // Bounded mode: the box before rounding, so that a size that follows its evidence by a
-    // small share a frame can grow (a rounded box would round each small step back).
-    cv::Rect2d smooth;
-    // Bounded mode with `appearance`: the grey model of the box (CV_32FC1, the first box's
-    // size), and the running means of the correlation it had where the target was found.
-    cv::Mat appearance;
-    bool appearance_judged = false;  // whether the first box was judged for texture
-    double typical_correlation = 0.0;
-    double typical_distinct = 0.0;  // running mean of MeanDistinct over the found box
-  };
-
-  TrackerOptions options;
-  std::vector<Target> targets;
-  int next_id = 1;
-  // Pyramids of the current frame, colour and skin: one per group of ROIs (see Track()).
-  std::vector<std::unique_ptr<Hierarchy>> hierarchies[2];
-  std::vector<int> group_of;     // per target: its group's pyramid, -1 for an empty ROI
-  double segmentation_ms = 0.0;  // of the last Track()
-  Segmenter segmenter;           // chooses a target's regions in a box (thesis 4.2.1)
-  cv::Mat union_mask;
-  LevelSearch search_;
-  // Bounded mode with `appearance`: the frame in grey, and the ZNCC of the searched target's
-  // model over its ROI; correlation_(y, x) is that of the box moved by (x, y) - box_to_roi_.
-  cv::Mat grey_;
-  cv::Mat frame_;           // the current frame (a header), for MeanDistinct
-  cv::Mat frame_cylinder_;  // its cylinder image when the caller gave one (a header)
-  mutable cv::Mat cylinder_;
-  cv::Mat correlation_;
-  cv::Point box_to_roi_;
-  bool correlated_ = false;
-  double best_correlation_ = 0.0;  // at the last accepted displacement
-  mutable cv::Mat model_, patch_;
-  mutable std::vector<int> region_inside_, region_all_;  // BoundTarget's counts
-  mutable std::vector<float> fg_, bg_;                   // LearnDistinct's histograms
-
-  explicit Impl(const TrackerOptions& o) : options(o) {}
-
-  // Joins group b into group a (a < b): their crops and spans, and the targets' group numbers.
-  void Merge(size_t a, size_t b, std::vector<cv::Rect>* groups, std::vector<cv::Rect>* spans) {
-    (*groups)[a] = Aligned((*groups)[a] | (*groups)[b]);
-    (*spans)[a] |= (*spans)[b];
-    groups->erase(groups->begin() + static_cast<std::ptrdiff_t>(b));
-    spans->erase(spans->begin() + static_cast<std::ptrdiff_t>(b));
-    for (int& g : group_of) {
-      if (g == static_cast<int>(b)) {
-        g = static_cast<int>(a);
-      } else if (g > static_cast<int>(b)) {
-        --g;
-      }
+void MultiTracker::Impl::Merge(size_t a, size_t b, std::vector<cv::Rect>* groups,
+                               std::vector<cv::Rect>* spans) {
+  (*groups)[a] = Aligned((*groups)[a] | (*groups)[b]);
+  (*spans)[a] |= (*spans)[b];
+  groups->erase(groups->begin() + static_cast<std::ptrdiff_t>(b));
+  spans->erase(spans->begin() + static_cast<std::ptrdiff_t>(b));
+  for (int& g : group_of) {
+    if (g == static_cast<int>(b)) {
+      g = static_cast<int>(a);
+    } else if (g > static_cast<int>(b)) {
+      --g;
     }
   }
+}
 
-  // The `index`-th pyramid of a similarity, made on first use; each keeps its buffers.
-  Hierarchy& Pyramid(TrackSimilarity similarity, size_t index) {
-    auto& pool = hierarchies[similarity == TrackSimilarity::kSkin ? 1 : 0];
-    while (pool.size() <= index) pool.push_back(std::make_unique<Hierarchy>());
-    return *pool[index];
-  }
+Hierarchy& MultiTracker::Impl::Pyramid(TrackSimilarity similarity, size_t index) {
+  auto& pool = hierarchies[similarity == TrackSimilarity::kSkin ? 1 : 0];
+  while (pool.size() <= index) pool.push_back(std::make_unique<Hierarchy>());
+  return *pool[index];
+}
 
-  // The template of a target from the regular cells of `hierarchy` in the target's regions.
-  // `in_target` says whether a region is the target's; `keep` limits it to a box (absolute
-  // pixels). Cells of the old template that the new target does not cover stay with their
-  // weight reduced by alpha, shifted by `shift` pixels.
-  // `pyramid_levels` is the height of the whole pyramid over the union of the ROIs, of which
-  // `h` may be a lower part: above the part's own levels, old cells only move and decay.
-  std::vector<TemplateLevel> MakeTemplate(const Hierarchy& h, const std::vector<uint8_t>& in_target,
-                                          const cv::Rect& keep,
-                                          const std::vector<TemplateLevel>* old, cv::Point shift,
-                                          int pyramid_levels) const {
-    const int levels = std::min(pyramid_levels, kMaxTemplateLevel + 1);
-    std::vector<TemplateLevel> result(levels);
-    for (int l = 0; l < levels; ++l) {
-      const bool built = l < h.bip->num_levels();
-      // Window: the crop's cells, joined with the shifted old window. Above the part's levels
-      // the whole pyramid's cells of the level hold every cell inside `keep` (which lies in
-      // the crop), and so does the window.
-      cv::Rect window = built ? cv::Rect((h.origin.x >> l), (h.origin.y >> l), h.bip->level(l).cols,
-                                         h.bip->level(l).rows)
-                              : CellsInside(keep, l);
-      if (old != nullptr && l < static_cast<int>(old->size()) && !(*old)[l].cells.empty()) {
-        cv::Rect moved = (*old)[l].cells;
-        moved.x += static_cast<int>(std::lround(shift.x / static_cast<double>(1 << l)));
-        moved.y += static_cast<int>(std::lround(shift.y / static_cast<double>(1 << l)));
-        window |= moved;
-      }
-      const cv::Rect kept = CellsInside(keep, l) & window;
-      TemplateLevel& t = result[l];
-      t.cells = kept;
-      t.colour.assign(3 * static_cast<size_t>(kept.area()), 0.f);
-      t.area.assign(kept.area(), 0);
-      t.weight.assign(kept.area(), 0.f);
-      if (kept.empty()) continue;
-      // Decayed old vertices first, then the new target's vertices over them.
-      if (old != nullptr && l < static_cast<int>(old->size())) {
-        const TemplateLevel& o = (*old)[l];
-        const int dx = static_cast<int>(std::lround(shift.x / static_cast<double>(1 << l)));
-        const int dy = static_cast<int>(std::lround(shift.y / static_cast<double>(1 << l)));
-        for (int y = o.cells.y; y < o.cells.y + o.cells.height; ++y) {
-          for (int x = o.cells.x; x < o.cells.x + o.cells.width; ++x) {
-            const size_t i = o.Index(x, y);
-            const float w = o.weight[i] - options.alpha;
-            if (o.weight[i] <= 0.f || w <= 1e-6f || !kept.contains({x + dx, y + dy})) continue;
-            const size_t j = t.Index(x + dx, y + dy);
-            t.weight[j] = w;
-            t.area[j] = o.area[i];
-            std::copy(&o.colour[3 * i], &o.colour[3 * i] + 3, &t.colour[3 * j]);
-          }
-        }
-      }
-      if (!built) continue;
-      const BipLevel& level = h.bip->level(l);
-      for (int y = kept.y; y < kept.y + kept.height; ++y) {
-        for (int x = kept.x; x < kept.x + kept.width; ++x) {
-          const int cell = h.Cell(l, x, y);
-          if (cell < 0 || !level.hom[cell]) continue;
-          const int r = h.region[l][cell];
-          if (r < 0 || !in_target[r]) continue;
-          const size_t j = t.Index(x, y);
-          t.weight[j] = 1.f;
-          t.area[j] = level.area[cell];
-          std::copy(level.Feature(cell), level.Feature(cell) + 3, &t.colour[3 * j]);
+std::vector<TemplateLevel> MultiTracker::Impl::MakeTemplate(
+    const Hierarchy& h, const std::vector<uint8_t>& in_target, const cv::Rect& keep,
+    const std::vector<TemplateLevel>* old, cv::Point shift, int pyramid_levels) const {
+  const int levels = std::min(pyramid_levels, kMaxTemplateLevel + 1);
+  std::vector<TemplateLevel> result(levels);
+  for (int l = 0; l < levels; ++l) {
+    const bool built = l < h.bip->num_levels();
+    // Window: the crop's cells, joined with the shifted old window. Above the part's levels
+    // the whole pyramid's cells of the level hold every cell inside `keep` (which lies in
+    // the crop), and so does the window.
+    cv::Rect window = built ? cv::Rect((h.origin.x >> l), (h.origin.y >> l), h.bip->level(l).cols,
+                                       h.bip->level(l).rows)
+                            : CellsInside(keep, l);
+    if (old != nullptr && l < static_cast<int>(old->size()) && !(*old)[l].cells.empty()) {
+      cv::Rect moved = (*old)[l].cells;
+      moved.x += static_cast<int>(std::lround(shift.x / static_cast<double>(1 << l)));
+      moved.y += static_cast<int>(std::lround(shift.y / static_cast<double>(1 << l)));
+      window |= moved;
+    }
+    const cv::Rect kept = CellsInside(keep, l) & window;
+    TemplateLevel& t = result[l];
+    t.cells = kept;
+    t.colour.assign(3 * static_cast<size_t>(kept.area()), 0.f);
+    t.area.assign(kept.area(), 0);
+    t.weight.assign(kept.area(), 0.f);
+    if (kept.empty()) continue;
+    // Decayed old vertices first, then the new target's vertices over them.
+    if (old != nullptr && l < static_cast<int>(old->size())) {
+      const TemplateLevel& o = (*old)[l];
+      const int dx = static_cast<int>(std::lround(shift.x / static_cast<double>(1 << l)));
+      const int dy = static_cast<int>(std::lround(shift.y / static_cast<double>(1 << l)));
+      for (int y = o.cells.y; y < o.cells.y + o.cells.height; ++y) {
+        for (int x = o.cells.x; x < o.cells.x + o.cells.width; ++x) {
+          const size_t i = o.Index(x, y);
+          const float w = o.weight[i] - options.alpha;
+          if (o.weight[i] <= 0.f || w <= 1e-6f || !kept.contains({x + dx, y + dy})) continue;
+          const size_t j = t.Index(x + dx, y + dy);
+          t.weight[j] = w;
+          t.area[j] = o.area[i];
+          std::copy(&o.colour[3 * i], &o.colour[3 * i] + 3, &t.colour[3 * j]);
         }
       }
     }
-    while (!result.empty() && result.back().Empty()) result.pop_back();
-    return result;
-  }
-
-  // The working level (eq. 4.4): the highest level whose template area exceeds T_A of level 0's.
-  int WorkingLevel(const Target& target) const {
-    if (target.levels.empty()) return -1;
-    const double base = target.levels[0].TotalArea();
-    int working = 0;
-    for (int l = 1; l < static_cast<int>(target.levels.size()); ++l) {
-      if (base > 0 && target.levels[l].TotalArea() > options.working_area * base) working = l;
-    }
-    return working;
-  }
-
-  // Sets the target's pixels in `mask` (frame size) and its box and centroid from the regions.
-  void PaintTarget(const Hierarchy& h, const std::vector<uint8_t>& in_target, const cv::Rect& roi,
-                   cv::Size frame_size, cv::Mat* mask) const {
-    mask->create(frame_size, CV_8UC1);
-    mask->setTo(0);
-    const BipLevel& base = h.bip->level(0);
-    const cv::Rect inside = roi & cv::Rect(h.origin, h.size);
-    for (int y = inside.y; y < inside.y + inside.height; ++y) {
-      uchar* out = mask->ptr<uchar>(y);
-      const int row = (y - h.origin.y) * base.cols - h.origin.x;
-      for (int x = inside.x; x < inside.x + inside.width; ++x) {
-        const int cell = row + x;
-        if (!base.hom[cell]) continue;
-        const int r = h.region[0][cell];
-        if (r >= 0 && in_target[r]) out[x] = 255;
-      }
-    }
-  }
-
-  struct Match {
-    bool found = false;
-    int level = -1;
-    cv::Point displacement;  // cells of `level`
-    double overlap = 0.0;
-  };
-
-  // Top-down localisation (4.2.3) of a target in its ROI; marks the matched ROI vertices'
-  // regions in `in_target` (the first stage of 4.2.4). In the bounded mode a match at a coarse
-  // level is followed by a search at level 0 within one coarse cell of it, so that the motion
-  // and the matched vertices are those of level 0 (a coarse cell of 2^l pixels otherwise
-  // rounds the motion by up to 2^l pixels).
-  Match Localise(const Target& target, const Hierarchy& h, std::vector<uint8_t>* in_target) {
-    correlated_ = Correlate(target, target.roi, &correlation_);
-    box_to_roi_ = target.box.tl() - target.roi.tl();
-    for (int l = std::min(WorkingLevel(target), h.bip->num_levels() - 1); l >= 0; --l) {
-      Match match;
-      const double min_overlap =
-          options.mode == TrackerMode::kBounded ? options.bounded_min_overlap : options.min_overlap;
-      if (!SearchLevel(target, h, l, nullptr, min_overlap, &match)) continue;
-      if (options.mode == TrackerMode::kBounded && l > 0) {
-        const int cell = 1 << l;
-        const cv::Rect window(match.displacement.x * cell - cell,
-                              match.displacement.y * cell - cell, 2 * cell + 1, 2 * cell + 1);
-        Match fine;
-        if (SearchLevel(target, h, 0, &window, 0.0, &fine)) match = fine;
-      }
-      MarkMatched(target, h, match, in_target);
-      return match;
-    }
-    return {};
-  }
-
-  // Searches level l of the ROI for the template's best displacement (within `window`, in
-  // cells of l, when given) whose weighted overlap exceeds `min_overlap`; false when none does.
-  bool SearchLevel(const Target& target, const Hierarchy& h, int l, const cv::Rect* window,
-                   double min_overlap, Match* match) {
-    const float t2 = options.t_colour * options.t_colour;
-    const TemplateLevel& t = target.levels[l];
+    if (!built) continue;
     const BipLevel& level = h.bip->level(l);
-    const cv::Rect roi = CellsInside(target.roi, l);
-    const int ox = h.origin.x >> l, oy = h.origin.y >> l;
-    search_.Load(t, level, roi, ox, oy, target.distinct);
-    if (search_.total <= 0) return false;
-    const cv::Rect& occupied = search_.occupied;
-    // Displacements that keep the occupied cells inside the ROI, nearest to the previous
-    // motion first, so that among equal overlaps the nearest wins by coming first.
-    int dx0 = roi.x - occupied.x, dx1 = roi.x + roi.width - (occupied.x + occupied.width);
-    int dy0 = roi.y - occupied.y, dy1 = roi.y + roi.height - (occupied.y + occupied.height);
-    if (window != nullptr) {
-      dx0 = std::max(dx0, window->x), dx1 = std::min(dx1, window->x + window->width - 1);
-      dy0 = std::max(dy0, window->y), dy1 = std::min(dy1, window->y + window->height - 1);
-    }
-    if (dx1 < dx0 || dy1 < dy0) return false;
-    const cv::Point prior(
-        static_cast<int>(std::lround(target.motion.x / static_cast<double>(1 << l))),
-        static_cast<int>(std::lround(target.motion.y / static_cast<double>(1 << l))));
-    const std::vector<cv::Point>& displacements = search_.Order(dx0, dx1, dy0, dy1, prior);
-    // The smallest weight sum that is accepted (overlap > min_overlap).
-    const int64_t total = search_.total;
-    int64_t accepted = static_cast<int64_t>(std::floor(min_overlap * total));
-    while (accepted > 0 && static_cast<double>(accepted) / total > min_overlap) --accepted;
-    while (static_cast<double>(accepted) / total <= min_overlap) ++accepted;
-    // Every displacement is scored, row by row of the template; one stops being scored as
-    // soon as the weight it has missed shows that it can neither be accepted nor beat the
-    // best so far. The accepted result is that of the exhaustive search, ties included.
-    int64_t best = accepted - 1;
-    cv::Point best_d;
-    bool found = false;
-    const int width = occupied.width;
-    // The overlap of displacement d (PlacedOverlap: exact when above `bar`).
-    auto score_at = [&](const cv::Point& d, int64_t bar) {
-      const size_t from =
-          static_cast<size_t>(occupied.y + d.y - roi.y) * roi.width + (occupied.x + d.x - roi.x);
-      return PlacedOverlap(search_.colour[0].data(), search_.colour[1].data(),
-                           search_.colour[2].data(), search_.weight.data(), width, occupied.height,
-                           &search_.roi[0][from], &search_.roi[1][from], &search_.roi[2][from],
-                           roi.width, t2, total, bar);
-    };
-    if (correlated_) {
-      // The appearance joins the overlap (TrackerOptions::appearance). The score is not
-      // monotone in the search order, so every displacement is scored exactly.
-      const double sigma = std::max(
-          1.0, options.motion_sigma * std::sqrt(static_cast<double>(target.box.area())) / (1 << l));
-      const double share = options.appearance_share;
-      double best_score = 0.0;
-      for (const cv::Point& d : displacements) {
-        const double ex = d.x - prior.x, ey = d.y - prior.y;
-        const double k =
-            options.motion_sigma > 0.f ? std::exp(-(ex * ex + ey * ey) / (2 * sigma * sigma)) : 1.0;
-        if (k <= best_score) break;  // nearest first: k only falls
-        const double c = std::max(0.0, CorrelationAt(d, l));
-        const int64_t overlap = score_at(d, -1);
-        const double score = k * ((1 - share) * static_cast<double>(overlap) / total + share * c);
-        if (score > best_score) {
-          best_score = score;
-          best = overlap;
-          best_d = d;
-          best_correlation_ = c;
-        }
-      }
-      // The prior-weighted score is the one accepted: a far displacement needs a strong match.
-      // The correlation alone may follow an occluder or the background that took the
-      // target's place, so some colour overlap is needed too.
-      found = best_score > options.min_score &&
-              static_cast<double>(best) / total >= kMinAppearanceOverlap;
-    } else if (options.mode == TrackerMode::kBounded && options.motion_sigma > 0.f) {
-      // The bounded mode weighs each accepted overlap by a Gaussian of the displacement's
-      // distance to the previous motion, of `motion_sigma` times the box's mean side: among
-      // displacements that match, the target most likely moved little. Displacements come
-      // nearest first, so the weight only falls, and the search stops once even a whole
-      // overlap could no longer win.
-      const double sigma = std::max(
-          1.0, options.motion_sigma * std::sqrt(static_cast<double>(target.box.area())) / (1 << l));
-      double best_weighted = 0.0;
-      for (const cv::Point& d : displacements) {
-        const double ex = d.x - prior.x, ey = d.y - prior.y;
-        const double k = std::exp(-(ex * ex + ey * ey) / (2 * sigma * sigma));
-        if (found && k * total <= best_weighted) break;
-        const int64_t bar = std::max<int64_t>(
-            accepted - 1, found ? static_cast<int64_t>(std::floor(best_weighted / k)) : 0);
-        const int64_t score = score_at(d, bar);
-        if (score > bar && k * score > best_weighted) {
-          best_weighted = k * score;
-          best = score;
-          best_d = d;
-          found = true;
-        }
-      }
-    } else {
-      for (const cv::Point& d : displacements) {
-        const int64_t score = score_at(d, best);
-        if (score > best) {
-          best = score;
-          best_d = d;
-          found = true;
-        }
-      }
-    }
-    if (!found) return false;
-    *match = {true, l, best_d, static_cast<double>(best) / total};
-    return true;
-  }
-
-  // The matched ROI vertices' regions are the target (first stage of 4.2.4).
-  void MarkMatched(const Target& target, const Hierarchy& h, const Match& match,
-                   std::vector<uint8_t>* in_target) const {
-    const float t2 = options.t_colour * options.t_colour;
-    const int l = match.level;
-    const TemplateLevel& t = target.levels[l];
-    const BipLevel& level = h.bip->level(l);
-    for (int y = t.cells.y; y < t.cells.y + t.cells.height; ++y) {
-      for (int x = t.cells.x; x < t.cells.x + t.cells.width; ++x) {
-        const size_t i = t.Index(x, y);
-        if (t.weight[i] <= 0.f) continue;
-        const int cell = h.Cell(l, x + match.displacement.x, y + match.displacement.y);
-        if (cell < 0 || !level.hom[cell] ||
-            SquaredDistance(&t.colour[3 * i], level.Feature(cell)) >= t2) {
-          continue;
-        }
+    for (int y = kept.y; y < kept.y + kept.height; ++y) {
+      for (int x = kept.x; x < kept.x + kept.width; ++x) {
+        const int cell = h.Cell(l, x, y);
+        if (cell < 0 || !level.hom[cell]) continue;
         const int r = h.region[l][cell];
-        if (r >= 0) (*in_target)[r] = 1;
+        if (r < 0 || !in_target[r]) continue;
+        const size_t j = t.Index(x, y);
+        t.weight[j] = 1.f;
+        t.area[j] = level.area[cell];
+        std::copy(level.Feature(cell), level.Feature(cell) + 3, &t.colour[3 * j]);
       }
     }
   }
+  while (!result.empty() && result.back().Empty()) result.pop_back();
+  return result;
+}
 
-  // Second stage of 4.2.4: the regions of neighbours (regular and virtual) of the target's
-  // regular vertices that are within T_cr of them join the target. One pass, over the target
-  // as the first stage left it.
-  void Refine(const Hierarchy& h, const cv::Rect& roi, std::vector<uint8_t>* in_target) const {
-    const std::vector<uint8_t> first = *in_target;
-    const float t2 = options.t_refine * options.t_refine;
-    for (int l = 0; l < h.bip->num_levels(); ++l) {
-      const BipLevel& level = h.bip->level(l);
-      const std::vector<int32_t>& region = h.region[l];
-      const cv::Rect cells = CellsInside(roi, l);
-      auto consider = [&](int q, int n) {
-        const int rn = region[n];
-        if (rn < 0 || first[rn] || (*in_target)[rn]) return;
-        if (SquaredDistance(level.Feature(q), level.Feature(n)) < t2) (*in_target)[rn] = 1;
-      };
-      const int ox = h.origin.x >> l, oy = h.origin.y >> l;
-      for (int y = std::max(cells.y - oy, 0); y < std::min(cells.y + cells.height - oy, level.rows);
-           ++y) {
-        for (int x = std::max(cells.x - ox, 0);
-             x < std::min(cells.x + cells.width - ox, level.cols); ++x) {
-          const int q = y * level.cols + x;
-          if (!level.hom[q] || region[q] < 0 || !first[region[q]]) continue;
-          for (int dy = -1; dy <= 1; ++dy) {
-            for (int dx = -1; dx <= 1; ++dx) {
-              const int nx = x + dx, ny = y + dy;
-              if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= level.cols ||
-                  ny >= level.rows || !cells.contains({nx + ox, ny + oy})) {
-                continue;
-              }
-              const int n = ny * level.cols + nx;
-              if (level.hom[n]) consider(q, n);
+int MultiTracker::Impl::WorkingLevel(const Target& target) const {
+  if (target.levels.empty()) return -1;
+  const double base = target.levels[0].TotalArea();
+  int working = 0;
+  for (int l = 1; l < static_cast<int>(target.levels.size()); ++l) {
+    if (base > 0 && target.levels[l].TotalArea() > options.working_area * base) working = l;
+  }
+  return working;
+}
+
+void MultiTracker::Impl::PaintTarget(const Hierarchy& h, const std::vector<uint8_t>& in_target,
+                                     const cv::Rect& roi, cv::Size frame_size,
+                                     cv::Mat* mask) const {
+  mask->create(frame_size, CV_8UC1);
+  mask->setTo(0);
+  const BipLevel& base = h.bip->level(0);
+  const cv::Rect inside = roi & cv::Rect(h.origin, h.size);
+  for (int y = inside.y; y < inside.y + inside.height; ++y) {
+    uchar* out = mask->ptr<uchar>(y);
+    const int row = (y - h.origin.y) * base.cols - h.origin.x;
+    for (int x = inside.x; x < inside.x + inside.width; ++x) {
+      const int cell = row + x;
+      if (!base.hom[cell]) continue;
+      const int r = h.region[0][cell];
+      if (r >= 0 && in_target[r]) out[x] = 255;
+    }
+  }
+}
+
+MultiTracker::Impl::Match MultiTracker::Impl::Localise(const Target& target, const Hierarchy& h,
+                                                       std::vector<uint8_t>* in_target) {
+  correlated_ = Correlate(target, target.roi, &correlation_);
+  box_to_roi_ = target.box.tl() - target.roi.tl();
+  for (int l = std::min(WorkingLevel(target), h.bip->num_levels() - 1); l >= 0; --l) {
+    Match match;
+    const double min_overlap =
+        options.mode == TrackerMode::kBounded ? options.bounded_min_overlap : options.min_overlap;
+    if (!SearchLevel(target, h, l, nullptr, min_overlap, &match)) continue;
+    if (options.mode == TrackerMode::kBounded && l > 0) {
+      const int cell = 1 << l;
+      const cv::Rect window(match.displacement.x * cell - cell, match.displacement.y * cell - cell,
+                            2 * cell + 1, 2 * cell + 1);
+      Match fine;
+      if (SearchLevel(target, h, 0, &window, 0.0, &fine)) match = fine;
+    }
+    MarkMatched(target, h, match, in_target);
+    return match;
+  }
+  return {};
+}
+
+// Longer than most on purpose: the tracker's inner loop (4.2.3), the displacement scan and its
+// early exits on one set of loaded planes; split, the hot loop would pass its state through
+// arguments (docs/PERFORMANCE.md times it).
+bool MultiTracker::Impl::SearchLevel(const Target& target, const Hierarchy& h, int l,
+                                     const cv::Rect* window, double min_overlap, Match* match) {
+  const float t2 = options.t_colour * options.t_colour;
+  const TemplateLevel& t = target.levels[l];
+  const BipLevel& level = h.bip->level(l);
+  const cv::Rect roi = CellsInside(target.roi, l);
+  const int ox = h.origin.x >> l, oy = h.origin.y >> l;
+  search_.Load(t, level, roi, ox, oy, target.distinct);
+  if (search_.total <= 0) return false;
+  const cv::Rect& occupied = search_.occupied;
+  // Displacements that keep the occupied cells inside the ROI, nearest to the previous
+  // motion first, so that among equal overlaps the nearest wins by coming first.
+  int dx0 = roi.x - occupied.x, dx1 = roi.x + roi.width - (occupied.x + occupied.width);
+  int dy0 = roi.y - occupied.y, dy1 = roi.y + roi.height - (occupied.y + occupied.height);
+  if (window != nullptr) {
+    dx0 = std::max(dx0, window->x), dx1 = std::min(dx1, window->x + window->width - 1);
+    dy0 = std::max(dy0, window->y), dy1 = std::min(dy1, window->y + window->height - 1);
+  }
+  if (dx1 < dx0 || dy1 < dy0) return false;
+  const cv::Point prior(
+      static_cast<int>(std::lround(target.motion.x / static_cast<double>(1 << l))),
+      static_cast<int>(std::lround(target.motion.y / static_cast<double>(1 << l))));
+  const std::vector<cv::Point>& displacements = search_.Order(dx0, dx1, dy0, dy1, prior);
+  // The smallest weight sum that is accepted (overlap > min_overlap).
+  const int64_t total = search_.total;
+  int64_t accepted = static_cast<int64_t>(std::floor(min_overlap * total));
+  while (accepted > 0 && static_cast<double>(accepted) / total > min_overlap) --accepted;
+  while (static_cast<double>(accepted) / total <= min_overlap) ++accepted;
+  // Every displacement is scored, row by row of the template; one stops being scored as
+  // soon as the weight it has missed shows that it can neither be accepted nor beat the
+  // best so far. The accepted result is that of the exhaustive search, ties included.
+  int64_t best = accepted - 1;
+  cv::Point best_d;
+  bool found = false;
+  const int width = occupied.width;
+  // The overlap of displacement d (PlacedOverlap: exact when above `bar`).
+  auto score_at = [&](const cv::Point& d, int64_t bar) {
+    const size_t from =
+        static_cast<size_t>(occupied.y + d.y - roi.y) * roi.width + (occupied.x + d.x - roi.x);
+    return PlacedOverlap(search_.colour[0].data(), search_.colour[1].data(),
+                         search_.colour[2].data(), search_.weight.data(), width, occupied.height,
+                         &search_.roi[0][from], &search_.roi[1][from], &search_.roi[2][from],
+                         roi.width, t2, total, bar);
+  };
+  if (correlated_) {
+    // The appearance joins the overlap (TrackerOptions::appearance). The score is not
+    // monotone in the search order, so every displacement is scored exactly.
+    const double sigma = std::max(
+        1.0, options.motion_sigma * std::sqrt(static_cast<double>(target.box.area())) / (1 << l));
+    const double share = options.appearance_share;
+    double best_score = 0.0;
+    for (const cv::Point& d : displacements) {
+      const double ex = d.x - prior.x, ey = d.y - prior.y;
+      const double k =
+          options.motion_sigma > 0.f ? std::exp(-(ex * ex + ey * ey) / (2 * sigma * sigma)) : 1.0;
+      if (k <= best_score) break;  // nearest first: k only falls
+      const double c = std::max(0.0, CorrelationAt(d, l));
+      const int64_t overlap = score_at(d, -1);
+      const double score = k * ((1 - share) * static_cast<double>(overlap) / total + share * c);
+      if (score > best_score) {
+        best_score = score;
+        best = overlap;
+        best_d = d;
+        best_correlation_ = c;
+      }
+    }
+    // The prior-weighted score is the one accepted: a far displacement needs a strong match.
+    // The correlation alone may follow an occluder or the background that took the
+    // target's place, so some colour overlap is needed too.
+    found = best_score > options.min_score &&
+            static_cast<double>(best) / total >= kMinAppearanceOverlap;
+  } else if (options.mode == TrackerMode::kBounded && options.motion_sigma > 0.f) {
+    // The bounded mode weighs each accepted overlap by a Gaussian of the displacement's
+    // distance to the previous motion, of `motion_sigma` times the box's mean side: among
+    // displacements that match, the target most likely moved little. Displacements come
+    // nearest first, so the weight only falls, and the search stops once even a whole
+    // overlap could no longer win.
+    const double sigma = std::max(
+        1.0, options.motion_sigma * std::sqrt(static_cast<double>(target.box.area())) / (1 << l));
+    double best_weighted = 0.0;
+    for (const cv::Point& d : displacements) {
+      const double ex = d.x - prior.x, ey = d.y - prior.y;
+      const double k = std::exp(-(ex * ex + ey * ey) / (2 * sigma * sigma));
+      if (found && k * total <= best_weighted) break;
+      const int64_t bar = std::max<int64_t>(
+          accepted - 1, found ? static_cast<int64_t>(std::floor(best_weighted / k)) : 0);
+      const int64_t score = score_at(d, bar);
+      if (score > bar && k * score > best_weighted) {
+        best_weighted = k * score;
+        best = score;
+        best_d = d;
+        found = true;
+      }
+    }
+  } else {
+    for (const cv::Point& d : displacements) {
+      const int64_t score = score_at(d, best);
+      if (score > best) {
+        best = score;
+        best_d = d;
+        found = true;
+      }
+    }
+  }
+  if (!found) return false;
+  *match = {true, l, best_d, static_cast<double>(best) / total};
+  return true;
+}
+
+void MultiTracker::Impl::MarkMatched(const Target& target, const Hierarchy& h, const Match& match,
+                                     std::vector<uint8_t>* in_target) const {
+  const float t2 = options.t_colour * options.t_colour;
+  const int l = match.level;
+  const TemplateLevel& t = target.levels[l];
+  const BipLevel& level = h.bip->level(l);
+  for (int y = t.cells.y; y < t.cells.y + t.cells.height; ++y) {
+    for (int x = t.cells.x; x < t.cells.x + t.cells.width; ++x) {
+      const size_t i = t.Index(x, y);
+      if (t.weight[i] <= 0.f) continue;
+      const int cell = h.Cell(l, x + match.displacement.x, y + match.displacement.y);
+      if (cell < 0 || !level.hom[cell] ||
+          SquaredDistance(&t.colour[3 * i], level.Feature(cell)) >= t2) {
+        continue;
+      }
+      const int r = h.region[l][cell];
+      if (r >= 0) (*in_target)[r] = 1;
+    }
+  }
+}
+
+void MultiTracker::Impl::Refine(const Hierarchy& h, const cv::Rect& roi,
+                                std::vector<uint8_t>* in_target) const {
+  const std::vector<uint8_t> first = *in_target;
+  const float t2 = options.t_refine * options.t_refine;
+  for (int l = 0; l < h.bip->num_levels(); ++l) {
+    const BipLevel& level = h.bip->level(l);
+    const std::vector<int32_t>& region = h.region[l];
+    const cv::Rect cells = CellsInside(roi, l);
+    auto consider = [&](int q, int n) {
+      const int rn = region[n];
+      if (rn < 0 || first[rn] || (*in_target)[rn]) return;
+      if (SquaredDistance(level.Feature(q), level.Feature(n)) < t2) (*in_target)[rn] = 1;
+    };
+    const int ox = h.origin.x >> l, oy = h.origin.y >> l;
+    for (int y = std::max(cells.y - oy, 0); y < std::min(cells.y + cells.height - oy, level.rows);
+         ++y) {
+      for (int x = std::max(cells.x - ox, 0); x < std::min(cells.x + cells.width - ox, level.cols);
+           ++x) {
+        const int q = y * level.cols + x;
+        if (!level.hom[q] || region[q] < 0 || !first[region[q]]) continue;
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = x + dx, ny = y + dy;
+            if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= level.cols || ny >= level.rows ||
+                !cells.contains({nx + ox, ny + oy})) {
+              continue;
             }
+            const int n = ny * level.cols + nx;
+            if (level.hom[n]) consider(q, n);
           }
         }
       }
-      // Virtual neighbours through the explicit edges.
-      for (const uint64_t edge : level.edges) {
-        const int a = static_cast<int>(edge >> 32), b = static_cast<int>(edge & 0xffffffffu);
-        for (const auto& [q, n] : {std::pair<int, int>{a, b}, std::pair<int, int>{b, a}}) {
-          if (level.IsVirtual(q) || region[q] < 0 || !first[region[q]]) continue;
-          const int qx = q % level.cols + ox, qy = q / level.cols + oy;
-          if (cells.contains({qx, qy})) consider(q, n);
-        }
+    }
+    // Virtual neighbours through the explicit edges.
+    for (const uint64_t edge : level.edges) {
+      const int a = static_cast<int>(edge >> 32), b = static_cast<int>(edge & 0xffffffffu);
+      for (const auto& [q, n] : {std::pair<int, int>{a, b}, std::pair<int, int>{b, a}}) {
+        if (level.IsVirtual(q) || region[q] < 0 || !first[region[q]]) continue;
+        const int qx = q % level.cols + ox, qy = q / level.cols + oy;
+        if (cells.contains({qx, qy})) consider(q, n);
       }
     }
   }
+}
 
-  // Bounded mode: how distinctive each colour is of the target (its mask) against the rest of
-  // its ROI outside its box, a histogram likelihood ratio f / (f + b) of the normalised counts,
-  // blended into the previous table by `distinct_rate`. Colours the surroundings share count
-  // little in the next frame's overlap; colours only the target has count wholly.
-  void LearnDistinct(const Hierarchy& h, Target* target) const {
-    if (!options.distinctive_weights || target->similarity != TrackSimilarity::kColour ||
-        target->mask.empty()) {
-      return;
-    }
-    fg_.assign(kColourBins, 0.f);
-    bg_.assign(kColourBins, 0.f);
-    const BipLevel& base = h.bip->level(0);
-    const cv::Rect roi = target->roi & cv::Rect(h.origin, h.size);
-    float nf = 0.f, nb = 0.f;
-    for (int y = roi.y; y < roi.y + roi.height; ++y) {
-      const uchar* m = target->mask.ptr<uchar>(y);
-      const int row = (y - h.origin.y) * base.cols - h.origin.x;
-      for (int x = roi.x; x < roi.x + roi.width; ++x) {
-        const int cell = row + x;
-        const int bin = ColourBin(base.Feature(cell));
-        if (m[x]) {
-          fg_[bin] += 1.f, nf += 1.f;
-        } else if (!target->box.contains({x, y})) {
-          bg_[bin] += 1.f, nb += 1.f;
-        }
-      }
-    }
-    if (nf <= 0.f) return;
-    const bool first = target->distinct.empty();
-    if (first) target->distinct.assign(kColourBins, 1.f);
-    for (int b = 0; b < kColourBins; ++b) {
-      const float f = fg_[b] / nf, g = nb > 0.f ? bg_[b] / nb : 0.f;
-      const float d = f + g > 0.f ? f / (f + g) : 0.5f;
-      float& w = target->distinct[b];
-      w = first ? d : (1.f - options.distinct_rate) * w + options.distinct_rate * d;
-    }
+void MultiTracker::Impl::Track(const cv::Mat& frame, const cv::Mat& skin, const cv::Mat& cylinder,
+                               std::vector<TrackResult>* results) {
+  segmentation_ms = 0.0;
+  if (options.mode == TrackerMode::kBounded && options.appearance) {
+    cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
+    frame_ = frame;
+    frame_cylinder_ = cylinder;
   }
-
-  // Bounded mode with `appearance`: the ZNCC of the target's grey model, at its box's size,
-  // over `area` of the frame; false when there is no model or `area` cannot hold the box.
-  bool Correlate(const Target& target, const cv::Rect& area, cv::Mat* correlation) const {
-    if (options.mode != TrackerMode::kBounded || !options.appearance || target.appearance.empty() ||
-        grey_.empty()) {
-      return false;
-    }
-    const cv::Rect& box = target.box;
-    if (box.width < 2 || box.height < 2 || area.width < box.width || area.height < box.height) {
-      return false;
-    }
-    cv::resize(target.appearance, model_, box.size(), 0, 0, cv::INTER_LINEAR);
-    grey_(area).convertTo(patch_, CV_32F);
-    cv::matchTemplate(patch_, model_, *correlation, cv::TM_CCOEFF_NORMED);
-    return true;
-  }
-
-  // The correlation of the box moved by displacement d of level l; 0 where it was not computed.
-  double CorrelationAt(const cv::Point& d, int l) const {
-    const int x = (d.x << l) + box_to_roi_.x, y = (d.y << l) + box_to_roi_.y;
-    if (x < 0 || y < 0 || x >= correlation_.cols || y >= correlation_.rows) return 0.0;
-    return correlation_.at<float>(y, x);
-  }
-
-  // The mean distinctiveness (the colour table of LearnDistinct) of the frame's pixels in
-  // `box`; -1 without a table.
-  double MeanDistinct(const Target& target, const cv::Rect& box) const {
-    const cv::Rect inside = box & cv::Rect(0, 0, frame_.cols, frame_.rows);
-    if (target.distinct.empty() || inside.empty()) return -1.0;
-    // The caller's cylinder image when it gave one, else converted here (the same values).
-    cv::Mat cylinder;
-    if (frame_cylinder_.empty()) {
-      BgrToCylinder(frame_(inside), &cylinder_);
-      cylinder = cylinder_;
-    } else {
-      cylinder = frame_cylinder_(inside);
-    }
-    double sum = 0.0;
-    for (int y = 0; y < cylinder.rows; ++y) {
-      const float* f = cylinder.ptr<float>(y);
-      for (int x = 0; x < cylinder.cols; ++x) sum += target.distinct[ColourBin(f + 3 * x)];
-    }
-    return sum / inside.area();
-  }
-
-  // Bounded mode with `appearance`: the model follows the found box by `appearance_rate`.
-  void LearnAppearance(Target* target) const {
-    if (!options.appearance || target->similarity != TrackSimilarity::kColour || grey_.empty()) {
-      return;
-    }
-    const cv::Rect box = target->box & cv::Rect(0, 0, grey_.cols, grey_.rows);
-    if (box.width < 2 || box.height < 2) return;
-    grey_(box).convertTo(patch_, CV_32F);
-    if (!target->appearance_judged) {
-      target->appearance_judged = true;
-      // A flat patch's correlation is noise (and OpenCV gives a flat model 1 everywhere): a
-      // target without texture when it starts has no appearance model.
-      cv::Scalar mean, deviation;
-      cv::meanStdDev(patch_, mean, deviation);
-      if (deviation[0] >= kMinAppearanceDeviation) target->appearance = patch_.clone();
-      return;
-    }
-    if (target->appearance.empty()) return;
-    cv::resize(patch_, patch_, target->appearance.size(), 0, 0, cv::INTER_AREA);
-    cv::addWeighted(target->appearance, 1.0 - options.appearance_rate, patch_,
-                    options.appearance_rate, 0.0, target->appearance);
-  }
-
-  // Bounded mode with `appearance`, a target not found: its model is searched for within
-  // `redetect_range` box sides around its box, and where it correlates by `redetect_ratio` of
-  // its typical correlation or more, the box and the template move there (the target is
-  // still not found in this frame; the next frame's search starts there).
-  void Redetect(Target* target) {
-    if (target->typical_correlation <= 0.0) return;
-    const cv::Rect& box = target->box;
-    const int gx = static_cast<int>(std::lround(options.redetect_range * box.width));
-    const int gy = static_cast<int>(std::lround(options.redetect_range * box.height));
-    const cv::Rect area =
-        cv::Rect(box.x - gx, box.y - gy, box.width + 2 * gx, box.height + 2 * gy) &
-        cv::Rect(0, 0, grey_.cols, grey_.rows);
-    cv::Mat correlation;
-    if (!Correlate(*target, area, &correlation)) return;
-    double best = 0.0;
-    cv::Point at;
-    cv::minMaxLoc(correlation, nullptr, &best, nullptr, &at);
-    if (best < options.redetect_ratio * target->typical_correlation) return;
-    const cv::Point shift = area.tl() + at - box.tl();
-    // The grey correlation does not see colour: the place must also have the target's
-    // distinctive colours, by the same share of their typical mean.
-    if (target->typical_distinct > 0.0 &&
-        MeanDistinct(*target, box + shift) < options.redetect_ratio * target->typical_distinct) {
-      return;
-    }
-    for (size_t l = 0; l < target->levels.size(); ++l) {
-      target->levels[l].cells.x +=
-          static_cast<int>(std::lround(shift.x / static_cast<double>(1 << l)));
-      target->levels[l].cells.y +=
-          static_cast<int>(std::lround(shift.y / static_cast<double>(1 << l)));
-    }
-    target->box += shift;
-    target->smooth.x += shift.x;
-    target->smooth.y += shift.y;
-    target->centroid += cv::Point2f(shift);
-  }
-
-  // Bounded refinement (TrackerMode::kBounded). The target may only be where the last box,
-  // moved by the match, plausibly is now: that box grown by `bound_growth` of its size on each
-  // side. Refinement looks only there, and a region (first stage or refinement) belongs to the
-  // target only when most of its pixels in the ROI lie in that box: a region that reaches far
-  // outside it is background that the over-segmentation joined to the target. Returns the box.
-  cv::Rect BoundTarget(const Hierarchy& h, const Target& target, cv::Point shift,
-                       const cv::Rect& image, std::vector<uint8_t>* in_target) const {
-    const cv::Rect moved = target.box + shift;
-    const int gx = std::max(2, static_cast<int>(std::lround(options.bound_growth * moved.width)));
-    const int gy = std::max(2, static_cast<int>(std::lround(options.bound_growth * moved.height)));
-    const cv::Rect plausible =
-        cv::Rect(moved.x - gx, moved.y - gy, moved.width + 2 * gx, moved.height + 2 * gy) &
-        target.roi & image;
-    const std::vector<uint8_t> matched = *in_target;
-    Refine(h, plausible, in_target);
-    region_inside_.assign(h.regions, 0);
-    region_all_.assign(h.regions, 0);
-    const BipLevel& base = h.bip->level(0);
-    const cv::Rect roi = target.roi & cv::Rect(h.origin, h.size);
-    for (int y = roi.y; y < roi.y + roi.height; ++y) {
-      const int row = (y - h.origin.y) * base.cols - h.origin.x;
-      const bool y_in = y >= moved.y && y < moved.y + moved.height;
-      for (int x = roi.x; x < roi.x + roi.width; ++x) {
-        const int cell = row + x;
-        if (!base.hom[cell]) continue;
-        const int r = h.region[0][cell];
-        if (r < 0 || !(*in_target)[r]) continue;
-        ++region_all_[r];
-        if (y_in && x >= moved.x && x < moved.x + moved.width) ++region_inside_[r];
-      }
-    }
-    bool any = false;
-    for (int r = 0; r < h.regions; ++r) {
-      if (!(*in_target)[r]) continue;
-      (*in_target)[r] = 2 * region_inside_[r] >= region_all_[r];
-      any = any || (*in_target)[r];
-    }
-    // When every region reaches out, the matched regions are kept, cut to the box.
-    if (!any) *in_target = matched;
-    return plausible;
-  }
-
-  // The bounded mode's box. The mask's box says where the target is, but a side of it that
-  // reaches the plausible box's edge is no evidence of growth (the regions may go on beyond
-  // it): that side stays where the moved box has it. The box's size and centre then follow
-  // that evidence by a share `size_rate` a frame, so that one frame whose segmentation takes
-  // too little or too much does not make the box jump.
-  cv::Rect SmoothBox(const Target& target, cv::Point shift, cv::Rect mask_box,
-                     const cv::Rect& plausible, const cv::Rect& image, cv::Rect2d* smooth) const {
-    const cv::Rect moved = target.box + shift;
-    // The unrounded box moved as the rounded one: only its size and sub-pixel offset carry.
-    const cv::Rect2d last = target.smooth.area() > 0 ? target.smooth : cv::Rect2d(target.box);
-    const cv::Rect2d moved_smooth(last.x + shift.x, last.y + shift.y, last.width, last.height);
-    int x0 = mask_box.x, y0 = mask_box.y;
-    int x1 = mask_box.x + mask_box.width, y1 = mask_box.y + mask_box.height;
-    if (x0 <= plausible.x && plausible.x > 0) x0 = std::max(x0, moved.x);
-    if (y0 <= plausible.y && plausible.y > 0) y0 = std::max(y0, moved.y);
-    if (x1 >= plausible.x + plausible.width && x1 < image.width) {
-      x1 = std::min(x1, moved.x + moved.width);
-    }
-    if (y1 >= plausible.y + plausible.height && y1 < image.height) {
-      y1 = std::min(y1, moved.y + moved.height);
-    }
-    if (x1 <= x0 || y1 <= y0) return moved & image;
-    const double rate = options.size_rate;
-    const double w = (1 - rate) * moved_smooth.width + rate * (x1 - x0);
-    const double hgt = (1 - rate) * moved_smooth.height + rate * (y1 - y0);
-    const double crate = options.centre_rate;
-    const double cx =
-        (1 - crate) * (moved_smooth.x + moved_smooth.width / 2.0) + crate * (x0 + x1) / 2.0;
-    const double cy =
-        (1 - crate) * (moved_smooth.y + moved_smooth.height / 2.0) + crate * (y0 + y1) / 2.0;
-    *smooth = cv::Rect2d(cx - w / 2, cy - hgt / 2, std::max(1.0, w), std::max(1.0, hgt));
-    cv::Rect box(static_cast<int>(std::lround(cx - w / 2)),
-                 static_cast<int>(std::lround(cy - hgt / 2)),
-                 std::max(1, static_cast<int>(std::lround(w))),
-                 std::max(1, static_cast<int>(std::lround(hgt))));
-    box &= image;
-    return box.empty() ? (moved & image) : box;
-  }
-
-  void Track(const cv::Mat& frame, const cv::Mat& skin, const cv::Mat& cylinder,
-             std::vector<TrackResult>* results) {
-    segmentation_ms = 0.0;
-    if (options.mode == TrackerMode::kBounded && options.appearance) {
-      cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
-      frame_ = frame;
-      frame_cylinder_ = cylinder;
-    }
-    const cv::Rect image(0, 0, frame.cols, frame.rows);
-    for (const TrackSimilarity similarity : {TrackSimilarity::kColour, TrackSimilarity::kSkin}) {
-      int pyramid_levels = 0;
-      if (!BuildPyramids(frame, skin, cylinder, similarity, &pyramid_levels)) continue;
-      for (size_t i = 0; i < targets.size(); ++i) {
-        if (targets[i].similarity != similarity) continue;
-        results->push_back(TrackTarget(i, frame, pyramid_levels));
-      }
-    }
-    std::sort(results->begin(), results->end(),
-              [](const TrackResult& a, const TrackResult& b) { return a.id < b.id; });
-    targets.erase(std::remove_if(targets.begin(), targets.end(),
-                                 [](const Target& t) { return t.levels.empty(); }),
-                  targets.end());
-  }
-
-  // The ROIs of this similarity's targets and the pyramid over their union, in parts (4.3);
-  // false when no target of it has an ROI in the image. `pyramid_levels`: the tallest part's.
-  bool BuildPyramids(const cv::Mat& frame, const cv::Mat& skin, const cv::Mat& cylinder,
-                     TrackSimilarity similarity, int* pyramid_levels) {
-    const cv::Rect image(0, 0, frame.cols, frame.rows);
-    // One pyramid over the union of this similarity's ROIs (4.3).
-    union_mask.create(frame.size(), CV_8UC1);
-    union_mask.setTo(0);
-    bool any = false;
-    cv::Rect bounds;
-    for (Target& target : targets) {
-      if (target.similarity != similarity) continue;
-      target.roi =
-          cv::Rect(target.box.x - target.border, target.box.y - target.border,
-                   target.box.width + 2 * target.border, target.box.height + 2 * target.border) &
-          image;
-      if (target.roi.empty()) continue;
-      union_mask(target.roi).setTo(255);
-      bounds = any ? bounds | target.roi : target.roi;
-      any = true;
-    }
-    if (!any) return false;
-    if (similarity == TrackSimilarity::kSkin) {
-      ATTEND_CHECK(skin.type() == CV_8UC1 && skin.size() == frame.size())
-          << "skin targets need the frame's binary skin map";
-    }
-    // The pyramid over the union of the ROIs is built in parts: ROIs whose aligned crops
-    // overlap or touch share a part, and parts are apart by at least a pixel outside every
-    // ROI. No vertex of one part is linked to, or adjacent to, a vertex of another, at any
-    // level, and every part links with the thresholds of the whole union's crop. A part's
-    // crop starts on a multiple of kAlignment, as the union's does, so their cells agree up
-    // to level kMaxTemplateLevel; above it they may not, and a regular cell there needs
-    // 2^(kMaxTemplateLevel + 1) pixels square inside the ROIs: when a part's ROIs could hold
-    // one, the pyramid is built whole. Each part is then exactly the union pyramid's
-    // restriction to it (the template follows the whole pyramid's height, see MakeTemplate),
-    // and the parts cost what their crops cost, not what the bounding box of every ROI
-    // would.
-    std::vector<cv::Rect> groups;  // aligned crops
-    std::vector<cv::Rect> spans;   // the bounding box of each group's ROIs
-    group_of.assign(targets.size(), -1);
+  const cv::Rect image(0, 0, frame.cols, frame.rows);
+  for (const TrackSimilarity similarity : {TrackSimilarity::kColour, TrackSimilarity::kSkin}) {
+    int pyramid_levels = 0;
+    if (!BuildPyramids(frame, skin, cylinder, similarity, &pyramid_levels)) continue;
     for (size_t i = 0; i < targets.size(); ++i) {
-      if (targets[i].similarity != similarity || targets[i].roi.empty()) continue;
-      group_of[i] = static_cast<int>(groups.size());
-      groups.push_back(Aligned(targets[i].roi));
-      spans.push_back(targets[i].roi);
+      if (targets[i].similarity != similarity) continue;
+      results->push_back(TrackTarget(i, frame, pyramid_levels));
     }
-    for (bool merged = true; merged;) {
-      merged = false;
-      for (size_t a = 0; a < groups.size() && !merged; ++a) {
-        for (size_t b = a + 1; b < groups.size() && !merged; ++b) {
-          const cv::Rect grown(groups[a].x - 1, groups[a].y - 1, groups[a].width + 2,
-                               groups[a].height + 2);
-          if ((grown & groups[b]).empty()) continue;
-          Merge(a, b, &groups, &spans);
-          merged = true;
-        }
-      }
-    }
-    constexpr int kUnaligned = 2 * kAlignment;
-    const bool whole_pyramid = !options.pyramid_parts ||
-                               std::any_of(spans.begin(), spans.end(), [](const cv::Rect& span) {
-                                 return span.width >= kUnaligned && span.height >= kUnaligned;
-                               });
-    while (whole_pyramid && groups.size() > 1) Merge(0, 1, &groups, &spans);
-    const cv::Rect whole = Aligned(bounds);
-    const int schedule_side = std::min(whole.width, whole.height);
-    const Stopwatch segmentation;
-    for (size_t g = 0; g < groups.size(); ++g) {
-      Hierarchy& part = Pyramid(similarity, g);
-      BuildHierarchy(frame, skin, similarity, union_mask, groups[g], schedule_side,
-                     options.t_oversegment, &part, cylinder);
-      *pyramid_levels = std::max(*pyramid_levels, part.bip->num_levels());
-    }
-    segmentation_ms += segmentation.ElapsedMs();
-    return true;
   }
+  std::sort(results->begin(), results->end(),
+            [](const TrackResult& a, const TrackResult& b) { return a.id < b.id; });
+  targets.erase(std::remove_if(targets.begin(), targets.end(),
+                               [](const Target& t) { return t.levels.empty(); }),
+                targets.end());
+}
 
-  // Tracks target `i` in its part of the pyramid: found, it takes its new mask, box and
-  // template; not found, it decays.
-  TrackResult TrackTarget(size_t i, const cv::Mat& frame, int pyramid_levels) {
-    Target& target = targets[i];
-    // A target with an empty ROI (outside the image) is searched in no pyramid.
-    const Hierarchy& h = Pyramid(target.similarity, std::max(group_of[i], 0));
-    TrackResult result;
-    result.id = target.id;
-    result.roi = target.roi;
-    std::vector<uint8_t> in_target(h.regions, 0);
-    const Match match = group_of[i] < 0 ? Match() : Localise(target, h, &in_target);
-    result.overlap = match.overlap;
-    if (match.found) {
-      Found(h, match, frame, pyramid_levels, &in_target, &target, &result);
-    } else {
-      Missed(frame, &target, &result);
-    }
-    result.box = target.box;
-    result.centroid = target.centroid;
-    return result;
+bool MultiTracker::Impl::BuildPyramids(const cv::Mat& frame, const cv::Mat& skin,
+                                       const cv::Mat& cylinder, TrackSimilarity similarity,
+                                       int* pyramid_levels) {
+  const cv::Rect image(0, 0, frame.cols, frame.rows);
+  // One pyramid over the union of this similarity's ROIs (4.3).
+  union_mask.create(frame.size(), CV_8UC1);
+  union_mask.setTo(0);
+  bool any = false;
+  cv::Rect bounds;
+  for (Target& target : targets) {
+    if (target.similarity != similarity) continue;
+    target.roi =
+        cv::Rect(target.box.x - target.border, target.box.y - target.border,
+                 target.box.width + 2 * target.border, target.box.height + 2 * target.border) &
+        image;
+    if (target.roi.empty()) continue;
+    union_mask(target.roi).setTo(255);
+    bounds = any ? bounds | target.roi : target.roi;
+    any = true;
   }
+  if (!any) return false;
+  if (similarity == TrackSimilarity::kSkin) {
+    ATTEND_CHECK(skin.type() == CV_8UC1 && skin.size() == frame.size())
+        << "skin targets need the frame's binary skin map";
+  }
+  // The pyramid over the union of the ROIs is built in parts: ROIs whose aligned crops
+  // overlap or touch share a part, and parts are apart by at least a pixel outside every
+  // ROI. No vertex of one part is linked to, or adjacent to, a vertex of another, at any
+  // level, and every part links with the thresholds of the whole union's crop. A part's
+  // crop starts on a multiple of kAlignment, as the union's does, so their cells agree up
+  // to level kMaxTemplateLevel; above it they may not, and a regular cell there needs
+  // 2^(kMaxTemplateLevel + 1) pixels square inside the ROIs: when a part's ROIs could hold
+  // one, the pyramid is built whole. Each part is then exactly the union pyramid's
+  // restriction to it (the template follows the whole pyramid's height, see MakeTemplate),
+  // and the parts cost what their crops cost, not what the bounding box of every ROI
+  // would.
+  std::vector<cv::Rect> groups;  // aligned crops
+  std::vector<cv::Rect> spans;   // the bounding box of each group's ROIs
+  group_of.assign(targets.size(), -1);
+  for (size_t i = 0; i < targets.size(); ++i) {
+    if (targets[i].similarity != similarity || targets[i].roi.empty()) continue;
+    group_of[i] = static_cast<int>(groups.size());
+    groups.push_back(Aligned(targets[i].roi));
+    spans.push_back(targets[i].roi);
+  }
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (size_t a = 0; a < groups.size() && !merged; ++a) {
+      for (size_t b = a + 1; b < groups.size() && !merged; ++b) {
+        const cv::Rect grown(groups[a].x - 1, groups[a].y - 1, groups[a].width + 2,
+                             groups[a].height + 2);
+        if ((grown & groups[b]).empty()) continue;
+        Merge(a, b, &groups, &spans);
+        merged = true;
+      }
+    }
+  }
+  constexpr int kUnaligned = 2 * kAlignment;
+  const bool whole_pyramid =
+      !options.pyramid_parts || std::any_of(spans.begin(), spans.end(), [](const cv::Rect& span) {
+        return span.width >= kUnaligned && span.height >= kUnaligned;
+      });
+  while (whole_pyramid && groups.size() > 1) Merge(0, 1, &groups, &spans);
+  const cv::Rect whole = Aligned(bounds);
+  const int schedule_side = std::min(whole.width, whole.height);
+  const Stopwatch segmentation;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    Hierarchy& part = Pyramid(similarity, g);
+    BuildHierarchy(frame, skin, similarity, union_mask, groups[g], schedule_side,
+                   options.t_oversegment, &part, cylinder);
+    *pyramid_levels = std::max(*pyramid_levels, part.bip->num_levels());
+  }
+  segmentation_ms += segmentation.ElapsedMs();
+  return true;
+}
 
-  // A target found at `match`: its mask, box and template (4.2.4-4.2.6; bounded: its box
-  // first, then its pixels inside it).
-  void Found(const Hierarchy& h, const Match& match, const cv::Mat& frame, int pyramid_levels,
-             std::vector<uint8_t>* in_target_pointer, Target* target_pointer,
-             TrackResult* result) {
-    Target& target = *target_pointer;
-    std::vector<uint8_t>& in_target = *in_target_pointer;
-    const cv::Rect image(0, 0, frame.cols, frame.rows);
-    const cv::Point shift(match.displacement.x << match.level,
-                          match.displacement.y << match.level);
-    cv::Rect keep = target.roi;
-    if (options.mode == TrackerMode::kBounded) {
-      // The target's box first, then its pixels and template inside that box only.
-      const cv::Rect plausible = BoundTarget(h, target, shift, image, &in_target);
-      PaintTarget(h, in_target, plausible, frame.size(), &target.mask);
-      const cv::Rect mask_box = cv::boundingRect(target.mask(plausible)) + plausible.tl();
-      if (!mask_box.empty()) {
-        cv::Rect2d smooth;
-        keep = SmoothBox(target, shift, mask_box, plausible, image, &smooth);
-        target.smooth = smooth;
-        target.box = keep;
-      }
-    } else {
-      Refine(h, target.roi, &in_target);
+TrackResult MultiTracker::Impl::TrackTarget(size_t i, const cv::Mat& frame, int pyramid_levels) {
+  Target& target = targets[i];
+  // A target with an empty ROI (outside the image) is searched in no pyramid.
+  const Hierarchy& h = Pyramid(target.similarity, std::max(group_of[i], 0));
+  TrackResult result;
+  result.id = target.id;
+  result.roi = target.roi;
+  std::vector<uint8_t> in_target(h.regions, 0);
+  const Match match = group_of[i] < 0 ? Match() : Localise(target, h, &in_target);
+  result.overlap = match.overlap;
+  if (match.found) {
+    Found(h, match, frame, pyramid_levels, &in_target, &target, &result);
+  } else {
+    Missed(frame, &target, &result);
+  }
+  result.box = target.box;
+  result.centroid = target.centroid;
+  return result;
+}
+
+void MultiTracker::Impl::Found(const Hierarchy& h, const Match& match, const cv::Mat& frame,
+                               int pyramid_levels, std::vector<uint8_t>* in_target_pointer,
+                               Target* target_pointer, TrackResult* result) {
+  Target& target = *target_pointer;
+  std::vector<uint8_t>& in_target = *in_target_pointer;
+  const cv::Rect image(0, 0, frame.cols, frame.rows);
+  const cv::Point shift(match.displacement.x << match.level, match.displacement.y << match.level);
+  cv::Rect keep = target.roi;
+  if (options.mode == TrackerMode::kBounded) {
+    // The target's box first, then its pixels and template inside that box only.
+    const cv::Rect plausible = BoundTarget(h, target, shift, image, &in_target);
+    PaintTarget(h, in_target, plausible, frame.size(), &target.mask);
+    const cv::Rect mask_box = cv::boundingRect(target.mask(plausible)) + plausible.tl();
+    if (!mask_box.empty()) {
+      cv::Rect2d smooth;
+      keep = SmoothBox(target, shift, mask_box, plausible, image, &smooth);
+      target.smooth = smooth;
+      target.box = keep;
     }
-    PaintTarget(h, in_target, keep, frame.size(), &target.mask);
-    target.levels = MakeTemplate(h, in_target, keep, &target.levels, shift, pyramid_levels);
-    // The target's pixels all lie in its ROI.
-    const cv::Mat inside = target.mask(target.roi);
-    const cv::Moments moments = cv::moments(inside, true);
-    if (moments.m00 > 0) {
-      if (options.mode == TrackerMode::kThesis) {
-        target.box = cv::boundingRect(inside) + target.roi.tl();
-      }
-      target.centroid = {static_cast<float>(target.roi.x + moments.m10 / moments.m00),
-                         static_cast<float>(target.roi.y + moments.m01 / moments.m00)};
+  } else {
+    Refine(h, target.roi, &in_target);
+  }
+  PaintTarget(h, in_target, keep, frame.size(), &target.mask);
+  target.levels = MakeTemplate(h, in_target, keep, &target.levels, shift, pyramid_levels);
+  // The target's pixels all lie in its ROI.
+  const cv::Mat inside = target.mask(target.roi);
+  const cv::Moments moments = cv::moments(inside, true);
+  if (moments.m00 > 0) {
+    if (options.mode == TrackerMode::kThesis) {
+      target.box = cv::boundingRect(inside) + target.roi.tl();
     }
-    target.motion = shift;
-    target.border = options.EpsilonPixels(frame.cols);
-    if (options.mode == TrackerMode::kBounded) {
-      LearnDistinct(h, &target);
+    target.centroid = {static_cast<float>(target.roi.x + moments.m10 / moments.m00),
+                       static_cast<float>(target.roi.y + moments.m01 / moments.m00)};
+  }
+  target.motion = shift;
+  target.border = options.EpsilonPixels(frame.cols);
+  if (options.mode == TrackerMode::kBounded) {
+    LearnDistinct(h, &target);
+    LearnAppearance(&target);
+    if (correlated_) {
+      target.typical_correlation = target.typical_correlation == 0.0
+                                       ? best_correlation_
+                                       : 0.9 * target.typical_correlation + 0.1 * best_correlation_;
+      const double distinct = MeanDistinct(target, target.box);
+      if (distinct >= 0.0) {
+        target.typical_distinct = target.typical_distinct == 0.0
+                                      ? distinct
+                                      : 0.9 * target.typical_distinct + 0.1 * distinct;
+      }
+    }
+  }
+  result->state = TrackState::kFound;
+  result->level = match.level;
+  result->area = static_cast<int>(moments.m00);
+}
+
+void MultiTracker::Impl::Missed(const cv::Mat& frame, Target* target_pointer, TrackResult* result) {
+  Target& target = *target_pointer;
+  const int epsilon_max = options.EpsilonMaxPixels(frame.cols);
+  // Every weight decays, the ROI border grows.
+  target.mask.release();
+  // A weight left at a rounding error of 0 (1 - k alpha in float) is 0, as in
+  // MakeTemplate: the target is lost after 1 / alpha frames, not one more.
+  for (TemplateLevel& level : target.levels) {
+    for (float& w : level.weight) w = w - options.alpha > 1e-6f ? w - options.alpha : 0.f;
+  }
+  while (!target.levels.empty() && target.levels.back().Empty()) target.levels.pop_back();
+  target.border = std::min(target.border + 1, epsilon_max);
+  target.motion = {0, 0};
+  if (!target.levels.empty()) Redetect(&target);
+  result->state = target.levels.empty() ? TrackState::kLost : TrackState::kOccluded;
+}
+
+int MultiTracker::Impl::Start(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity similarity,
+                              const cv::Mat& target_mask, const cv::Mat& build_mask) {
+  if (cv::countNonZero(target_mask) == 0) return -1;
+  Hierarchy& h = Pyramid(similarity, 0);
+  BuildHierarchy(frame, skin, similarity, build_mask, cv::boundingRect(build_mask), 0,
+                 options.t_oversegment, &h);
+  // The target's regions: those with most of their pixels in `target_mask`.
+  std::vector<int> inside(h.regions, 0), all(h.regions, 0);
+  const BipLevel& base = h.bip->level(0);
+  for (int y = 0; y < h.size.height; ++y) {
+    const uchar* m = target_mask.ptr<uchar>(y + h.origin.y) + h.origin.x;
+    for (int x = 0; x < h.size.width; ++x) {
+      const int cell = y * base.cols + x;
+      if (!base.hom[cell] || h.region[0][cell] < 0) continue;
+      ++all[h.region[0][cell]];
+      if (m[x]) ++inside[h.region[0][cell]];
+    }
+  }
+  std::vector<uint8_t> in_target(h.regions, 0);
+  for (int r = 0; r < h.regions; ++r) in_target[r] = 2 * inside[r] > all[r];
+  Target target;
+  target.similarity = similarity;
+  // The bounded mode keeps the target inside the mask's box: an over-segmentation region
+  // mostly in the mask may still reach far beyond it.
+  const cv::Rect keep = options.mode == TrackerMode::kBounded
+                            ? cv::boundingRect(target_mask)
+                            : cv::Rect(0, 0, frame.cols, frame.rows);
+  PaintTarget(h, in_target, keep, frame.size(), &target.mask);
+  if (cv::countNonZero(target.mask) == 0) return -1;
+  target.levels = MakeTemplate(h, in_target, keep, nullptr, {}, h.bip->num_levels());
+  if (target.levels.empty()) return -1;
+  const cv::Moments moments = cv::moments(target.mask, true);
+  target.box = cv::boundingRect(target.mask);
+  target.centroid = {static_cast<float>(moments.m10 / moments.m00),
+                     static_cast<float>(moments.m01 / moments.m00)};
+  target.border = options.EpsilonPixels(frame.cols);
+  if (options.mode == TrackerMode::kBounded && similarity == TrackSimilarity::kColour) {
+    target.roi = cv::boundingRect(build_mask);
+    LearnDistinct(h, &target);
+    if (options.appearance) {
+      cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
       LearnAppearance(&target);
-      if (correlated_) {
-        target.typical_correlation =
-            target.typical_correlation == 0.0
-                ? best_correlation_
-                : 0.9 * target.typical_correlation + 0.1 * best_correlation_;
-        const double distinct = MeanDistinct(target, target.box);
-        if (distinct >= 0.0) {
-          target.typical_distinct = target.typical_distinct == 0.0
-                                        ? distinct
-                                        : 0.9 * target.typical_distinct + 0.1 * distinct;
-        }
-      }
     }
-    result->state = TrackState::kFound;
-    result->level = match.level;
-    result->area = static_cast<int>(moments.m00);
   }
-
-  // A target not found (4.2.7).
-  void Missed(const cv::Mat& frame, Target* target_pointer, TrackResult* result) {
-    Target& target = *target_pointer;
-    const int epsilon_max = options.EpsilonMaxPixels(frame.cols);
-    // Every weight decays, the ROI border grows.
-    target.mask.release();
-    // A weight left at a rounding error of 0 (1 - k alpha in float) is 0, as in
-    // MakeTemplate: the target is lost after 1 / alpha frames, not one more.
-    for (TemplateLevel& level : target.levels) {
-      for (float& w : level.weight) w = w - options.alpha > 1e-6f ? w - options.alpha : 0.f;
-    }
-    while (!target.levels.empty() && target.levels.back().Empty()) target.levels.pop_back();
-    target.border = std::min(target.border + 1, epsilon_max);
-    target.motion = {0, 0};
-    if (!target.levels.empty()) Redetect(&target);
-    result->state = target.levels.empty() ? TrackState::kLost : TrackState::kOccluded;
-  }
-
-  int Start(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity similarity,
-            const cv::Mat& target_mask, const cv::Mat& build_mask) {
-    if (cv::countNonZero(target_mask) == 0) return -1;
-    Hierarchy& h = Pyramid(similarity, 0);
-    BuildHierarchy(frame, skin, similarity, build_mask, cv::boundingRect(build_mask), 0,
-                   options.t_oversegment, &h);
-    // The target's regions: those with most of their pixels in `target_mask`.
-    std::vector<int> inside(h.regions, 0), all(h.regions, 0);
-    const BipLevel& base = h.bip->level(0);
-    for (int y = 0; y < h.size.height; ++y) {
-      const uchar* m = target_mask.ptr<uchar>(y + h.origin.y) + h.origin.x;
-      for (int x = 0; x < h.size.width; ++x) {
-        const int cell = y * base.cols + x;
-        if (!base.hom[cell] || h.region[0][cell] < 0) continue;
-        ++all[h.region[0][cell]];
-        if (m[x]) ++inside[h.region[0][cell]];
-      }
-    }
-    std::vector<uint8_t> in_target(h.regions, 0);
-    for (int r = 0; r < h.regions; ++r) in_target[r] = 2 * inside[r] > all[r];
-    Target target;
-    target.similarity = similarity;
-    // The bounded mode keeps the target inside the mask's box: an over-segmentation region
-    // mostly in the mask may still reach far beyond it.
-    const cv::Rect keep = options.mode == TrackerMode::kBounded
-                              ? cv::boundingRect(target_mask)
-                              : cv::Rect(0, 0, frame.cols, frame.rows);
-    PaintTarget(h, in_target, keep, frame.size(), &target.mask);
-    if (cv::countNonZero(target.mask) == 0) return -1;
-    target.levels = MakeTemplate(h, in_target, keep, nullptr, {}, h.bip->num_levels());
-    if (target.levels.empty()) return -1;
-    const cv::Moments moments = cv::moments(target.mask, true);
-    target.box = cv::boundingRect(target.mask);
-    target.centroid = {static_cast<float>(moments.m10 / moments.m00),
-                       static_cast<float>(moments.m01 / moments.m00)};
-    target.border = options.EpsilonPixels(frame.cols);
-    if (options.mode == TrackerMode::kBounded && similarity == TrackSimilarity::kColour) {
-      target.roi = cv::boundingRect(build_mask);
-      LearnDistinct(h, &target);
-      if (options.appearance) {
-        cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
-        LearnAppearance(&target);
-      }
-    }
-    target.id = next_id++;
-    targets.push_back(std::move(target));
-    return targets.back().id;
-  }
-};
+  target.id = next_id++;
+  targets.push_back(std::move(target));
+  return targets.back().id;
+}
 
 MultiTracker::MultiTracker(TrackerOptions options)
     : options_(options), impl_(std::make_unique<Impl>(options)) {

@@ -7,7 +7,8 @@ namespace attend {
 std::string FormatFieldDescriptions(const std::vector<FieldDescription>& lines,
                                     const std::string& prefix) {
   size_t width = 0;
-  for (const FieldDescription& line : lines) width = std::max(width, prefix.size() + line.key.size());
+  for (const FieldDescription& line : lines)
+    width = std::max(width, prefix.size() + line.key.size());
   // Appends only: GCC 12 warns falsely (-Wrestrict) on chains of operator+.
   std::string text;
   for (const FieldDescription& line : lines) {

@@ -39,16 +39,18 @@ struct EnumMember {
 
 template <typename Options>
 struct OptionField {
-  using Member = std::variant<int Options::*, float Options::*, double Options::*,
-                              bool Options::*, std::string Options::*,
-                              std::vector<std::string> Options::*, EnumMember<Options>>;
+  using Member = std::variant<int Options::*, float Options::*, double Options::*, bool Options::*,
+                              std::string Options::*, std::vector<std::string> Options::*,
+                              EnumMember<Options>>;
   // A numeric field, with its range.
-  template <typename T, typename = std::enable_if_t<std::is_arithmetic_v<T> && !std::is_same_v<T, bool>>>
+  template <typename T,
+            typename = std::enable_if_t<std::is_arithmetic_v<T> && !std::is_same_v<T, bool>>>
   OptionField(std::string_view name, T Options::*member, Range range, std::string_view doc)
       : name(name), member(member), range(range), doc(doc) {}
   // A bool, string or list field; `choices` (when given) are the names a string, or each
   // element of a list, may take.
-  template <typename T, typename = std::enable_if_t<!std::is_arithmetic_v<T> || std::is_same_v<T, bool>>>
+  template <typename T,
+            typename = std::enable_if_t<!std::is_arithmetic_v<T> || std::is_same_v<T, bool>>>
   OptionField(std::string_view name, T Options::*member, std::string_view doc,
               const std::vector<std::string>& (*choices)() = nullptr)
       : name(name), member(member), doc(doc), choices(choices) {}
@@ -58,8 +60,8 @@ struct OptionField {
 
   std::string_view name;  // the key, as the configuration and Check() spell it
   Member member;
-  Range range;            // numeric fields only
-  std::string_view doc;   // one line: what the field does
+  Range range;           // numeric fields only
+  std::string_view doc;  // one line: what the field does
   const std::vector<std::string>& (*choices)() = nullptr;
   // false for a field that code sets but a configuration does not name (a safety bound): it is
   // checked and described, but not read or written as a key.
@@ -148,8 +150,8 @@ std::string CheckFieldRanges(const Options& options, const OptionFields<Options>
         const double value = static_cast<double>(options.*member);
         const Range range = internal::RangeForType<T>(field.range);
         if (!range.Contains(value)) {
-          error = std::string(field.name) + std::string(separator) +
-                  range.DescribeBreach(value) + ", got " +
+          error = std::string(field.name) + std::string(separator) + range.DescribeBreach(value) +
+                  ", got " +
                   (std::is_integral_v<T> ? std::to_string(options.*member) : ShortestNumber(value));
         }
       } else if constexpr (std::is_same_v<T, std::string>) {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "io/ground_truth.h"
-#include "pipeline/frame_record.h"
+#include "io/frame_record.h"
 #include "tests/cli/attend_cli.h"
 #include "tests/support/attend_process.h"
 #include "tests/support/sequence_maker.h"

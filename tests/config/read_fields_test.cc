@@ -64,8 +64,9 @@ TEST(ReadFields, ReadsEveryKindOfFieldWithAPrefix) {
   EXPECT_EQ(sample.kinds, (std::vector<std::string>{"y", "x"}));
   EXPECT_EQ(sample.shade, Shade::kLight);
   block.CheckNoUnknownKeys();
-  EXPECT_EQ(FieldKeys(Sample::Fields(), "s_"),
-            (std::vector<std::string>{"s_count", "s_rate", "s_on", "s_name", "s_kinds", "s_shade"}));
+  EXPECT_EQ(
+      FieldKeys(Sample::Fields(), "s_"),
+      (std::vector<std::string>{"s_count", "s_rate", "s_on", "s_name", "s_kinds", "s_shade"}));
 }
 
 TEST(ReadFields, ErrorsNameTheKeyAndItsLine) {

@@ -8,7 +8,7 @@
 
 #include "io/ground_truth.h"
 #include "pipeline/frame_pipeline.h"
-#include "pipeline/frame_record.h"
+#include "io/frame_record.h"
 #include "pipeline/run.h"
 #include "tests/support/sequence_maker.h"
 #include "tests/support/temp_dir.h"

@@ -71,7 +71,8 @@ TEST(OptionFields, EveryFieldIsDescribedWithItsDefault) {
   EXPECT_EQ(lines[5].fallback, "dark");
   EXPECT_EQ(lines[5].doc, "light or dark");
   const std::string text = FormatFieldDescriptions(lines, "s.");
-  EXPECT_NE(text.find("  s.count  int in [1, 10], default 3: how many\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("  s.count  int in [1, 10], default 3: how many\n"), std::string::npos)
+      << text;
 }
 
 TEST(OptionFields, EnumFieldsGoThroughTheirTableAndFieldsCompare) {

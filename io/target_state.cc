@@ -1,4 +1,4 @@
-#include "semiattentive/target_state.h"
+#include "io/target_state.h"
 
 #include "util/enum_table.h"
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "semiattentive/target_state.h"
+#include "io/target_state.h"
 #include "util/timer.h"
 
 namespace attend {

@@ -1,4 +1,4 @@
-#include "pipeline/frame_record.h"
+#include "io/frame_record.h"
 
 #include <algorithm>
 #include <cmath>
