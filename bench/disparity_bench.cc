@@ -262,7 +262,7 @@ const std::vector<Variant>& Variants() {
     thesis.left_right_check = false;
     v.push_back({"ours thesis (window 9, no lr-check)", thesis});
     attend::DisparityOptions penalty = defaults;
-    penalty.smoothness = "penalty";
+    penalty.smoothness = attend::DisparitySmoothness::kPenalty;
     v.push_back({"ours smoothness=penalty", penalty});
     attend::DisparityOptions subpixel = defaults;
     subpixel.subpixel = true;
