@@ -1,5 +1,5 @@
 // attend saliency and attend eval-fixations end to end, on images and fixation datasets built
-// here, whose right answers are known by construction (issue 14, docs/FIXATIONS.md).
+// here, whose right answers are known by construction (docs/FIXATIONS.md).
 #include <gtest/gtest.h>
 
 #include <filesystem>

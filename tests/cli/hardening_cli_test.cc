@@ -1,4 +1,4 @@
-// Hostile and damaged inputs, end to end (issue 15): each is refused with the exit status of
+// Hostile and damaged inputs, end to end: each is refused with the exit status of
 // SPEC 3.2 and a message that names the file, key, line, frame or option, within seconds, and
 // nothing that was already written is lost.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The still-photograph features of issue 14: centre_bias and centre_surround, on inputs whose
+// The still-photograph features (docs/FIXATIONS.md): centre_bias and centre_surround, on inputs whose
 // answer is known by construction.
 #include <gtest/gtest.h>
 
