@@ -214,6 +214,14 @@ struct AttentionStage::Impl {
   // inhibition; appends the tracker id to `removed` when it is released.
   void FollowFound(const Frame& in, const TrackResult& result, const cv::Mat& mask, int detection,
                    Active* active, AttendedTarget* target, std::vector<int>* removed);
+  // Recognition of a found, kept target by its detection `detection` (-1: none): a detection
+  // that looks like it keeps it recognised and, overlapping it partly, restarts its tracker on
+  // the detection's seed; none for too long releases it as unrecognised. Returns its mask.
+  cv::Mat Recognise(const Frame& in, const TrackResult& result, const cv::Mat& mask,
+                    int detection, Active* active, AttendedTarget* target);
+  // A kept target's inhibition (inhibition_, covered_, held_) and what its file remembers.
+  void Keep(const Frame& in, const cv::Mat& own, bool duplicates, Active* active,
+            AttendedTarget* target);
   // Inhibits the saliency (inhibited_); returns the inhibited pixels.
   int Inhibit(const Frame& in, AttentionFrame* frame);
   // The candidates of the inhibited saliency.
@@ -224,6 +232,12 @@ struct AttentionStage::Impl {
   // The seed of candidate `k`; false when it starts nothing.
   bool SeedOf(const Frame& in, const Candidates& candidates, size_t k, const Selection& selection,
               Seed* seed);
+  // An object seed (`seed`, its best region only) grown to the proto-object around ranked
+  // candidate region `r`: the colour regions mostly inside the connected area around its most
+  // salient pixel whose inhibited saliency is at least seed_level times its mean, bounded as a
+  // region is, then (group_min_speed) the neighbours that move alike.
+  void GrowObjectSeed(const Frame& in, const Candidates& candidates, int r,
+                      const Selection& selection, Seed* seed);
   // Starts a target on `seed` (a skin target when `skin`); false when its tracker does not
   // start.
   bool Start(const Frame& in, const Seed& seed, bool skin, AttentionFrame* frame);
@@ -419,60 +433,45 @@ void AttentionStage::Impl::FollowTargets(const Frame& in, AttentionFrame* frame)
   }
 }
 
-void AttentionStage::Impl::FollowFound(const Frame& in, const TrackResult& result,
+cv::Mat AttentionStage::Impl::Recognise(const Frame& in, const TrackResult& result,
                                        const cv::Mat& mask, int detection, Active* active,
-                                       AttendedTarget* target, std::vector<int>* removed) {
-  const bool duplicates = options_.drop.max_shared < 1.f;
-  target->state = TargetState::kTracked;
-  target->area = result.area;
-  target->saliency = MeanOver(in.saliency, mask);
-  active->low_frames = target->saliency < options_.drop.min_saliency ? active->low_frames + 1 : 0;
-  const double shared = duplicates && result.area > 0
-                            ? static_cast<double>(cv::countNonZero(held_ & mask)) / result.area
-                            : 0.0;
-  target->reason = WhyReleased(*target, active->low_frames, shared, in.image);
+                                       AttendedTarget* target) {
   cv::Mat own = mask;
-  if (target->reason == ReleaseReason::kNone && !in.detections.empty() && !active->skin) {
-    int on = detection;
-    const bool reanchor = on >= 0 && options_.select.reanchor_min_iou > 0.f &&
-                          BoxIou(target->box, in.detections[on].box) <
-                              options_.select.reanchor_max_iou;
-    const int seed_area = reanchor ? SeedFromBox(in.segmentation, in.detections[on].box) : 0;
-    if (reanchor && options_.select.reanchor_min_similarity > 0.f &&
-        !active->appearance.empty() && seed_area > 0 &&
-        active->appearance.Similarity(
-            ObjectAppearance::Of(in.bgr, seed_mask_, in.detections[on].box)) <
-            options_.select.reanchor_min_similarity) {
-      on = -1;  // the detection is someone else's: this target is not recognised
-    }
-    if (on >= 0) {
-      detection_used_[on] = 1;
-      active->unrecognised = 0;
-      if (reanchor && seed_area >= options_.select.min_area) {
-        const int restarted = tracker_->StartFromMask(in.bgr, seed_mask_, TrackSimilarity::kColour,
-                                                      in.tracked.skin);
-        if (restarted >= 0) {
-          tracker_->Remove(result.id);
-          active->tracker_id = restarted;
-          own = tracker_->Mask(restarted);
-          target->box = cv::boundingRect(own) & in.image;
-          target->area = cv::countNonZero(own);
-        }
+  int on = detection;
+  const bool reanchor = on >= 0 && options_.select.reanchor_min_iou > 0.f &&
+                        BoxIou(target->box, in.detections[on].box) <
+                            options_.select.reanchor_max_iou;
+  const int seed_area = reanchor ? SeedFromBox(in.segmentation, in.detections[on].box) : 0;
+  if (reanchor && options_.select.reanchor_min_similarity > 0.f &&
+      !active->appearance.empty() && seed_area > 0 &&
+      active->appearance.Similarity(
+          ObjectAppearance::Of(in.bgr, seed_mask_, in.detections[on].box)) <
+          options_.select.reanchor_min_similarity) {
+    on = -1;  // the detection is someone else's: this target is not recognised
+  }
+  if (on >= 0) {
+    detection_used_[on] = 1;
+    active->unrecognised = 0;
+    if (reanchor && seed_area >= options_.select.min_area) {
+      const int restarted = tracker_->StartFromMask(in.bgr, seed_mask_, TrackSimilarity::kColour,
+                                                    in.tracked.skin);
+      if (restarted >= 0) {
+        tracker_->Remove(result.id);
+        active->tracker_id = restarted;
+        own = tracker_->Mask(restarted);
+        target->box = cv::boundingRect(own) & in.image;
+        target->area = cv::countNonZero(own);
       }
-    } else if (!active->label.empty() && options_.drop.unrecognised_frames > 0 &&
-               ++active->unrecognised >= options_.drop.unrecognised_frames) {
-      target->reason = ReleaseReason::kUnrecognised;
     }
+  } else if (!active->label.empty() && options_.drop.unrecognised_frames > 0 &&
+             ++active->unrecognised >= options_.drop.unrecognised_frames) {
+    target->reason = ReleaseReason::kUnrecognised;
   }
-  // Released targets inhibit nothing, from the frame they are released in.
-  if (target->reason != ReleaseReason::kNone) {
-    target->state = TargetState::kReleased;
-    removed->push_back(active->tracker_id);
-    // A duplicate's object is another target's; any other release ends the object's
-    // tracking, not the object (its file keeps the last box it was kept with).
-    if (target->reason != ReleaseReason::kDuplicate) Forget(*active);
-    return;
-  }
+  return own;
+}
+
+void AttentionStage::Impl::Keep(const Frame& in, const cv::Mat& own, bool duplicates,
+                                Active* active, AttendedTarget* target) {
   // Inhibit the mask, dilated, within its box plus the margin.
   const int margin = options_.inhibition.margin;
   const cv::Rect around = cv::Rect(target->box.x - margin, target->box.y - margin,
@@ -502,6 +501,34 @@ void AttentionStage::Impl::FollowFound(const Frame& in, const TrackResult& resul
     active->appearance.Blend(ObjectAppearance::Of(in.bgr, own, target->box), kAppearanceRate);
   }
   active->unseen = 0;
+}
+
+void AttentionStage::Impl::FollowFound(const Frame& in, const TrackResult& result,
+                                       const cv::Mat& mask, int detection, Active* active,
+                                       AttendedTarget* target, std::vector<int>* removed) {
+  const bool duplicates = options_.drop.max_shared < 1.f;
+  target->state = TargetState::kTracked;
+  target->area = result.area;
+  target->saliency = MeanOver(in.saliency, mask);
+  active->low_frames = target->saliency < options_.drop.min_saliency ? active->low_frames + 1 : 0;
+  const double shared = duplicates && result.area > 0
+                            ? static_cast<double>(cv::countNonZero(held_ & mask)) / result.area
+                            : 0.0;
+  target->reason = WhyReleased(*target, active->low_frames, shared, in.image);
+  const cv::Mat own = target->reason == ReleaseReason::kNone && !in.detections.empty() &&
+                              !active->skin
+                          ? Recognise(in, result, mask, detection, active, target)
+                          : mask;
+  // Released targets inhibit nothing, from the frame they are released in.
+  if (target->reason != ReleaseReason::kNone) {
+    target->state = TargetState::kReleased;
+    removed->push_back(active->tracker_id);
+    // A duplicate's object is another target's; any other release ends the object's
+    // tracking, not the object (its file keeps the last box it was kept with).
+    if (target->reason != ReleaseReason::kDuplicate) Forget(*active);
+    return;
+  }
+  Keep(in, own, duplicates, active, target);
 }
 
 int AttentionStage::Impl::Inhibit(const Frame& in, AttentionFrame* frame) {
@@ -627,6 +654,46 @@ void AttentionStage::Impl::StartTargets(const Frame& in, int inhibited_pixels,
   }
 }
 
+void AttentionStage::Impl::GrowObjectSeed(const Frame& in, const Candidates& c, int r,
+                                          const Selection& selection, Seed* seed) {
+  const Segmentation& segmentation = in.segmentation;
+  const int best = seed->best;
+  const cv::Mat& colour = segmentation.labels;
+  std::map<int, int> inside;  // colour region -> its pixels in the proto-object
+  const float level =
+      static_cast<float>(options_.select.seed_level * c.sum[r] / std::max(1, c.area[r]));
+  fill_mask_.create(inhibited_.rows + 2, inhibited_.cols + 2, CV_8UC1);
+  fill_mask_.setTo(0);
+  cv::Rect filled;
+  const float from = std::min(level, c.peak_value[r]);
+  cv::floodFill(inhibited_, fill_mask_, c.peak[r], cv::Scalar(), &filled,
+                cv::Scalar(c.peak_value[r] - from), cv::Scalar(1e6),
+                4 | cv::FLOODFILL_FIXED_RANGE | cv::FLOODFILL_MASK_ONLY | (255 << 8));
+  for (int y = filled.y; y < filled.y + filled.height; ++y) {
+    const int* region = colour.ptr<int>(y);
+    const uchar* mark = fill_mask_.ptr<uchar>(y + 1) + 1;
+    for (int x = filled.x; x < filled.x + filled.width; ++x) {
+      if (mark[x] && region[x] >= 0) ++inside[region[x]];
+    }
+  }
+  for (const auto& [region, pixels] : inside) {
+    const int region_area = segmentation.regions[region].area;
+    if (region == best || selection.taken[region] || region_area > selection.max_area ||
+        pixels < options_.select.seed_share * region_area) {
+      continue;
+    }
+    seed->members.push_back(region);
+    seed->area += region_area;
+  }
+  if (seed->area > selection.max_area) {
+    seed->members.resize(1);
+    seed->area = segmentation.regions[best].area;
+  }
+  if (options_.select.group_min_speed > 0.f) {
+    GroupByMotion(segmentation, selection.taken, selection.max_area, &seed->members, &seed->area);
+  }
+}
+
 bool AttentionStage::Impl::SeedOf(const Frame& in, const Candidates& c, size_t k,
                                   const Selection& selection, Seed* seed) {
   const Segmentation& segmentation = in.segmentation;
@@ -675,42 +742,7 @@ bool AttentionStage::Impl::SeedOf(const Frame& in, const Candidates& c, size_t k
     return seed->area >= options_.select.min_area && seed->area <= selection.max_area;
   }
   if (!object_seed) return true;
-  // The proto-object: the connected pixels around the candidate's most salient pixel whose
-  // inhibited saliency is at least seed_level times the candidate's mean.
-  const cv::Mat& colour = segmentation.labels;
-  std::map<int, int> inside;  // colour region -> its pixels in the proto-object
-  const float level =
-      static_cast<float>(options_.select.seed_level * c.sum[r] / std::max(1, c.area[r]));
-  fill_mask_.create(inhibited_.rows + 2, inhibited_.cols + 2, CV_8UC1);
-  fill_mask_.setTo(0);
-  cv::Rect filled;
-  const float from = std::min(level, c.peak_value[r]);
-  cv::floodFill(inhibited_, fill_mask_, c.peak[r], cv::Scalar(), &filled,
-                cv::Scalar(c.peak_value[r] - from), cv::Scalar(1e6),
-                4 | cv::FLOODFILL_FIXED_RANGE | cv::FLOODFILL_MASK_ONLY | (255 << 8));
-  for (int y = filled.y; y < filled.y + filled.height; ++y) {
-    const int* region = colour.ptr<int>(y);
-    const uchar* mark = fill_mask_.ptr<uchar>(y + 1) + 1;
-    for (int x = filled.x; x < filled.x + filled.width; ++x) {
-      if (mark[x] && region[x] >= 0) ++inside[region[x]];
-    }
-  }
-  for (const auto& [region, pixels] : inside) {
-    const int region_area = segmentation.regions[region].area;
-    if (region == best || selection.taken[region] || region_area > selection.max_area ||
-        pixels < options_.select.seed_share * region_area) {
-      continue;
-    }
-    seed->members.push_back(region);
-    seed->area += region_area;
-  }
-  if (seed->area > selection.max_area) {
-    seed->members.resize(1);
-    seed->area = segmentation.regions[best].area;
-  }
-  if (options_.select.group_min_speed > 0.f) {
-    GroupByMotion(segmentation, selection.taken, selection.max_area, &seed->members, &seed->area);
-  }
+  GrowObjectSeed(in, c, r, selection, seed);
   return true;
 }
 

@@ -241,6 +241,51 @@ double ProjectedPixels(const Surface& s) {
   return static_cast<double>(count);
 }
 
+// The ground truth of the left view from its coverage (`owner`: the surface of each pixel, -1
+// none): each surface's visible box and the share of it that is visible.
+std::vector<GtObject> GroundTruth(const Scene& scene, int frame,
+                                  const std::vector<Surface>& surfaces,
+                                  const std::vector<int>& left_owner, int width, int height) {
+  std::vector<GtObject> objects;
+  struct Visible {
+    long long pixels = 0;
+    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+  };
+  std::vector<Visible> visible(surfaces.size());
+  for (int y = 0; y < height; ++y) {
+    const int* row = left_owner.data() + static_cast<size_t>(y) * width;
+    for (int x = 0; x < width; ++x) {
+      if (row[x] < 0) continue;
+      Visible& v = visible[row[x]];
+      if (v.pixels == 0) {
+        v.x0 = v.x1 = x;
+        v.y0 = v.y1 = y;
+      }
+      ++v.pixels;
+      v.x0 = std::min(v.x0, x);
+      v.x1 = std::max(v.x1, x);
+      v.y1 = y;
+    }
+  }
+  for (size_t k = 0; k < surfaces.size(); ++k) {
+    const Surface& s = surfaces[k];
+    GtObject gt;
+    gt.frame = frame;
+    gt.id = s.id;
+    gt.disparity = s.disparity;
+    const auto it = std::find_if(scene.objects.begin(), scene.objects.end(),
+                                 [&](const SceneObject& o) { return o.id == s.id; });
+    gt.kind = it->kind;
+    const Visible& v = visible[k];
+    if (v.pixels > 0) {
+      gt.box = cv::Rect2d(v.x0, v.y0, v.x1 - v.x0 + 1, v.y1 - v.y0 + 1);
+      gt.visible_fraction = std::min(1.0, static_cast<double>(v.pixels) / ProjectedPixels(s));
+    }
+    objects.push_back(gt);
+  }
+  return objects;
+}
+
 }  // namespace
 
 SceneRenderer::SceneRenderer(Scene scene) : scene_(std::move(scene)) {
@@ -336,43 +381,7 @@ RenderedFrame SceneRenderer::Render(int frame) const {
   ShadeView(surfaces, background, right_owner, true, gain, scene_.noise_right, Mix(frame_seed, 1),
             &out.right, &out.right_ids, nullptr);
 
-  // Ground truth of the left view from its coverage.
-  struct Visible {
-    long long pixels = 0;
-    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
-  };
-  std::vector<Visible> visible(surfaces.size());
-  for (int y = 0; y < height; ++y) {
-    const int* row = left_owner.data() + static_cast<size_t>(y) * width;
-    for (int x = 0; x < width; ++x) {
-      if (row[x] < 0) continue;
-      Visible& v = visible[row[x]];
-      if (v.pixels == 0) {
-        v.x0 = v.x1 = x;
-        v.y0 = v.y1 = y;
-      }
-      ++v.pixels;
-      v.x0 = std::min(v.x0, x);
-      v.x1 = std::max(v.x1, x);
-      v.y1 = y;
-    }
-  }
-  for (size_t k = 0; k < surfaces.size(); ++k) {
-    const Surface& s = surfaces[k];
-    GtObject gt;
-    gt.frame = frame;
-    gt.id = s.id;
-    gt.disparity = s.disparity;
-    const auto it = std::find_if(scene_.objects.begin(), scene_.objects.end(),
-                                 [&](const SceneObject& o) { return o.id == s.id; });
-    gt.kind = it->kind;
-    const Visible& v = visible[k];
-    if (v.pixels > 0) {
-      gt.box = cv::Rect2d(v.x0, v.y0, v.x1 - v.x0 + 1, v.y1 - v.y0 + 1);
-      gt.visible_fraction = std::min(1.0, static_cast<double>(v.pixels) / ProjectedPixels(s));
-    }
-    out.objects.push_back(gt);
-  }
+  out.objects = GroundTruth(scene_, frame, surfaces, left_owner, width, height);
   std::sort(out.objects.begin(), out.objects.end(),
             [](const GtObject& a, const GtObject& b) { return a.id < b.id; });
   return out;

@@ -34,9 +34,11 @@ constexpr const char kAliasCycle[] = "a: &x [*x]\n";
 std::string BillionLaughs() {
   std::string text = "l0: &l0 [x, x, x, x, x, x, x, x, x, x]\n";
   for (int level = 1; level <= 9; ++level) {
-    text += "l" + std::to_string(level) + ": &l" + std::to_string(level) + " [";
-    for (int k = 0; k < 10; ++k) text += (k ? ", *l" : "*l") + std::to_string(level - 1);
-    text += "]\n";
+    // Appends only: GCC 12 warns falsely (-Wrestrict) on chains of operator+.
+    const std::string name = std::to_string(level), below = std::to_string(level - 1);
+    text.append("l").append(name).append(": &l").append(name).append(" [");
+    for (int k = 0; k < 10; ++k) text.append(k ? ", *l" : "*l").append(below);
+    text.append("]\n");
   }
   return text;
 }
