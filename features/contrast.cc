@@ -11,11 +11,9 @@ template <typename Gradient>
 std::vector<float> MeanBoundaryGradient(const Segmentation& segmentation, Gradient gradient) {
   const std::vector<RegionStats>& regions = segmentation.regions;
   std::vector<double> sums(regions.size(), 0.0);
-  for (const auto& edge : boost::make_iterator_range(boost::edges(segmentation.graph))) {
-    const auto a = boost::source(edge, segmentation.graph);
-    const auto b = boost::target(edge, segmentation.graph);
-    const double weighted =
-        static_cast<double>(segmentation.graph[edge].length) * gradient(regions[a], regions[b]);
+  for (const RegionBoundary& boundary : segmentation.adjacency.boundaries) {
+    const int a = boundary.a, b = boundary.b;
+    const double weighted = static_cast<double>(boundary.length) * gradient(regions[a], regions[b]);
     sums[a] += weighted;
     sums[b] += weighted;
   }

@@ -4,7 +4,6 @@
 // pyramid that made it is built.
 #pragma once
 
-#include <boost/graph/adjacency_list.hpp>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -24,23 +23,32 @@ struct RegionStats {
   int perimeter = 0;
 };
 
-// The region adjacency graph: one vertex per region (same index as the label), an edge per
-// pair of regions sharing at least one 4-neighbour pixel edge, weighted by their number
-// (pl_ij of eq. 5.1).
+// One edge of the region adjacency graph: regions a < b share `length` 4-neighbour pixel edges
+// (pl_ab of eq. 5.1).
 struct RegionBoundary {
+  int a = 0;
+  int b = 0;
   int length = 0;
 };
-// Edges are kept in a vector (not Boost's default list), so building the graph of a frame
-// costs a few allocations rather than one per edge.
-using RegionGraph =
-    boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
-                          RegionBoundary, boost::no_property, boost::vecS>;
+
+// The region adjacency graph as plain data: one vertex per region (same index as the label),
+// an edge per pair of regions sharing at least one 4-neighbour pixel edge. Each region's
+// neighbours are listed in the order of `boundaries`.
+struct RegionAdjacency {
+  std::vector<RegionBoundary> boundaries;
+  std::vector<int> offsets;     // per region, and one past the last: where its neighbours start
+  std::vector<int> neighbours;  // region r's: neighbours[offsets[r]] .. [offsets[r + 1] - 1]
+
+  int num_regions() const { return offsets.empty() ? 0 : static_cast<int>(offsets.size()) - 1; }
+  const int* NeighboursBegin(int region) const { return neighbours.data() + offsets[region]; }
+  const int* NeighboursEnd(int region) const { return neighbours.data() + offsets[region + 1]; }
+};
 
 struct Segmentation {
   // CV_32SC1: region index per pixel, -1 outside the mask. Every region is 8-connected.
   cv::Mat labels;
   std::vector<RegionStats> regions;
-  RegionGraph graph;
+  RegionAdjacency adjacency;
   int pyramid_levels = 0;     // height of the hierarchy
   double milliseconds = 0.0;  // building the pyramid and labelling, not conversions or I/O
 };

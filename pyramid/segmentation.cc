@@ -67,12 +67,13 @@ struct Segmenter::Workspace {
   void AccumulateRegions(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
                          std::vector<RegionStats>* regions);
   int MergeFlat(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions);
-  void BuildGraph(int num_regions, RegionGraph* graph);
+  void BuildAdjacency(int num_regions, RegionAdjacency* adjacency);
   void CombinePairs(int num_regions, const std::vector<RegionEdge>& pairs,
                     std::vector<RegionEdge>* combined);
 
   // The region adjacency as a flat edge list (a < b), combined.
   std::vector<RegionEdge> edges;
+  std::vector<int> cursor;  // BuildAdjacency's
   // AccumulateRegions.
   std::vector<double> sums;
   std::vector<cv::Point> low;
@@ -219,18 +220,23 @@ void Segmenter::Workspace::AccumulateRegions(const cv::Mat& labels, int num_regi
   CombinePairs(num_regions, runs, &edges);
 }
 
-// Refills the caller's graph in place, so that a Segmentation reused for a stream of frames
-// keeps the storage of its graph: Boost's constructor from an edge list would allocate a new
-// edge list per vertex (and grow it edge by edge) and free the old graph's. The graph is the
-// one that constructor makes: the edges in the same order, hence the same adjacency order.
-// Boost has no public call that empties a graph's edges and keeps their storage; its vertex
-// and edge containers are public members, which this uses.
-void Segmenter::Workspace::BuildGraph(int num_regions, RegionGraph* graph) {
-  graph->m_edges.clear();
-  graph->m_vertices.resize(num_regions);
-  for (auto& vertex : graph->m_vertices) vertex.m_out_edges.clear();
+// Refills the caller's adjacency in place (a Segmentation reused for a stream of frames keeps
+// its storage): the boundaries in the order of `edges`, and each region's neighbours in that
+// order too.
+void Segmenter::Workspace::BuildAdjacency(int num_regions, RegionAdjacency* adjacency) {
+  adjacency->boundaries.clear();
+  adjacency->offsets.assign(static_cast<size_t>(num_regions) + 1, 0);
   for (const RegionEdge& edge : edges) {
-    boost::add_edge(edge.a, edge.b, RegionBoundary{edge.length}, *graph);
+    adjacency->boundaries.push_back({edge.a, edge.b, edge.length});
+    ++adjacency->offsets[edge.a + 1];
+    ++adjacency->offsets[edge.b + 1];
+  }
+  for (int r = 0; r < num_regions; ++r) adjacency->offsets[r + 1] += adjacency->offsets[r];
+  adjacency->neighbours.resize(2 * edges.size());
+  cursor.assign(adjacency->offsets.begin(), adjacency->offsets.end() - 1);
+  for (const RegionEdge& edge : edges) {
+    adjacency->neighbours[cursor[edge.a]++] = edge.b;
+    adjacency->neighbours[cursor[edge.b]++] = edge.a;
   }
 }
 
@@ -380,7 +386,7 @@ void Segmenter::SegmentCylinder(const cv::Mat& cylinder, Segmentation* out, cons
   if (options_.min_region_area > 1) {
     regions = workspace_->MergeFlat(options_.min_region_area, &out->labels, &out->regions);
   }
-  workspace_->BuildGraph(regions, &out->graph);
+  workspace_->BuildAdjacency(regions, &out->adjacency);
   out->milliseconds = watch.ElapsedMs();
 }
 

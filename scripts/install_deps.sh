@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   g++ make cmake pkg-config
-  libopencv-dev libopencv-contrib-dev libeigen3-dev libboost-graph-dev libyaml-cpp-dev
+  libopencv-dev libopencv-contrib-dev libeigen3-dev libyaml-cpp-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libjs-chart.js  # the charts of attend compare's report, inlined (docs/COMPARE.md)
   chromium        # renders the report in its test (tests/cli/compare_cli_test.cc)

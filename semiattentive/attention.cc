@@ -930,8 +930,10 @@ void AttentionStage::Impl::GroupByMotion(const Segmentation& segmentation,
   // Outwards from the proto-object, a region at a time (breadth first).
   for (size_t next = 0; next < members->size(); ++next) {
     const int region = (*members)[next];
-    for (auto [edge, end] = boost::out_edges(region, segmentation.graph); edge != end; ++edge) {
-      const int neighbour = static_cast<int>(boost::target(*edge, segmentation.graph));
+    const RegionAdjacency& adjacency = segmentation.adjacency;
+    for (const int* at = adjacency.NeighboursBegin(region); at != adjacency.NeighboursEnd(region);
+         ++at) {
+      const int neighbour = *at;
       if (in[neighbour] || taken[neighbour]) continue;
       const int neighbour_area = segmentation.regions[neighbour].area;
       if (neighbour_area > max_area || *seed_area + neighbour_area > max_area) continue;

@@ -384,7 +384,7 @@ TEST(TrackCommand, BoxesOutsideTheFrameOrEmptyExitTwo) {
   const std::string good = BoxArgument(RedBox(0));
   const cv::Size size = Frame(0, {}).size();
   const std::string right_edge = std::to_string(size.width - 10) + ",10,20,20";
-  for (const std::string& kind : {"bip", "kcf"}) {
+  for (const std::string kind : {"bip", "kcf"}) {
     for (const std::string& box : {std::string("500,10,20,20"), right_edge,
                                    std::string("-1,10,20,20"), std::string("10,10,0,20")}) {
       const Result r = Attend(dir, {"track", "--sequence", "seq", "--init", good, "--init", box,

@@ -47,7 +47,7 @@ TEST(Segmentation, FlatImageIsOneRegion) {
   ASSERT_EQ(s.regions.size(), 1u);
   EXPECT_EQ(s.regions[0].area, 97 * 131);
   EXPECT_EQ(s.regions[0].perimeter, 0);
-  EXPECT_EQ(boost::num_edges(s.graph), 0u);
+  EXPECT_TRUE(s.adjacency.boundaries.empty());
 }
 
 // Thesis figure 3.4a: four rectangles of different colours on a background.
@@ -190,10 +190,18 @@ TEST_P(SegmentationInvariants, HoldOnRandomImages) {
     }
   }
   long graph_total = 0;
-  for (auto [e, end] = boost::edges(s.graph); e != end; ++e) {
-    graph_total += s.graph[*e].length;
-    perimeter[boost::source(*e, s.graph)] += s.graph[*e].length;
-    perimeter[boost::target(*e, s.graph)] += s.graph[*e].length;
+  for (const RegionBoundary& boundary : s.adjacency.boundaries) {
+    EXPECT_LT(boundary.a, boundary.b);
+    graph_total += boundary.length;
+    perimeter[boundary.a] += boundary.length;
+    perimeter[boundary.b] += boundary.length;
+    // Each end lists the other as its neighbour.
+    EXPECT_NE(std::find(s.adjacency.NeighboursBegin(boundary.a),
+                        s.adjacency.NeighboursEnd(boundary.a), boundary.b),
+              s.adjacency.NeighboursEnd(boundary.a));
+    EXPECT_NE(std::find(s.adjacency.NeighboursBegin(boundary.b),
+                        s.adjacency.NeighboursEnd(boundary.b), boundary.a),
+              s.adjacency.NeighboursEnd(boundary.b));
   }
   EXPECT_EQ(graph_total, boundary_edges);
   for (int r = 0; r < regions; ++r) EXPECT_EQ(perimeter[r], s.regions[r].perimeter);
@@ -232,8 +240,9 @@ TEST(Segmentation, RegionStatisticsOfATwoColourImage) {
   EXPECT_NEAR(grey.intensity, 100.f, 1e-3);
   EXPECT_EQ(red.perimeter, 40);
   EXPECT_EQ(red.bbox, cv::Rect(0, 0, 30, 40));
-  ASSERT_EQ(boost::num_edges(s.graph), 1u);
-  EXPECT_EQ(s.graph[*boost::edges(s.graph).first].length, 40);
+  ASSERT_EQ(s.adjacency.boundaries.size(), 1u);
+  EXPECT_EQ(s.adjacency.boundaries[0].length, 40);
+  EXPECT_EQ(s.adjacency.num_regions(), 2);
 }
 
 TEST(Segmentation, SmallRegionsMergeIntoTheirMostSimilarNeighbour) {
@@ -312,7 +321,7 @@ TEST(Segmentation, TinyImagesAndEmptyMasks) {
   segmenter.SegmentCylinder(cylinder, &s, cv::Mat::zeros(20, 30, CV_8UC1));
   EXPECT_TRUE(s.regions.empty());
   EXPECT_EQ(cv::countNonZero(s.labels >= 0), 0);
-  EXPECT_EQ(boost::num_vertices(s.graph), 0u);
+  EXPECT_EQ(s.adjacency.num_regions(), 0);
 }
 
 }  // namespace
