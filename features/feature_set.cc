@@ -1,5 +1,7 @@
 #include "features/feature_set.h"
 
+#include "util/shared_mat.h"
+
 #include <exception>
 #include <opencv2/core/utility.hpp>
 
@@ -70,6 +72,10 @@ void FeatureSet::Compute(const FrameContext& context, bool concurrent) {
     CheckFeatureOutput(members_[i].entry, results_[i].map, context.size());
     results_[i].detections = members_[i].feature->detections();
   });
+}
+
+void FeatureSet::ReleaseSharedMaps() {
+  for (FeatureResult& result : results_) ReleaseIfShared(&result.map);
 }
 
 }  // namespace attend

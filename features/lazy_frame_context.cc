@@ -5,6 +5,7 @@
 #include "colour/colour.h"
 #include "features/skin.h"
 #include "util/error.h"
+#include "util/shared_mat.h"
 
 namespace attend {
 
@@ -24,6 +25,13 @@ void LazyFrameContext::Reset(int frame_index, const cv::Mat& left, const cv::Mat
   regions_slot_.ready = false;
   for (SkinSlot& slot : skin_slots_) slot.ready = false;
   for (DisparitySlot& slot : disparity_slots_) slot.ready = false;
+  // A buffer of the last frame that someone still holds (a Python feature's array) is let go,
+  // so that this frame does not overwrite it (util/shared_mat.h).
+  ReleaseIfShared(&cylinder_);
+  ReleaseIfShared(&tsl_);
+  ReleaseIfShared(&regions_.labels);
+  for (SkinSlot& slot : skin_slots_) ReleaseIfShared(&slot.distance);
+  for (DisparitySlot& slot : disparity_slots_) ReleaseIfShared(&slot.disparity);
 }
 
 const cv::Mat& LazyFrameContext::Cylinder() const {

@@ -6,7 +6,8 @@
 // caller computes, the others wait and then share the result.
 //
 // One context serves a whole stream of frames: Reset() starts a frame and keeps every buffer,
-// so after the first frame nothing is allocated.
+// so after the first frame nothing is allocated (unless someone else still holds one:
+// util/shared_mat.h).
 #pragma once
 
 #include <list>

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "features/plugin_api.h"
+#include "features/python_plugins.h"
 #include "util/error.h"
 
 namespace attend {
@@ -66,6 +67,10 @@ std::string IncompleteElf(const std::string& path) {
 
 void LoadFeaturePlugin(const std::string& path, const std::string& where,
                        FeatureRegistry* registry) {
+  if (IsPythonPlugin(path)) {
+    LoadPythonFeaturePlugin(path, where, registry);
+    return;
+  }
   const std::string prefix = where + ": plugin " + path + ": ";
   if (!std::filesystem::is_regular_file(path)) throw ConfigError(prefix + "no such file");
   const std::string incomplete = IncompleteElf(path);

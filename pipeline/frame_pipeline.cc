@@ -7,6 +7,7 @@
 #include "features/builtin.h"
 #include "features/disparity_feature.h"
 #include "features/plugin_loader.h"
+#include "features/python_plugins.h"
 #include "io/skin_files.h"
 #include "saliency/saliency_stage.h"
 #include "util/error.h"
@@ -17,6 +18,7 @@ namespace attend {
 
 FeatureRegistry LoadFeatureRegistry(const std::vector<std::string>& plugins) {
   FeatureRegistry registry = BuiltinFeatures();
+  AddPythonFeatures(&registry);
   for (size_t i = 0; i < plugins.size(); ++i) {
     LoadFeaturePlugin(plugins[i], "plugins." + std::to_string(i), &registry);
   }
@@ -91,6 +93,12 @@ FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry
       context_.set_disparity_options(ReadDisparityOptions(spec.params));
     }
   }
+}
+
+void FramePipeline::ReleaseSharedMaps() {
+  features_.ReleaseSharedMaps();
+  saliency_.ReleaseSharedMaps();
+  attention_.ReleaseSharedMaps();
 }
 
 void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {

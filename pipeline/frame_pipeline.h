@@ -17,8 +17,9 @@
 
 namespace attend {
 
-// The built-in features plus those of the libraries in `plugins` (ConfigError naming the
-// library that cannot be used).
+// The built-in features, those registered from Python (attend.register_feature, when the
+// attend Python module is loaded) and those of the plugins in `plugins`, libraries or Python
+// files (ConfigError naming the plugin that cannot be used).
 FeatureRegistry LoadFeatureRegistry(const std::vector<std::string>& plugins);
 
 class FramePipeline {
@@ -50,6 +51,11 @@ class FramePipeline {
   const cv::Mat& inhibition() const { return attention_.inhibition(); }
   const cv::Mat& inhibited() const { return attention_.inhibited(); }
   int targets_attended() const { return attention_.targets_attended(); }
+  // Lets go of the maps of the last frame (features, normalised, saliency, inhibition) that
+  // are held elsewhere, so that the next Process writes new buffers for them and those holders
+  // keep the values they have (util/shared_mat.h; the Python module hands the maps out without
+  // copying them). Maps nobody else holds are reused.
+  void ReleaseSharedMaps();
 
  private:
   // The feature maps normalised, weighted and combined by saliency_ (SPEC 2.3).

@@ -1,5 +1,7 @@
 #include "saliency/saliency_stage.h"
 
+#include "util/shared_mat.h"
+
 #include <cmath>
 #include <utility>
 
@@ -61,6 +63,11 @@ void SaliencyStage::Combine(const std::vector<const cv::Mat*>& maps, bool grey, 
     CombineMaps(normalised_, frame_weights_, size, &saliency_);
   }
   SmoothSaliency(options_, &saliency_);
+}
+
+void SaliencyStage::ReleaseSharedMaps() {
+  for (cv::Mat& map : normalised_) ReleaseIfShared(&map);
+  ReleaseIfShared(&saliency_);
 }
 
 }  // namespace attend

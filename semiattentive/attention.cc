@@ -13,6 +13,7 @@
 #include "util/box.h"
 #include "util/enum_table.h"
 #include "util/error.h"
+#include "util/shared_mat.h"
 #include "util/timer.h"
 
 namespace attend {
@@ -1013,6 +1014,10 @@ const std::vector<cv::Rect>& AttentionStage::look_regions() const { return impl_
 const ObjectFiles& AttentionStage::object_files() const { return impl_->files_; }
 const cv::Mat& AttentionStage::inhibition() const { return impl_->inhibition_; }
 const cv::Mat& AttentionStage::inhibited() const { return impl_->inhibited_; }
+void AttentionStage::ReleaseSharedMaps() {
+  ReleaseIfShared(&impl_->inhibition_);
+  ReleaseIfShared(&impl_->inhibited_);
+}
 int AttentionStage::targets_attended() const { return impl_->attended_; }
 const char* AttentionStage::tracker_name() const { return impl_->tracker_->name(); }
 

@@ -13,6 +13,7 @@ enum class ExitStatus : int {
   kInternal = 1,  // a bug: an internal invariant did not hold
   kUsage = 2,     // bad command line or configuration
   kBadInput = 3,  // bad input data: a missing, unreadable or inconsistent sequence or image
+  kPlugin = 4,    // a feature plugin failed inside its own code (a Python plugin's exception)
 };
 
 // Base of every error that is reported to the user. The message says what and where
@@ -44,6 +45,13 @@ class OutputError : public Error {
 class InputError : public Error {
  public:
   explicit InputError(const std::string& message) : Error(ExitStatus::kBadInput, message) {}
+};
+
+// A feature plugin that failed inside its own code: a Python feature that raised (the message
+// holds the feature's name and the Python traceback). Exit status 4.
+class PluginError : public Error {
+ public:
+  explicit PluginError(const std::string& message) : Error(ExitStatus::kPlugin, message) {}
 };
 
 // A broken internal invariant (exit status 1).

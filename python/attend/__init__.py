@@ -1,0 +1,327 @@
+"""attend from Python: the attention pipeline of attend on numpy frames (docs/PYTHON.md).
+
+    import attend
+    pipeline = attend.Pipeline(config={"features": [{"name": "mcg"}, {"name": "mig"}]})
+    result = pipeline.process(left)          # H x W x 3 uint8 BGR, as OpenCV reads it
+    result.saliency, result.targets          # float32 map, targets in input pixels
+
+Options are the configuration's keys (configs/README.md, `attend run --list-keys`): a file,
+a dict of the same shape, and `set=["key.path=value", ...]` as `attend run --set`. Errors are
+attend.ConfigError (a bad key or value, with the key and, for a file, the line), InputError (bad
+frames or files), OutputError, PluginError (a Python feature raised) and InternalError; all
+derive from attend.Error, whose `status` is the exit status `attend` gives for it.
+"""
+
+import json as _json
+import os as _os
+import sys as _sys
+import tempfile as _tempfile
+
+# C++ feature plugins loaded from Python resolve attend's symbols from the module, so it is
+# loaded with its symbols global (as the `attend` program exports its own).
+_flags = _sys.getdlopenflags()
+_sys.setdlopenflags(_flags | _os.RTLD_GLOBAL)
+try:
+    from . import _attend
+finally:
+    _sys.setdlopenflags(_flags)
+
+from ._records import Run, read_pfm, read_run  # noqa: E402
+
+__version__ = _attend.__version__
+
+Error = _attend.Error
+ConfigError = _attend.ConfigError
+InputError = _attend.InputError
+OutputError = _attend.OutputError
+PluginError = _attend.PluginError
+InternalError = _attend.InternalError
+for _error, _status in ((Error, 1), (ConfigError, 2), (OutputError, 2), (InputError, 3),
+                        (PluginError, 4), (InternalError, 1)):
+    _error.status = _status
+
+__all__ = [
+    "Pipeline", "FrameResult", "Tracker", "run", "saliency", "segment", "disparity",
+    "read_run", "Run", "read_pfm", "bundled_sequence", "frames", "imread", "imwrite", "feature", "eval_run", "eval_fixations", "compare", "register_feature",
+    "configuration", "keys", "Error", "ConfigError", "InputError", "OutputError",
+    "PluginError", "InternalError", "__version__",
+]
+
+
+def _overrides(mapping, prefix=""):
+    """A dict of configuration keys as `--set` assignments, leaves first-level by first-level."""
+    assignments = []
+    for key, value in mapping.items():
+        path = f"{prefix}{key}"
+        if isinstance(value, dict) and value:
+            assignments += _overrides(value, path + ".")
+        else:
+            assignments.append(f"{path}={_json.dumps(value)}")
+    return assignments
+
+
+def _configuration(config=None, set=(), defaults="file"):
+    """The options of `config` (a path, a dict, or None) with `set` applied in order.
+
+    None is configs/default.yaml, as for `attend run` (with defaults="file"), or the built-in
+    defaults of every key (defaults="keys"). A dict is read as a file of that content would be,
+    its keys applied as `--set` assignments over the built-in defaults.
+    """
+    if isinstance(set, str):
+        set = [set]
+    if config is None:
+        path = _attend.default_config_path() if defaults == "file" else ""
+        return _attend.Configuration(path, list(set))
+    if isinstance(config, dict):
+        return _attend.Configuration("", _overrides(config) + list(set))
+    return _attend.Configuration(_os.fspath(config), list(set))
+
+
+def configuration(config=None, set=()):
+    """The effective configuration as YAML text: every key, defaults included."""
+    return _configuration(config, set).yaml()
+
+
+def keys():
+    """Every configuration key: dicts of key, type, range, default and doc."""
+    return _attend.describe_keys()
+
+
+class FrameResult:
+    """What the pipeline made of one frame.
+
+    saliency, inhibition, inhibited: float32 maps at the working size; features and normalised:
+    each feature's raw and normalised map by name; record: the frame's frames.jsonl record (a
+    dict; boxes in input pixels), targets its targets; timings: milliseconds by stage. The maps
+    share the pipeline's buffers: no copy is made, and a map you keep keeps its values (the
+    pipeline writes the next frame into new buffers while you hold one).
+    """
+
+    __slots__ = ("frame", "saliency", "inhibition", "inhibited", "features", "normalised",
+                 "record", "record_json", "targets", "timings", "working_size")
+
+    def __init__(self, raw):
+        for key in ("frame", "saliency", "inhibition", "inhibited", "features", "normalised",
+                    "record_json", "timings", "working_size"):
+            setattr(self, key, raw[key])
+        self.record = _json.loads(self.record_json)
+        self.targets = self.record["targets"]
+
+    def __repr__(self):
+        return (f"<attend.FrameResult frame {self.frame}: {len(self.targets)} targets, "
+                f"working size {self.working_size[0]}x{self.working_size[1]}>")
+
+
+class Pipeline:
+    """The attention loop of `attend run` over frames you hand it one at a time.
+
+    config: a configuration file, a dict of configuration keys, or None for
+    configs/default.yaml; set: "key.path=value" overrides. The GIL is released while a frame is
+    processed, so pipelines in several threads run at once.
+    """
+
+    def __init__(self, config=None, set=()):
+        self._options = _configuration(config, set)
+        self._core = _attend.Pipeline(self._options)
+
+    def process(self, left, right=None, index=None):
+        """Runs one frame (left and optional right: H x W x 3 uint8 BGR or H x W grey)."""
+        return FrameResult(self._core.process(left, right, -1 if index is None else index))
+
+    def reset(self):
+        """Ends the sequence; the next frame starts a new one (new targets, new memory)."""
+        self._core.reset()
+
+    @property
+    def config(self):
+        """The effective configuration as YAML text."""
+        return self._options.yaml()
+
+    def buffers(self):
+        """Addresses of the C++ buffers of the last frame's maps (by "saliency",
+        "features/NAME", ...): a map array's data pointer is its buffer's."""
+        return self._core.buffers()
+
+    @property
+    def info(self):
+        return self._core.info()
+
+
+class Tracker:
+    """A tracker of `kind` (bip, kcf, csrt) on numpy frames; options are the configuration's
+    tracker keys (e.g. mode="thesis", lost_frames=5)."""
+
+    def __init__(self, kind="bip", **options):
+        tracker = dict(options, kind=kind)
+        self._core = _attend.Tracker(_configuration({"tracker": tracker}))
+
+    def start(self, frame, box=None, mask=None):
+        """Starts a target from a box [x, y, w, h] or a mask; returns its id (-1: no target)."""
+        if (box is None) == (mask is None):
+            raise ConfigError("start: give either box or mask")
+        if box is not None:
+            return self._core.start(frame, [int(v) for v in box])
+        return self._core.start_mask(frame, mask)
+
+    def track(self, frame):
+        """Searches every target; one dict a target: id, state, box, area, roi."""
+        return self._core.track(frame)
+
+    def mask(self, target_id):
+        return self._core.mask(target_id)
+
+    def remove(self, target_id):
+        self._core.remove(target_id)
+
+    @property
+    def ids(self):
+        return self._core.ids
+
+    @property
+    def kind(self):
+        return self._core.kind
+
+
+def run(sequence=None, *, config=None, set=(), video=None, left_video=None, right_video=None,
+        side_by_side_video=None, images=None, frames="", out="", overwrite=False):
+    """`attend run`: the pipeline over a source into a run folder; returns the folder's Run.
+
+    The sources are those of `attend run` (a sequence folder, videos, an image folder); none
+    runs the configuration's own source. KeyboardInterrupt stops it after the current frame,
+    with the run folder closed as interrupted, and is raised again.
+    """
+    if isinstance(set, str):
+        set = [set]
+    if isinstance(config, dict):
+        handle = _tempfile.NamedTemporaryFile("w", suffix=".yaml", prefix="attend-config-",
+                                              delete=False)
+        with handle:
+            handle.write(_configuration(config).yaml())
+        config_path = handle.name
+    else:
+        config_path = "" if config is None else _os.fspath(config)
+    source = {"sequence": sequence, "video": video, "left_video": left_video,
+              "right_video": right_video, "side_by_side_video": side_by_side_video,
+              "images": images}
+    source = {k: _os.fspath(v) for k, v in source.items() if v is not None}
+    try:
+        summary = _attend.run(config_path, list(set), source, frames, _os.fspath(out), overwrite)
+    finally:
+        if isinstance(config, dict):
+            _os.unlink(config_path)
+    return read_run(summary["dir"])
+
+
+def bundled_sequence(quiet=True):
+    """The folder of the bundled lab sequence (sequences/lab.yaml), rendered on first use as
+    `attend run` does: a stereo sequence with ground truth."""
+    return _attend.bundled_sequence(quiet)
+
+
+def frames(sequence):
+    """The frames of a sequence folder (SEQ/left and SEQ/right, or SEQ/left alone) or of a
+    plain folder of images, in name order, as (left, right) BGR arrays (right None when
+    monocular)."""
+    sequence = _os.fspath(sequence)
+    left = _os.path.join(sequence, "left")
+    if not _os.path.isdir(left):
+        left, right = sequence, None
+    else:
+        right = _os.path.join(sequence, "right")
+        right = right if _os.path.isdir(right) else None
+    names = _frame_names(left)
+    if not names:
+        raise InputError(f"{left}: no frames (.png, .jpg, .jpeg, .ppm, .pgm)")
+    if right is not None and _frame_names(right) != names:
+        raise InputError(f"{right}: its frame names differ from those of {left}")
+    for name in names:
+        yield (imread(_os.path.join(left, name)),
+               None if right is None else imread(_os.path.join(right, name)))
+
+
+def _frame_names(folder):
+    extensions = (".png", ".jpg", ".jpeg", ".ppm", ".pgm")
+    return sorted(n for n in _os.listdir(folder) if n.lower().endswith(extensions))
+
+
+def imread(path, grey=False):
+    """An image file as OpenCV's imread gives it: H x W x 3 uint8 BGR (H x W with grey)."""
+    return _attend.imread(_os.fspath(path), grey)
+
+
+def imwrite(path, image):
+    """Writes an 8-bit BGR or grey array to an image file (the extension says the format)."""
+    _attend.imwrite(_os.fspath(path), image)
+
+
+def saliency(image, config=None, set=(), features=False):
+    """The pre-attentive stage on one still image (`attend saliency`): the saliency map at the
+    image's size, float32 in [0, 1]; with features=True a dict with the features' maps too."""
+    result = _attend.saliency(image, _configuration(config, set), features)
+    return result if features else result["saliency"]
+
+
+def segment(image, **options):
+    """BIP colour segmentation of an image (`attend segment`); options are the configuration's
+    segmentation keys (t_max, min_region_area, ...). Returns labels, regions, boundaries."""
+    return _attend.segment(image, _configuration({"segmentation": options}, defaults="keys"))
+
+
+def disparity(left, right, **options):
+    """The disparity map of a rectified pair (`attend disparity`), float32 pixels; options are
+    the disparity feature's keys (max_disparity, window, smoothness, ...)."""
+    return _attend.disparity(left, right, _overrides(options))
+
+
+def eval_run(run_dir, gt=""):
+    """`attend eval`: the run's scores against its sequence's ground truth (or gt) as a dict."""
+    return _json.loads(_attend.eval_run(_os.fspath(run_dir), _os.fspath(gt)))
+
+
+def eval_fixations(maps, dataset, *, out=None, baselines=(), sigma=0.0, max_side=640, skip=0,
+                   first=0):
+    """`attend eval-fixations`: saliency folders ("NAME=FOLDER" or a {name: folder} dict)
+    scored against a fixation dataset; returns fixations.json's content as a dict."""
+    if isinstance(maps, dict):
+        maps = [f"{name}={_os.fspath(folder)}" for name, folder in maps.items()]
+    elif isinstance(maps, (str, _os.PathLike)):
+        maps = [_os.fspath(maps)]
+    with _tempfile.TemporaryDirectory(prefix="attend-fixations-") as scratch:
+        folder = _os.fspath(out) if out else scratch
+        result = _attend.eval_fixations([_os.fspath(m) for m in maps], _os.fspath(dataset),
+                                        folder, list(baselines), sigma, max_side, skip, first)
+        with open(_os.path.join(folder, "fixations.json"), encoding="utf-8") as file:
+            report = _json.load(file)
+    report["table"] = result["table"]
+    return report
+
+
+def compare(runs, out=None, overwrite=False):
+    """`attend compare`: each run against the first; returns summary.json's content as a dict
+    (the report.html beside it when out is given)."""
+    runs = [_os.fspath(r) for r in runs]
+    with _tempfile.TemporaryDirectory(prefix="attend-compare-") as scratch:
+        folder = _os.fspath(out) if out else _os.path.join(scratch, "report")
+        _attend.compare(runs, folder, overwrite)
+        with open(_os.path.join(folder, "summary.json"), encoding="utf-8") as file:
+            return _json.load(file)
+
+
+def register_feature(name, cls):
+    """Registers a Python feature class under `name`, usable in any configuration's features.
+
+    The class has compute(self, context) returning a map of the context's size (anything numpy
+    turns into float32 H x W); optional: an `options` dict of defaults (read from the feature's
+    entry, each with its default's type, and passed to the constructor as keywords),
+    `needs_stereo = True`, begin_sequence(self, info) and end_sequence(self). Registering a name
+    again replaces the class. Returns cls, so it can be used as a decorator factory's result.
+    """
+    _attend._register_feature(name, cls)
+    return cls
+
+
+def feature(name):
+    """Decorator form of register_feature: @attend.feature("my_feature")."""
+    def decorate(cls):
+        return register_feature(name, cls)
+    return decorate

@@ -1,0 +1,532 @@
+// attend._attend: the C++ part of the Python module `attend` (docs/PYTHON.md). The package's
+// Python files (python/attend/) give it its public shape; here are the pipeline, the stages on
+// numpy arrays, the controllers of the commands and the errors. Every call that runs C++ work
+// releases the GIL.
+#include <pybind11/functional.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <cstdint>
+#include <opencv2/imgcodecs.hpp>
+#include <memory>
+#include <opencv2/core/utility.hpp>
+#include <string>
+#include <vector>
+
+#include "app/evaluate_fixations.h"
+#include "app/evaluate_run.h"
+#include "app/home.h"
+#include "app/run_attention.h"
+#include "app/write_report.h"
+#include "config/param_block.h"
+#include "config/read_fields.h"
+#include "io/frame_record.h"
+#include "io/sequence.h"
+#include "pipeline/frame_pipeline.h"
+#include "pipeline/options_io.h"
+#include "pipeline/still_saliency.h"
+#include "pyramid/segmentation.h"
+#include "python/arrays.h"
+#include "python/python_features.h"
+#include "stereo/disparity.h"
+#include "tracker/target_tracker.h"
+#include "util/error.h"
+#include "util/json_text.h"
+#include "util/timer.h"
+
+namespace attend::python {
+
+namespace {
+
+// The configuration of `config` (a file; "" for the built-in defaults) with `overrides`
+// ("key.path=value", as --set) applied in order: the command line's errors, word for word.
+AttendOptions LoadConfiguration(const std::string& config,
+                                const std::vector<std::string>& overrides) {
+  if (!config.empty()) return LoadOptions(config, overrides);
+  ParamBlock root = ParamBlock::Parse("", "<defaults>");
+  for (const std::string& assignment : overrides) root.Override(assignment);
+  return ReadOptions(root);
+}
+
+// Options bound for Python: the loaded configuration and its effective YAML.
+struct Configuration {
+  AttendOptions options;
+};
+
+// One stage's milliseconds of a frame, as a dict in the stages' order.
+py::dict TimingsDict(const StageTimes& times) {
+  py::dict timings;
+  for (const auto& [stage, ms] : times.stages()) timings[py::str(stage)] = ms;
+  return timings;
+}
+
+// The pipeline over frames handed in one at a time (attend.Pipeline). It is made when the
+// first frame shows whether the source is stereo, and again by Reset.
+class Pipeline {
+ public:
+  explicit Pipeline(const AttendOptions& options) : options_(options) {
+    if (options_.threads > 0) cv::setNumThreads(options_.threads);
+    registry_ = std::make_unique<FeatureRegistry>(LoadFeatureRegistry(options_.plugins));
+    Make(/*stereo=*/true);  // so that a bad feature or parameter is reported now
+  }
+
+  py::dict Process(const py::array& left, const py::object& right, int index) {
+    StereoFrame frame;
+    const cv::Mat native_left = BgrImage(left, "left");
+    cv::Mat native_right;
+    if (!right.is_none()) native_right = BgrImage(right.cast<py::array>(), "right");
+    FrameRecord record;
+    std::string record_json;
+    {
+      const py::gil_scoped_release release;
+      const Stopwatch read;
+      Begin(native_left, native_right);
+      frame.index = index >= 0 ? index : next_index_;
+      frame.left = Working(native_left);
+      if (!native_right.empty()) frame.right = Working(native_right);
+      record.frame = frame.index;
+      record.timings.Add("read", read.ElapsedMs());
+      pipeline_->ReleaseSharedMaps();
+      pipeline_->Process(frame, &record);
+      record_json = FrameRecordToJson(
+          InputFromWorking(record, info_.scale_x, info_.scale_y, info_.native_size));
+    }
+    next_index_ = frame.index + 1;
+    return Result(frame, record, record_json);
+  }
+
+  void Reset() {
+    if (pipeline_ != nullptr && started_) pipeline_->EndSequence();
+    started_ = false;
+    next_index_ = options_.sequence.first_frame;
+    Make(stereo_);
+  }
+
+  // The addresses of the buffers of the last frame's maps, to check that the arrays handed out
+  // are those buffers (docs/PYTHON.md, "Arrays").
+  py::dict buffers() const {
+    py::dict addresses;
+    auto address = [](const cv::Mat& map) { return reinterpret_cast<std::uintptr_t>(map.data); };
+    addresses["saliency"] = address(pipeline_->saliency());
+    addresses["inhibition"] = address(pipeline_->inhibition());
+    addresses["inhibited"] = address(pipeline_->inhibited());
+    for (size_t i = 0; i < pipeline_->features().size(); ++i) {
+      const FeatureResult& feature = pipeline_->features()[i];
+      addresses[py::str("features/" + feature.name)] = address(feature.map);
+      addresses[py::str("normalised/" + feature.name)] = address(pipeline_->normalised()[i]);
+    }
+    return addresses;
+  }
+
+  py::dict info() const {
+    py::dict info;
+    info["started"] = started_;
+    info["stereo"] = stereo_;
+    info["input_size"] = py::make_tuple(info_.native_size.width, info_.native_size.height);
+    info["working_size"] = py::make_tuple(info_.size.width, info_.size.height);
+    return info;
+  }
+
+ private:
+  void Make(bool stereo) {
+    FeatureSetup setup;
+    setup.stereo = stereo;
+    setup.home = AttendHome();
+    pipeline_.reset();
+    pipeline_ = std::make_unique<FramePipeline>(options_, *registry_, setup);
+    stereo_ = stereo;
+  }
+
+  // The first frame of a sequence fixes its size and whether it is stereo; later frames must
+  // agree with it.
+  void Begin(const cv::Mat& left, const cv::Mat& right) {
+    const bool stereo = !right.empty();
+    if (stereo && right.size() != left.size()) {
+      throw InputError("right: its size " + std::to_string(right.cols) + "x" +
+                       std::to_string(right.rows) + " differs from the left image's " +
+                       std::to_string(left.cols) + "x" + std::to_string(left.rows));
+    }
+    if (started_) {
+      if (left.size() != info_.native_size || stereo != stereo_) {
+        throw InputError("frame " + std::to_string(next_index_) + ": " +
+                         (stereo != stereo_ ? std::string(stereo_ ? "monocular" : "stereo") +
+                                                  " after " +
+                                                  (stereo_ ? "stereo" : "monocular") + " frames"
+                                            : "its size differs from the sequence's first frame") +
+                         "; call reset() to start a new sequence");
+      }
+      return;
+    }
+    if (stereo != stereo_) Make(stereo);
+    info_.native_size = left.size();
+    info_.size = WorkingSize(options_.sequence, left.size());
+    info_.scale_x = static_cast<double>(info_.size.width) / left.cols;
+    info_.scale_y = static_cast<double>(info_.size.height) / left.rows;
+    info_.stereo = stereo;
+    if (next_index_ < 0) next_index_ = options_.sequence.first_frame;
+    pipeline_->BeginSequence({"python", info_.size, stereo, next_index_});
+    started_ = true;
+  }
+
+  // The frame at the working size, in a buffer of its own: the trackers keep frames.
+  cv::Mat Working(const cv::Mat& native) const { return ToWorkingSize(native, info_.size); }
+
+  py::dict Result(const StereoFrame& frame, const FrameRecord& record,
+                  const std::string& record_json) const {
+    py::dict result;
+    result["frame"] = frame.index;
+    result["record_json"] = record_json;
+    result["saliency"] = MatArray(pipeline_->saliency());
+    result["inhibition"] = MatArray(pipeline_->inhibition());
+    result["inhibited"] = MatArray(pipeline_->inhibited());
+    py::dict features, normalised;
+    for (size_t i = 0; i < pipeline_->features().size(); ++i) {
+      const FeatureResult& feature = pipeline_->features()[i];
+      features[py::str(feature.name)] = MatArray(feature.map);
+      normalised[py::str(feature.name)] = MatArray(pipeline_->normalised()[i]);
+    }
+    result["features"] = features;
+    result["normalised"] = normalised;
+    result["timings"] = TimingsDict(record.timings);
+    result["working_size"] = py::make_tuple(info_.size.width, info_.size.height);
+    return result;
+  }
+
+  const AttendOptions options_;
+  std::unique_ptr<FeatureRegistry> registry_;  // outlives pipeline_, whose features it made
+  std::unique_ptr<FramePipeline> pipeline_;
+  SequenceInfo info_;
+  bool stereo_ = true;
+  bool started_ = false;
+  int next_index_ = -1;
+};
+
+// attend.run: the configuration's run with its source replaced as asked; Ctrl-C in Python
+// stops it after the current frame, as in the command line.
+py::dict Run(const py::dict& source, const std::string& config,
+             const std::vector<std::string>& overrides, const std::string& frames,
+             const std::string& out, bool overwrite) {
+  AttentionRunRequest request;
+  request.config = config;
+  request.sets = overrides;
+  auto text = [&](const char* key) {
+    return source.contains(key) && !source[key].is_none() ? py::str(source[key]).cast<std::string>()
+                                                          : std::string();
+  };
+  request.source = {text("sequence"),           text("left_video"), text("right_video"),
+                    text("side_by_side_video"), text("video"),      text("images")};
+  request.frames = frames;
+  request.out = out;
+  request.overwrite = overwrite;
+  request.quiet = true;
+  request.command_line = "python: attend.run";
+  std::atomic<bool> stop = false;
+  request.stop = &stop;
+  // Between frames: a pending KeyboardInterrupt stops the run cleanly (interrupted: true).
+  request.on_progress = [&stop](const RunProgress&) {
+    const py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) stop = true;
+  };
+  RunSummary summary;
+  {
+    const AttendOptions options = ResolveRunOptions(request);
+    const py::gil_scoped_release release;
+    summary = RunAttention(request, options);
+  }
+  if (PyErr_Occurred() != nullptr) throw py::error_already_set();
+  py::dict result;
+  result["dir"] = summary.dir;
+  result["frames"] = summary.frames;
+  result["fps"] = summary.fps;
+  result["interrupted"] = summary.interrupted;
+  result["targets_attended"] = summary.targets_attended;
+  return result;
+}
+
+py::dict Saliency(const py::array& image, const AttendOptions& options, bool features) {
+  const cv::Mat bgr = BgrImage(image, "image");
+  std::vector<std::string> dropped;
+  StillMaps maps;
+  {
+    const py::gil_scoped_release release;
+    const StillSaliency still(options, AttendHome(), &dropped);
+    maps = still.Compute(bgr, features, 0);
+  }
+  py::dict result;
+  result["saliency"] = MatArray(maps.saliency);
+  py::dict named;
+  for (size_t i = 0; i < maps.features.size(); ++i) {
+    named[py::str(maps.feature_names[i])] = MatArray(maps.features[i]);
+  }
+  result["features"] = named;
+  result["left_out"] = dropped;
+  result["working_size"] = py::make_tuple(maps.working_size.width, maps.working_size.height);
+  return result;
+}
+
+// attend.imread: an image file as OpenCV reads it (BGR, or grey with `grey`).
+py::object ReadImage(const std::string& path, bool grey) {
+  cv::Mat image;
+  {
+    const py::gil_scoped_release release;
+    image = cv::imread(path, grey ? cv::IMREAD_GRAYSCALE : cv::IMREAD_COLOR);
+  }
+  if (image.empty()) {
+    throw InputError(path + ": cannot be read as an image (missing, unreadable or not a format "
+                     "OpenCV reads)");
+  }
+  return MatArray(image);
+}
+
+// attend.imwrite: an 8-bit image (BGR or grey) to a file whose extension says the format.
+void WriteImage(const std::string& path, const py::array& image) {
+  const cv::Mat view = ImageView(py::array::ensure(image, py::array::c_style), "image");
+  bool written = false;
+  {
+    const py::gil_scoped_release release;
+    try {
+      written = cv::imwrite(path, view);
+    } catch (const cv::Exception& e) {
+      throw OutputError(path + ": cannot be written: " + e.err);
+    }
+  }
+  if (!written) throw OutputError(path + ": cannot be written");
+}
+
+py::dict Segment(const py::array& image, const AttendOptions& options) {
+  const cv::Mat bgr = BgrImage(image, "image");
+  Segmentation segmentation;
+  {
+    const py::gil_scoped_release release;
+    Segmenter segmenter(options.segmentation);
+    segmenter.Segment(bgr, &segmentation);
+  }
+  return SegmentationDict(segmentation);
+}
+
+DisparityOptions DisparityKeywords(const std::vector<std::string>& overrides) {
+  ParamBlock root = ParamBlock::Parse("", "<keywords>");
+  for (const std::string& assignment : overrides) root.Override(assignment);
+  DisparityOptions options;
+  ReadFields(root, DisparityOptions::Fields(), &options);
+  if (const std::string error = options.Check(); !error.empty()) root.FailCheck(error);
+  root.CheckNoUnknownKeys();
+  return options;
+}
+
+py::object Disparity(const py::array& left, const py::array& right,
+                     const std::vector<std::string>& overrides) {
+  const DisparityOptions options = DisparityKeywords(overrides);
+  const cv::Mat l = ImageView(py::array::ensure(left, py::array::c_style), "left");
+  const cv::Mat r = ImageView(py::array::ensure(right, py::array::c_style), "right");
+  cv::Mat disparity;
+  {
+    const py::gil_scoped_release release;
+    DisparityEstimator estimator(options);
+    estimator.Compute(l, r, &disparity);
+  }
+  return MatArray(disparity);
+}
+
+// attend.Tracker: a tracker of the configuration's kind on numpy frames.
+class Tracker {
+ public:
+  explicit Tracker(const AttendOptions& options)
+      : tracker_(TargetTracker::Create(options.attention.tracker)) {}
+
+  int Start(const py::array& frame, const std::vector<int>& box) {
+    if (box.size() != 4) throw ConfigError("box: must be [x, y, width, height]");
+    const cv::Mat bgr = BgrImage(frame, "frame");
+    const py::gil_scoped_release release;
+    return tracker_->StartFromBox(bgr, cv::Rect(box[0], box[1], box[2], box[3]));
+  }
+
+  int StartMask(const py::array& frame, const py::array& mask) {
+    const cv::Mat bgr = BgrImage(frame, "frame");
+    const cv::Mat m = ImageView(py::array::ensure(mask, py::array::c_style), "mask").clone();
+    if (m.channels() != 1 || m.size() != bgr.size()) {
+      throw InputError("mask: must be uint8 H x W of the frame's size");
+    }
+    const py::gil_scoped_release release;
+    return tracker_->StartFromMask(bgr, m);
+  }
+
+  py::list Track(const py::array& frame) {
+    const cv::Mat bgr = BgrImage(frame, "frame");
+    std::vector<TrackResult> results;
+    {
+      const py::gil_scoped_release release;
+      tracker_->Track(bgr, &results);
+    }
+    py::list list;
+    for (const TrackResult& r : results) {
+      py::dict target;
+      target["id"] = r.id;
+      target["state"] = TrackStateName(r.state);
+      target["box"] = py::make_tuple(r.box.x, r.box.y, r.box.width, r.box.height);
+      target["area"] = r.area;
+      target["roi"] = py::make_tuple(r.roi.x, r.roi.y, r.roi.width, r.roi.height);
+      list.append(target);
+    }
+    return list;
+  }
+
+  py::object Mask(int id) const { return MatArray(tracker_->Mask(id)); }
+  void Remove(int id) { tracker_->Remove(id); }
+  std::vector<int> ids() const { return tracker_->ids(); }
+  std::string kind() const { return TrackerKindName(tracker_->kind()); }
+
+ private:
+  std::unique_ptr<TargetTracker> tracker_;
+};
+
+std::string EvalRun(const std::string& run, const std::string& gt) {
+  nlohmann::ordered_json report;
+  {
+    const py::gil_scoped_release release;
+    report = EvaluateRunFolder(run, gt);
+  }
+  return JsonText(report, -1);
+}
+
+py::dict EvalFixations(const std::vector<std::string>& maps, const std::string& dataset,
+                       const std::string& out, const std::vector<std::string>& baselines,
+                       double sigma, int max_side, int skip, int first) {
+  EvalFixationsRequest request;
+  request.maps = maps;
+  request.dataset = dataset;
+  request.out = out;
+  request.baselines = baselines;
+  request.sigma = sigma;
+  request.max_side = max_side;
+  request.skip = skip;
+  request.first = first;
+  request.quiet = true;
+  request.command_line = "python: attend.eval_fixations";
+  FixationEvaluation evaluation;
+  {
+    const py::gil_scoped_release release;
+    evaluation = EvaluateFixations(request, {});
+  }
+  py::dict result;
+  result["table"] = evaluation.table;
+  result["failed"] = evaluation.failed;
+  return result;
+}
+
+std::string Compare(const std::vector<std::string>& runs, const std::string& out,
+                    bool overwrite) {
+  ReportRequest request;
+  request.runs = runs;
+  request.out = out;
+  request.overwrite = overwrite;
+  request.command_line = "python: attend.compare";
+  const py::gil_scoped_release release;
+  return WriteReport(request).html;
+}
+
+py::list DescribeKeys() {
+  py::list keys;
+  for (const FieldDescription& field : DescribeConfiguration()) {
+    py::dict key;
+    key["key"] = field.key;
+    key["type"] = field.type;
+    key["range"] = field.range;
+    key["default"] = field.fallback;
+    key["doc"] = field.doc;
+    keys.append(key);
+  }
+  return keys;
+}
+
+// The C++ errors as the package's exception classes (attend.ConfigError and the rest), each
+// carrying the exit status the command line would give.
+void RegisterErrors(py::module_& m) {
+  static py::exception<Error> error(m, "Error");
+  static py::exception<ConfigError> config(m, "ConfigError", error.ptr());
+  static py::exception<OutputError> output(m, "OutputError", error.ptr());
+  static py::exception<InputError> input(m, "InputError", error.ptr());
+  static py::exception<PluginError> plugin(m, "PluginError", error.ptr());
+  static py::exception<InternalError> internal(m, "InternalError", error.ptr());
+  py::register_exception_translator([](std::exception_ptr pointer) {
+    try {
+      if (pointer) std::rethrow_exception(pointer);
+    } catch (const ConfigError& e) {
+      config(e.what());
+    } catch (const OutputError& e) {
+      output(e.what());
+    } catch (const InputError& e) {
+      input(e.what());
+    } catch (const PluginError& e) {
+      plugin(e.what());
+    } catch (const InternalError& e) {
+      internal(e.what());
+    } catch (const Error& e) {
+      error(e.what());
+    }
+  });
+}
+
+}  // namespace
+
+}  // namespace attend::python
+
+PYBIND11_MODULE(_attend, m) {
+  using namespace attend;
+  using namespace attend::python;
+  m.doc() = "attend's C++ core (docs/PYTHON.md); use the package attend";
+  m.attr("__version__") = ATTEND_VERSION;
+  RegisterErrors(m);
+  RegisterPythonFeatures(m);
+
+  py::class_<Configuration>(m, "Configuration")
+      .def(py::init([](const std::string& config, const std::vector<std::string>& overrides) {
+             return Configuration{LoadConfiguration(config, overrides)};
+           }),
+           py::arg("config"), py::arg("overrides"))
+      .def("yaml", [](const Configuration& c) { return OptionsToYaml(c.options); });
+  m.def("default_config_path", &DefaultConfigPath);
+  m.def("home", &AttendHome);
+  m.def("bundled_sequence", [](bool quiet) {
+    const py::gil_scoped_release release;
+    return EnsureBundledSequence(quiet);
+  });
+  m.def("describe_keys", &DescribeKeys);
+
+  py::class_<Pipeline>(m, "Pipeline")
+      .def(py::init([](const Configuration& c) { return std::make_unique<Pipeline>(c.options); }))
+      .def("process", &Pipeline::Process, py::arg("left"), py::arg("right"), py::arg("index"))
+      .def("reset", &Pipeline::Reset)
+      .def("info", &Pipeline::info)
+      .def("buffers", &Pipeline::buffers);
+
+  m.def("run", [](const std::string& config, const std::vector<std::string>& overrides,
+                  const py::dict& source, const std::string& frames, const std::string& out,
+                  bool overwrite) {
+    return Run(source, config, overrides, frames, out, overwrite);
+  });
+  m.def("saliency", [](const py::array& image, const Configuration& c, bool features) {
+    return Saliency(image, c.options, features);
+  });
+  m.def("segment", [](const py::array& image, const Configuration& c) {
+    return Segment(image, c.options);
+  });
+  m.def("disparity", &Disparity);
+  m.def("imread", &ReadImage, py::arg("path"), py::arg("grey") = false);
+  m.def("imwrite", &WriteImage, py::arg("path"), py::arg("image"));
+
+  py::class_<Tracker>(m, "Tracker")
+      .def(py::init([](const Configuration& c) { return std::make_unique<Tracker>(c.options); }))
+      .def("start", &Tracker::Start)
+      .def("start_mask", &Tracker::StartMask)
+      .def("track", &Tracker::Track)
+      .def("mask", &Tracker::Mask)
+      .def("remove", &Tracker::Remove)
+      .def_property_readonly("ids", &Tracker::ids)
+      .def_property_readonly("kind", &Tracker::kind);
+
+  m.def("eval_run", &EvalRun);
+  m.def("eval_fixations", &EvalFixations);
+  m.def("compare", &Compare);
+}
