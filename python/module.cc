@@ -180,14 +180,16 @@ class Pipeline {
     result["saliency"] = MatArray(pipeline_->saliency());
     result["inhibition"] = MatArray(pipeline_->inhibition());
     result["inhibited"] = MatArray(pipeline_->inhibited());
-    py::dict features, normalised;
+    py::dict features, normalised, feature_ms;
     for (size_t i = 0; i < pipeline_->features().size(); ++i) {
       const FeatureResult& feature = pipeline_->features()[i];
       features[py::str(feature.name)] = MatArray(feature.map);
       normalised[py::str(feature.name)] = MatArray(pipeline_->normalised()[i]);
+      feature_ms[py::str(feature.name)] = feature.milliseconds;
     }
     result["features"] = features;
     result["normalised"] = normalised;
+    result["feature_ms"] = feature_ms;
     result["timings"] = TimingsDict(record.timings);
     result["working_size"] = py::make_tuple(info_.size.width, info_.size.height);
     return result;

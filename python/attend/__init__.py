@@ -91,18 +91,19 @@ class FrameResult:
     """What the pipeline made of one frame.
 
     saliency, inhibition, inhibited: float32 maps at the working size; features and normalised:
-    each feature's raw and normalised map by name; record: the frame's frames.jsonl record (a
+    each feature's raw and normalised map by name; feature_ms: each feature's milliseconds
+    (its compute and the shared work it started); record: the frame's frames.jsonl record (a
     dict; boxes in input pixels), targets its targets; timings: milliseconds by stage. The maps
     share the pipeline's buffers: no copy is made, and a map you keep keeps its values (the
     pipeline writes the next frame into new buffers while you hold one).
     """
 
     __slots__ = ("frame", "saliency", "inhibition", "inhibited", "features", "normalised",
-                 "record", "record_json", "targets", "timings", "working_size")
+                 "feature_ms", "record", "record_json", "targets", "timings", "working_size")
 
     def __init__(self, raw):
         for key in ("frame", "saliency", "inhibition", "inhibited", "features", "normalised",
-                    "record_json", "timings", "working_size"):
+                    "feature_ms", "record_json", "timings", "working_size"):
             setattr(self, key, raw[key])
         self.record = _json.loads(self.record_json)
         self.targets = self.record["targets"]
