@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <ctime>
 #include <cstdint>
 #include <opencv2/imgcodecs.hpp>
 #include <memory>
@@ -203,6 +204,69 @@ class Pipeline {
   bool started_ = false;
   int next_index_ = -1;
 };
+
+// This thread's CPU time in milliseconds (what Python's time.thread_time() reads).
+double ThreadCpuMs() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return now.tv_sec * 1000.0 + now.tv_nsec / 1e6;
+}
+
+// The yardstick of bench/python_bench.py: the loop of `attend run` (pipeline/run.cc, RunFrame)
+// over frames already in memory, less the reading and the run folder: a new pipeline, then each
+// frame through it, its record in input pixels and its JSON line. The frames are converted
+// before the clock starts. Returns the milliseconds a frame, of the thread's CPU time and of
+// the wall clock.
+py::tuple ReferenceLoop(const AttendOptions& options, const py::list& frames) {
+  std::vector<StereoFrame> inputs;
+  cv::Size native;
+  for (const py::handle pair : frames) {
+    const py::tuple views = pair.cast<py::tuple>();
+    StereoFrame frame;
+    frame.index = static_cast<int>(inputs.size());
+    frame.left = BgrImage(views[0].cast<py::array>(), "left");
+    if (!views[1].is_none()) frame.right = BgrImage(views[1].cast<py::array>(), "right");
+    native = frame.left.size();
+    inputs.push_back(frame);
+  }
+  if (inputs.empty()) throw InputError("no frames");
+  SequenceInfo info;
+  info.native_size = native;
+  info.size = WorkingSize(options.sequence, native);
+  info.scale_x = static_cast<double>(info.size.width) / native.width;
+  info.scale_y = static_cast<double>(info.size.height) / native.height;
+  info.stereo = !inputs[0].right.empty();
+  for (StereoFrame& frame : inputs) {
+    frame.left = ToWorkingSize(frame.left, info.size);
+    if (info.stereo) frame.right = ToWorkingSize(frame.right, info.size);
+  }
+  double cpu_ms = 0.0, wall_ms = 0.0;
+  size_t bytes = 0;
+  {
+    const py::gil_scoped_release release;
+    if (options.threads > 0) cv::setNumThreads(options.threads);
+    const FeatureRegistry registry = LoadFeatureRegistry(options.plugins);
+    FeatureSetup setup;
+    setup.stereo = info.stereo;
+    setup.home = AttendHome();
+    FramePipeline pipeline(options, registry, setup);
+    const double cpu_start = ThreadCpuMs();
+    const Stopwatch wall;
+    pipeline.BeginSequence({"reference", info.size, info.stereo, 0});
+    for (const StereoFrame& frame : inputs) {
+      FrameRecord record;
+      record.frame = frame.index;
+      pipeline.Process(frame, &record);
+      bytes += FrameRecordToJson(
+                   InputFromWorking(record, info.scale_x, info.scale_y, info.native_size))
+                   .size();
+    }
+    pipeline.EndSequence();
+    cpu_ms = (ThreadCpuMs() - cpu_start) / inputs.size();
+    wall_ms = wall.ElapsedMs() / inputs.size();
+  }
+  return py::make_tuple(cpu_ms, wall_ms, bytes);
+}
 
 // attend.run: the configuration's run with its source replaced as asked; Ctrl-C in Python
 // stops it after the current frame, as in the command line.
@@ -528,6 +592,9 @@ PYBIND11_MODULE(_attend, m) {
       .def_property_readonly("ids", &Tracker::ids)
       .def_property_readonly("kind", &Tracker::kind);
 
+  m.def("_reference_loop", [](const Configuration& c, const py::list& frames) {
+    return ReferenceLoop(c.options, frames);
+  });
   m.def("eval_run", &EvalRun);
   m.def("eval_fixations", &EvalFixations);
   m.def("compare", &Compare);
