@@ -3,10 +3,11 @@
 against its ground truth, and plot the saliency and the targets of a few frames.
 
     PYTHONPATH=build/python python3 examples/python/attend_example.py \
-        [SEQUENCE] [--frames 0:39] [--out attend_example.png]
+        [SEQUENCE] [--frames 0:39] [--config FILE] [--out attend_example.png]
 
 SEQUENCE is a stereo sequence folder (left/, right/, gt/) or a monocular one; without it the
-bundled lab sequence is used. Needs numpy and matplotlib (python3-matplotlib).
+bundled lab sequence is used. --config runs that configuration with the Python feature added
+to its features. Needs numpy and matplotlib (python3-matplotlib).
 """
 
 import argparse
@@ -34,6 +35,7 @@ def main():
     parser.add_argument("--frames", default="0:39", help="FIRST:LAST, inclusive")
     parser.add_argument("--show", type=int, default=4, help="frames to plot")
     parser.add_argument("--out", default="attend_example.png", help="the figure (PNG)")
+    parser.add_argument("--config", help="a configuration file instead of the built-in one")
     args = parser.parse_args()
 
     sequence = args.sequence or attend.bundled_sequence()
@@ -44,8 +46,20 @@ def main():
     if stereo:
         features.append({"name": "disparity"})
 
+    config = {"features": features}
+    settings = []
+    if args.config:
+        # The file's own features (one flow map a line in the effective configuration), and
+        # the Python one after them.
+        config = args.config
+        lines = attend.configuration(config).split("\nfeatures:\n")[1].splitlines()
+        entries = [line[4:] for line in lines[:next(
+            i for i, line in enumerate(lines) if not line.startswith("  - "))]]
+        entries.append("{name: motion_energy, weight: 2.0, blur: 9}")
+        settings = ["features=[" + ", ".join(entries) + "]"]
+
     # 1. Frame by frame, the maps in hand.
-    pipeline = attend.Pipeline(config={"features": features})
+    pipeline = attend.Pipeline(config=config, set=settings)
     shown = {}
     every = max(1, (last - first + 1) // args.show)
     for index, (left, right) in enumerate(attend.frames(sequence)):
@@ -61,16 +75,17 @@ def main():
               f"{sum(result.timings.values()):.1f} ms")
 
     # 2. The same configuration as a run folder, scored against the ground truth.
-    run = attend.run(sequence, config={"features": features},
-                     set=["plugins=[" + motion_energy.__file__ + "]"],
+    run = attend.run(sequence, config=config,
+                     set=settings + ["plugins=[" + motion_energy.__file__ + "]"],
                      frames=args.frames, out=os.path.splitext(args.out)[0] + "-run",
                      overwrite=True)
     print(f"run folder {run.dir}: {run.summary['frames']} frames, "
           f"{run.summary['fps']:.1f} frames/s")
     if os.path.isdir(os.path.join(sequence, "gt")):
         scores = attend.eval_run(run.dir)
-        print("scores:", {k: scores[k] for k in ("coverage", "revisits", "mean_iou")
-                          if k in scores})
+        print("scores:", {k: round(scores[k], 3) for k in ("coverage", "revisits", "mean_iou")})
+        mot = scores["mot"]["iou_0.5"]  # MOTChallenge's match at IoU 0.5
+        print("MOT at IoU 0.5:", {k: round(mot[k], 3) for k in ("IDF1", "MOTA", "purity")})
     targets = run.targets_frame()
     print(targets.groupby("id").frame.agg(["min", "max", "count"]).head(10))
 

@@ -26,7 +26,7 @@ try:
 finally:
     _sys.setdlopenflags(_flags)
 
-from ._records import Run, read_pfm, read_run  # noqa: E402
+from ._records import Run, read_pfm, read_run, write_pfm  # noqa: E402
 
 __version__ = _attend.__version__
 
@@ -42,7 +42,7 @@ for _error, _status in ((Error, 1), (ConfigError, 2), (OutputError, 2), (InputEr
 
 __all__ = [
     "Pipeline", "FrameResult", "Tracker", "run", "saliency", "segment", "disparity",
-    "read_run", "Run", "read_pfm", "bundled_sequence", "frames", "imread", "imwrite", "feature", "eval_run", "eval_fixations", "compare", "register_feature",
+    "read_run", "Run", "read_pfm", "write_pfm", "bundled_sequence", "frames", "imread", "imwrite", "feature", "eval_run", "eval_fixations", "compare", "register_feature",
     "configuration", "keys", "Error", "ConfigError", "InputError", "OutputError",
     "PluginError", "InternalError", "__version__",
 ]

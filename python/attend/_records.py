@@ -23,6 +23,18 @@ def read_pfm(path):
     return np.ascontiguousarray(np.flipud(data.reshape(shape)).astype(np.float32))
 
 
+def write_pfm(path, image):
+    """Writes a float map (H x W, or H x W x 3) as PFM, the format of the run's lossless maps
+    and of the saliency folders that attend eval-fixations scores."""
+    data = np.asarray(image, dtype="<f4")
+    if data.ndim not in (2, 3) or (data.ndim == 3 and data.shape[2] != 3):
+        raise ValueError(f"{path}: a PFM map is H x W or H x W x 3, not {data.shape}")
+    header = b"Pf" if data.ndim == 2 else b"PF"
+    with open(path, "wb") as file:
+        file.write(b"%s\n%d %d\n-1\n" % (header, data.shape[1], data.shape[0]))
+        file.write(np.ascontiguousarray(np.flipud(data)).tobytes())
+
+
 class Run:
     """A run folder: its effective configuration, summary, frame records and scan path.
 

@@ -189,3 +189,35 @@ def test_bad_frames_are_input_errors():
         attend.run("/nonexistent/sequence")
     with pytest.raises(attend.InputError, match="nothing.png"):
         attend.imread("/nonexistent/nothing.png")
+
+
+def test_eval_fixations_scores_a_perfect_map_above_its_opposite(tmp_path):
+    """Two images whose fixations all lie on a square: a map that is 1 there beats its
+    opposite, as `attend eval-fixations` scores them."""
+    for folder in ("data/stimuli", "data/fixations", "good", "bad"):
+        os.makedirs(tmp_path / folder)
+    for index, (x, y) in enumerate(((20, 20), (60, 40))):
+        image = np.full((80, 100, 3), 128, np.uint8)
+        image[y:y + 16, x:x + 16] = (250, 250, 250)
+        attend.imwrite(tmp_path / "data" / "stimuli" / f"im{index}.png", image)
+        lines = ["# subject x y (1-based)"]
+        lines += [f"{s} {x + 4 + 3 * s + 1} {y + 9}" for s in range(3)]
+        (tmp_path / "data" / "fixations" / f"im{index}.txt").write_text("\n".join(lines) + "\n")
+        good = np.zeros((80, 100), np.float32)
+        good[y:y + 16, x:x + 16] = 1
+        attend.write_pfm(tmp_path / "good" / f"im{index}.pfm", good)
+        attend.write_pfm(tmp_path / "bad" / f"im{index}.pfm", 1 - good)
+    assert np.all(attend.read_pfm(tmp_path / "good" / "im1.pfm")[40:56, 60:76] == 1)
+    report = attend.eval_fixations({"good": tmp_path / "good", "bad": tmp_path / "bad"},
+                                   tmp_path / "data", baselines=["centre"])
+    methods = report["methods"]
+    assert methods["good"]["auc_judd"]["mean"] == pytest.approx(1.0, abs=0.02)
+    assert methods["good"]["nss"]["mean"] > 2.0 > 0.0 > methods["bad"]["nss"]["mean"]
+    assert methods["centre"]["images"] == 2
+    printed = run_attend("eval-fixations", "good=" + str(tmp_path / "good"),
+                         "bad=" + str(tmp_path / "bad"), "--dataset", tmp_path / "data",
+                         "--baselines", "centre", "--out", tmp_path / "cli", "--quiet")
+    assert printed.returncode == 0
+    with open(tmp_path / "cli" / "fixations.json", encoding="utf-8") as file:
+        cli = json.load(file)
+    assert cli["methods"] == methods
