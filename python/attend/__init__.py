@@ -17,6 +17,15 @@ import os as _os
 import sys as _sys
 import tempfile as _tempfile
 
+try:
+    import numpy as _numpy  # noqa: F401
+except ImportError:
+    from ._build import interpreter as _interpreter
+    raise ImportError(
+        f"attend needs numpy, which this interpreter ({_sys.executable}) does not have; attend "
+        f"was built for {_interpreter}, with Debian's python3-numpy: run that interpreter "
+        "(or build attend with -DPython_EXECUTABLE=... for this one)") from None
+
 # C++ feature plugins loaded from Python resolve attend's symbols from the module, so it is
 # loaded with its symbols global (as the `attend` program exports its own).
 _flags = _sys.getdlopenflags()
