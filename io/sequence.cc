@@ -349,11 +349,8 @@ class Sequence final : public FrameSource {
       throw InputError(what + ": there is no frame " + std::to_string(options.first_frame) +
                        " (the source is empty or the frame range starts beyond its end)");
     }
-    info_.native_size = first.left.size();
+    SizeSequence(options, first.left.size(), &info_);
     CheckSizes(options.first_frame, first);
-    info_.size = WorkingSize(options, info_.native_size);
-    info_.scale_x = static_cast<double>(info_.size.width) / info_.native_size.width;
-    info_.scale_y = static_cast<double>(info_.size.height) / info_.native_size.height;
     first_ = std::move(first);
   }
 
@@ -423,6 +420,13 @@ cv::Size WorkingSize(const SequenceOptions& options, cv::Size native) {
   }
   const double width = static_cast<double>(native.width) * options.height / native.height;
   return {std::max(1, static_cast<int>(std::lround(width))), options.height};
+}
+
+void SizeSequence(const SequenceOptions& options, cv::Size native, SequenceInfo* info) {
+  info->native_size = native;
+  info->size = WorkingSize(options, native);
+  info->scale_x = static_cast<double>(info->size.width) / native.width;
+  info->scale_y = static_cast<double>(info->size.height) / native.height;
 }
 
 // A continuous image of `size`: area averaging when shrinking (no aliasing), bilinear when any

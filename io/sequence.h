@@ -98,6 +98,9 @@ struct StereoFrame {
   std::string right_path;  // "" when monocular; the same video for side-by-side
 };
 
+// Sets `info`'s native size to `native` and its working size and scales from `options`.
+void SizeSequence(const SequenceOptions& options, cv::Size native, SequenceInfo* info);
+
 class FrameSource {
  public:
   virtual ~FrameSource() = default;

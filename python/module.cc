@@ -7,11 +7,11 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
-#include <ctime>
 #include <cstdint>
-#include <opencv2/imgcodecs.hpp>
+#include <ctime>
 #include <memory>
 #include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
@@ -21,8 +21,10 @@
 #include "app/run_attention.h"
 #include "app/write_report.h"
 #include "config/param_block.h"
-#include "config/read_fields.h"
+#include "features/disparity_feature.h"
 #include "io/frame_record.h"
+#include "io/image_file.h"
+#include "io/pfm.h"
 #include "io/sequence.h"
 #include "pipeline/frame_pipeline.h"
 #include "pipeline/options_io.h"
@@ -50,7 +52,7 @@ AttendOptions LoadConfiguration(const std::string& config,
   return ReadOptions(root);
 }
 
-// Options bound for Python: the loaded configuration and its effective YAML.
+// Options bound for Python: the loaded configuration (its effective YAML by OptionsToYaml).
 struct Configuration {
   AttendOptions options;
 };
@@ -160,10 +162,7 @@ class Pipeline {
       return;
     }
     if (stereo != stereo_) Make(stereo);
-    info_.native_size = left.size();
-    info_.size = WorkingSize(options_.sequence, left.size());
-    info_.scale_x = static_cast<double>(info_.size.width) / left.cols;
-    info_.scale_y = static_cast<double>(info_.size.height) / left.rows;
+    SizeSequence(options_.sequence, left.size(), &info_);
     info_.stereo = stereo;
     if (next_index_ < 0) next_index_ = options_.sequence.first_frame;
     pipeline_->BeginSequence({"python", info_.size, stereo, next_index_});
@@ -231,10 +230,7 @@ py::tuple ReferenceLoop(const AttendOptions& options, const py::list& frames) {
   }
   if (inputs.empty()) throw InputError("no frames");
   SequenceInfo info;
-  info.native_size = native;
-  info.size = WorkingSize(options.sequence, native);
-  info.scale_x = static_cast<double>(info.size.width) / native.width;
-  info.scale_y = static_cast<double>(info.size.height) / native.height;
+  SizeSequence(options.sequence, native, &info);
   info.stereo = !inputs[0].right.empty();
   for (StereoFrame& frame : inputs) {
     frame.left = ToWorkingSize(frame.left, info.size);
@@ -331,16 +327,13 @@ py::dict Saliency(const py::array& image, const AttendOptions& options, bool fea
   return result;
 }
 
-// attend.imread: an image file as OpenCV reads it (BGR, or grey with `grey`).
+// attend.imread: an image file as OpenCV reads it (BGR, or grey with `grey`), refused when
+// it is cut short (io/image_file.h).
 py::object ReadImage(const std::string& path, bool grey) {
   cv::Mat image;
   {
     const py::gil_scoped_release release;
-    image = cv::imread(path, grey ? cv::IMREAD_GRAYSCALE : cv::IMREAD_COLOR);
-  }
-  if (image.empty()) {
-    throw InputError(path + ": cannot be read as an image (missing, unreadable or not a format "
-                     "OpenCV reads)");
+    image = ReadNamedImageFile(path, grey ? cv::IMREAD_GRAYSCALE : cv::IMREAD_COLOR);
   }
   return MatArray(image);
 }
@@ -348,16 +341,45 @@ py::object ReadImage(const std::string& path, bool grey) {
 // attend.imwrite: an 8-bit image (BGR or grey) to a file whose extension says the format.
 void WriteImage(const std::string& path, const py::array& image) {
   const cv::Mat view = ImageView(py::array::ensure(image, py::array::c_style), "image");
-  bool written = false;
+  const py::gil_scoped_release release;
+  WriteImageFile(path, view);
+}
+
+// attend.read_pfm and write_pfm: the run's lossless maps (io/pfm.h).
+py::object ReadPfmArray(const std::string& path) {
+  cv::Mat map;
   {
     const py::gil_scoped_release release;
-    try {
-      written = cv::imwrite(path, view);
-    } catch (const cv::Exception& e) {
-      throw OutputError(path + ": cannot be written: " + e.err);
-    }
+    map = ReadPfm(path);
   }
-  if (!written) throw OutputError(path + ": cannot be written");
+  return MatArray(map);
+}
+
+void WritePfmArray(const std::string& path, const py::array& map) {
+  const auto floats = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(map);
+  const bool one = floats && floats.ndim() == 2;
+  const bool three = floats && floats.ndim() == 3 && floats.shape(2) == 3;
+  if (!one && !three) {
+    throw InputError(path + ": a PFM map is an array of numbers, H x W or H x W x 3");
+  }
+  const cv::Mat view(static_cast<int>(floats.shape(0)), static_cast<int>(floats.shape(1)),
+                     one ? CV_32FC1 : CV_32FC3, const_cast<float*>(floats.data()));
+  const py::gil_scoped_release release;
+  WritePfm(path, view);
+}
+
+// attend.frames: a frame folder's files in frame order and one frame as `attend run` reads it.
+std::vector<std::string> FrameFiles(const std::string& folder) {
+  return ListFrameFiles(folder, folder);
+}
+
+py::object FrameFile(int index, const std::string& path) {
+  cv::Mat frame;
+  {
+    const py::gil_scoped_release release;
+    frame = ReadFrameFile(index, path);
+  }
+  return MatArray(frame);
 }
 
 py::dict Segment(const py::array& image, const AttendOptions& options) {
@@ -371,13 +393,15 @@ py::dict Segment(const py::array& image, const AttendOptions& options) {
   return SegmentationDict(segmentation);
 }
 
+// The disparity options of `overrides` ("disparity.KEY=VALUE"), read as `attend disparity`
+// reads its --set.
 DisparityOptions DisparityKeywords(const std::vector<std::string>& overrides) {
   ParamBlock root = ParamBlock::Parse("", "<keywords>");
   for (const std::string& assignment : overrides) root.Override(assignment);
-  DisparityOptions options;
-  ReadFields(root, DisparityOptions::Fields(), &options);
-  if (const std::string error = options.Check(); !error.empty()) root.FailCheck(error);
+  const ParamBlock block = root.Child("disparity");
   root.CheckNoUnknownKeys();
+  const DisparityOptions options = ReadDisparityOptions(block);
+  block.CheckNoUnknownKeys();
   return options;
 }
 
@@ -581,6 +605,10 @@ PYBIND11_MODULE(_attend, m) {
   m.def("disparity", &Disparity);
   m.def("imread", &ReadImage, py::arg("path"), py::arg("grey") = false);
   m.def("imwrite", &WriteImage, py::arg("path"), py::arg("image"));
+  m.def("read_pfm", &ReadPfmArray, py::arg("path"));
+  m.def("write_pfm", &WritePfmArray, py::arg("path"), py::arg("map"));
+  m.def("_frame_files", &FrameFiles);
+  m.def("_frame_file", &FrameFile);
 
   py::class_<Tracker>(m, "Tracker")
       .def(py::init([](const Configuration& c) { return std::make_unique<Tracker>(c.options); }))

@@ -33,6 +33,13 @@ std::string Traceback(py::error_already_set& error) {
   }
 }
 
+// The built-in features, whose names Python features may not take and whose maps
+// FeatureContext.builtin computes.
+const FeatureRegistry& Builtins() {
+  static const FeatureRegistry* const registry = new FeatureRegistry(BuiltinFeatures());
+  return *registry;
+}
+
 // What a Python feature sees of a frame (FrameContext): views of the context's buffers,
 // usable while its compute() runs.
 class ContextView {
@@ -60,20 +67,22 @@ class ContextView {
     return regions_;
   }
 
+  py::object Cylinder() const {
+    return Computed([](const FrameContext& c) -> const cv::Mat& { return c.Cylinder(); });
+  }
+  py::object Tsl() const {
+    return Computed([](const FrameContext& c) -> const cv::Mat& { return c.Tsl(); });
+  }
   py::object Disparity() const {
     if (!context().stereo()) return py::none();
-    const cv::Mat* map = nullptr;
-    {
-      const py::gil_scoped_release release;
-      map = &context().Disparity(context().disparity_options());
-    }
-    return MatArray(*map, false);
+    return Computed([](const FrameContext& c) -> const cv::Mat& {
+      return c.Disparity(c.disparity_options());
+    });
   }
 
   // A built-in feature's map on this frame, computed by a feature of that name with its
   // default parameters (one made for this call: stateless features only).
   py::object Builtin(const std::string& name) const {
-    static const FeatureRegistry* const registry = new FeatureRegistry(BuiltinFeatures());
     FeatureSpec spec;
     spec.name = name;
     FeatureSetup setup;
@@ -81,13 +90,26 @@ class ContextView {
     cv::Mat map;
     {
       const py::gil_scoped_release release;
-      std::unique_ptr<FeatureMap> feature = registry->Create(spec, setup);
+      std::unique_ptr<FeatureMap> feature = Builtins().Create(spec, setup);
       feature->Compute(context(), &map);
     }
     return MatArray(map);
   }
 
  private:
+  // A map the context computes on demand (`get`), computed without the GIL, as a read-only
+  // array over the context's buffer.
+  template <typename Get>
+  py::object Computed(const Get& get) const {
+    const FrameContext& frame = context();
+    const cv::Mat* map = nullptr;
+    {
+      const py::gil_scoped_release release;
+      map = &get(frame);
+    }
+    return MatArray(*map, false);
+  }
+
   const FrameContext* context_;
   py::object regions_ = py::none();
 };
@@ -271,12 +293,11 @@ void LoadFile(const std::string& path, const std::string& where, FeatureRegistry
 }
 
 void RegisterFeature(const std::string& name, const py::object& cls) {
-  static const FeatureRegistry* const builtin = new FeatureRegistry(BuiltinFeatures());
   if (name.empty() || name.find_first_of(" \t\n.=") != std::string::npos) {
     throw ConfigError("register_feature: '" + name +
                       "' is not a feature name (no spaces, dots or '=')");
   }
-  if (builtin->Find(name) != nullptr) {
+  if (Builtins().Find(name) != nullptr) {
     throw ConfigError("register_feature: '" + name + "' is a built-in feature's name");
   }
   if (!py::hasattr(cls, "compute") || !PyCallable_Check(cls.attr("compute").ptr())) {
@@ -355,24 +376,8 @@ void RegisterPythonFeatures(py::module_& m) {
                              [](const ContextView& c) { return MatArray(c.context().left(), false); })
       .def_property_readonly(
           "right", [](const ContextView& c) { return MatArray(c.context().right(), false); })
-      .def_property_readonly("cylinder",
-                             [](const ContextView& c) {
-                               const cv::Mat* map = nullptr;
-                               {
-                                 const py::gil_scoped_release release;
-                                 map = &c.context().Cylinder();
-                               }
-                               return MatArray(*map, false);
-                             })
-      .def_property_readonly("tsl",
-                             [](const ContextView& c) {
-                               const cv::Mat* map = nullptr;
-                               {
-                                 const py::gil_scoped_release release;
-                                 map = &c.context().Tsl();
-                               }
-                               return MatArray(*map, false);
-                             })
+      .def_property_readonly("cylinder", &ContextView::Cylinder)
+      .def_property_readonly("tsl", &ContextView::Tsl)
       .def_property_readonly("regions", &ContextView::Regions)
       .def_property_readonly("disparity", &ContextView::Disparity)
       .def_property_readonly("attention_regions",

@@ -35,7 +35,7 @@ try:
 finally:
     _sys.setdlopenflags(_flags)
 
-from ._records import Run, read_pfm, read_run, write_pfm  # noqa: E402
+from ._records import Run, read_run  # noqa: E402
 
 __version__ = _attend.__version__
 
@@ -230,8 +230,8 @@ def bundled_sequence(quiet=True):
 
 def frames(sequence):
     """The frames of a sequence folder (SEQ/left and SEQ/right, or SEQ/left alone) or of a
-    plain folder of images, in name order, as (left, right) BGR arrays (right None when
-    monocular)."""
+    plain folder of images, in frame order and read as `attend run` reads them, as (left, right)
+    BGR arrays (right None when monocular)."""
     sequence = _os.fspath(sequence)
     left = _os.path.join(sequence, "left")
     if not _os.path.isdir(left):
@@ -239,29 +239,39 @@ def frames(sequence):
     else:
         right = _os.path.join(sequence, "right")
         right = right if _os.path.isdir(right) else None
-    names = _frame_names(left)
-    if not names:
+    lefts = _attend._frame_files(left)
+    if not lefts:
         raise InputError(f"{left}: no frames (.png, .jpg, .jpeg, .ppm, .pgm)")
-    if right is not None and _frame_names(right) != names:
+    rights = None if right is None else _attend._frame_files(right)
+    if rights is not None and [_os.path.basename(p) for p in rights] != \
+            [_os.path.basename(p) for p in lefts]:
         raise InputError(f"{right}: its frame names differ from those of {left}")
-    for name in names:
-        yield (imread(_os.path.join(left, name)),
-               None if right is None else imread(_os.path.join(right, name)))
-
-
-def _frame_names(folder):
-    extensions = (".png", ".jpg", ".jpeg", ".ppm", ".pgm")
-    return sorted(n for n in _os.listdir(folder) if n.lower().endswith(extensions))
+    for index, path in enumerate(lefts):
+        yield (_attend._frame_file(index, path),
+               None if rights is None else _attend._frame_file(index, rights[index]))
 
 
 def imread(path, grey=False):
-    """An image file as OpenCV's imread gives it: H x W x 3 uint8 BGR (H x W with grey)."""
+    """An image file as OpenCV's imread gives it: H x W x 3 uint8 BGR (H x W with grey); a file
+    cut short is an InputError, not a part-grey image."""
     return _attend.imread(_os.fspath(path), grey)
 
 
 def imwrite(path, image):
-    """Writes an 8-bit BGR or grey array to an image file (the extension says the format)."""
+    """Writes an 8-bit BGR or grey array to an image file (the extension says the format),
+    making the folders above it."""
     _attend.imwrite(_os.fspath(path), image)
+
+
+def read_pfm(path):
+    """A PFM file (the run's lossless maps) as a float32 array, top row first."""
+    return _attend.read_pfm(_os.fspath(path))
+
+
+def write_pfm(path, image):
+    """Writes a float map (H x W, or H x W x 3) as PFM, the format of the run's lossless maps
+    and of the saliency folders that eval_fixations scores."""
+    _attend.write_pfm(_os.fspath(path), image)
 
 
 def saliency(image, config=None, set=(), features=False):
@@ -280,7 +290,7 @@ def segment(image, **options):
 def disparity(left, right, **options):
     """The disparity map of a rectified pair (`attend disparity`), float32 pixels; options are
     the disparity feature's keys (max_disparity, window, smoothness, ...)."""
-    return _attend.disparity(left, right, _overrides(options))
+    return _attend.disparity(left, right, _overrides({"disparity": options}))
 
 
 def eval_run(run_dir, gt=""):

@@ -3,36 +3,7 @@
 import json
 import os
 
-import numpy as np
-
-
-def read_pfm(path):
-    """A PFM file (the run's lossless maps) as a float32 array, top row first."""
-    with open(path, "rb") as file:
-        header = file.readline().strip()
-        if header not in (b"Pf", b"PF"):
-            raise ValueError(f"{path}: not a PFM file")
-        width, height = (int(v) for v in file.readline().split())
-        scale = float(file.readline().strip())
-        channels = 1 if header == b"Pf" else 3
-        data = np.fromfile(file, dtype="<f4" if scale < 0 else ">f4",
-                           count=width * height * channels)
-    if data.size != width * height * channels:
-        raise ValueError(f"{path}: cut short")
-    shape = (height, width) if channels == 1 else (height, width, 3)
-    return np.ascontiguousarray(np.flipud(data.reshape(shape)).astype(np.float32))
-
-
-def write_pfm(path, image):
-    """Writes a float map (H x W, or H x W x 3) as PFM, the format of the run's lossless maps
-    and of the saliency folders that attend eval-fixations scores."""
-    data = np.asarray(image, dtype="<f4")
-    if data.ndim not in (2, 3) or (data.ndim == 3 and data.shape[2] != 3):
-        raise ValueError(f"{path}: a PFM map is H x W or H x W x 3, not {data.shape}")
-    header = b"Pf" if data.ndim == 2 else b"PF"
-    with open(path, "wb") as file:
-        file.write(b"%s\n%d %d\n-1\n" % (header, data.shape[1], data.shape[0]))
-        file.write(np.ascontiguousarray(np.flipud(data)).tobytes())
+from . import _attend
 
 
 class Run:
@@ -118,7 +89,7 @@ class Run:
             from . import InputError
             raise InputError(f"{path}: no such map (output.dump and output.map_formats say "
                              "which maps a run writes)")
-        return read_pfm(path)
+        return _attend.read_pfm(path)
 
 
 def read_run(folder):
