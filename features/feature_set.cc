@@ -65,6 +65,9 @@ void FeatureSet::EndSequence() {
 }
 
 void FeatureSet::Compute(const FrameContext& context, bool concurrent) {
+  // A map of the last frame that someone still holds (a Python array) is let go, so that this
+  // frame does not overwrite it (util/shared_mat.h).
+  for (FeatureResult& result : results_) ReleaseIfShared(&result.map);
   RunTasks(static_cast<int>(members_.size()), concurrent, [&](int i) {
     const Stopwatch stopwatch;
     members_[i].feature->Compute(context, &results_[i].map);
@@ -72,10 +75,6 @@ void FeatureSet::Compute(const FrameContext& context, bool concurrent) {
     CheckFeatureOutput(members_[i].entry, results_[i].map, context.size());
     results_[i].detections = members_[i].feature->detections();
   });
-}
-
-void FeatureSet::ReleaseSharedMaps() {
-  for (FeatureResult& result : results_) ReleaseIfShared(&result.map);
 }
 
 }  // namespace attend

@@ -45,8 +45,6 @@ class FeatureSet {
   void EndSequence();
 
   const std::vector<FeatureResult>& results() const { return results_; }
-  // Lets go of the maps of the last frame that are held elsewhere (util/shared_mat.h).
-  void ReleaseSharedMaps();
 
  private:
   struct Member;

@@ -95,12 +95,6 @@ FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry
   }
 }
 
-void FramePipeline::ReleaseSharedMaps() {
-  features_.ReleaseSharedMaps();
-  saliency_.ReleaseSharedMaps();
-  attention_.ReleaseSharedMaps();
-}
-
 void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   context_.Reset(frame.index, frame.left, frame.right);
   // Where attention looked in the previous frame is where gated top-down channels look now.

@@ -51,11 +51,9 @@ class FramePipeline {
   const cv::Mat& inhibition() const { return attention_.inhibition(); }
   const cv::Mat& inhibited() const { return attention_.inhibited(); }
   int targets_attended() const { return attention_.targets_attended(); }
-  // Lets go of the maps of the last frame (features, normalised, saliency, inhibition) that
-  // are held elsewhere, so that the next Process writes new buffers for them and those holders
-  // keep the values they have (util/shared_mat.h; the Python module hands the maps out without
-  // copying them). Maps nobody else holds are reused.
-  void ReleaseSharedMaps();
+  // The maps above are overwritten by the next Process, unless someone else holds one (a
+  // cv::Mat header of their own, a Python array): each stage then writes that map into a new
+  // buffer and the holder keeps its values (util/shared_mat.h).
 
  private:
   // The feature maps normalised, weighted and combined by saliency_ (SPEC 2.3).

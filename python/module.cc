@@ -90,7 +90,6 @@ class Pipeline {
       if (!native_right.empty()) frame.right = Working(native_right);
       record.frame = frame.index;
       record.timings.Add("read", read.ElapsedMs());
-      pipeline_->ReleaseSharedMaps();
       pipeline_->Process(frame, &record);
       record_json = FrameRecordToJson(
           InputFromWorking(record, info_.scale_x, info_.scale_y, info_.native_size));

@@ -40,6 +40,9 @@ SaliencyStage::SaliencyStage(const SaliencyOptions& options,
 
 void SaliencyStage::Combine(const std::vector<const cv::Mat*>& maps, bool grey, cv::Size size) {
   ATTEND_CHECK(maps.size() == inputs_.size()) << "one map per input";
+  // Maps of the last frame that someone still holds are let go (util/shared_mat.h).
+  for (cv::Mat& map : normalised_) ReleaseIfShared(&map);
+  ReleaseIfShared(&saliency_);
   frame_weights_.resize(inputs_.size());
   for (size_t i = 0; i < inputs_.size(); ++i) {
     const SaliencyInput& input = inputs_[i];
@@ -63,11 +66,6 @@ void SaliencyStage::Combine(const std::vector<const cv::Mat*>& maps, bool grey, 
     CombineMaps(normalised_, frame_weights_, size, &saliency_);
   }
   SmoothSaliency(options_, &saliency_);
-}
-
-void SaliencyStage::ReleaseSharedMaps() {
-  for (cv::Mat& map : normalised_) ReleaseIfShared(&map);
-  ReleaseIfShared(&saliency_);
 }
 
 }  // namespace attend

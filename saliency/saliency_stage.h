@@ -37,8 +37,6 @@ class SaliencyStage {
   // Each map normalised, in the inputs' order, and the combined map, of the last Combine.
   const std::vector<cv::Mat>& normalised() const { return normalised_; }
   const cv::Mat& saliency() const { return saliency_; }
-  // Lets go of the maps of the last frame that are held elsewhere (util/shared_mat.h).
-  void ReleaseSharedMaps();
   // The weights the last Combine used (a grey frame's constant maps at 0).
   const std::vector<double>& weights() const { return frame_weights_; }
 

@@ -1005,6 +1005,9 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
                             const TrackedTargets& tracked, const cv::Mat& saliency,
                             const Segmentation& segmentation, AttentionFrame* frame,
                             const std::vector<Detection>& detections) {
+  // Maps of the last frame that someone still holds are let go (util/shared_mat.h).
+  ReleaseIfShared(&impl_->inhibition_);
+  ReleaseIfShared(&impl_->inhibited_);
   impl_->Select({bgr, skin_distance, tracked, saliency, segmentation, detections,
                  cv::Rect(0, 0, bgr.cols, bgr.rows)},
                 frame);
@@ -1014,10 +1017,6 @@ const std::vector<cv::Rect>& AttentionStage::look_regions() const { return impl_
 const ObjectFiles& AttentionStage::object_files() const { return impl_->files_; }
 const cv::Mat& AttentionStage::inhibition() const { return impl_->inhibition_; }
 const cv::Mat& AttentionStage::inhibited() const { return impl_->inhibited_; }
-void AttentionStage::ReleaseSharedMaps() {
-  ReleaseIfShared(&impl_->inhibition_);
-  ReleaseIfShared(&impl_->inhibited_);
-}
 int AttentionStage::targets_attended() const { return impl_->attended_; }
 const char* AttentionStage::tracker_name() const { return impl_->tracker_->name(); }
 

@@ -208,8 +208,6 @@ class AttentionStage {
 
   const cv::Mat& inhibition() const;  // CV_32FC1, 0 or 1
   const cv::Mat& inhibited() const;   // CV_32FC1
-  // Lets go of the maps of the last frame that are held elsewhere (util/shared_mat.h).
-  void ReleaseSharedMaps();
   int targets_attended() const;
   // The tracker kind that follows the targets ("bip", "kcf", "csrt").
   const char* tracker_name() const;
