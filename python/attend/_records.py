@@ -32,8 +32,11 @@ class Run:
                     raise InputError(f"{records}:{number}: not a JSON record: {error}") from None
         self.summary = self._json("summary.json", {})
         self.scanpath = self._json("scanpath.json", [])
+        self.config = ""
         config = os.path.join(self.dir, "config.yaml")
-        self.config = open(config, encoding="utf-8").read() if os.path.isfile(config) else ""
+        if os.path.isfile(config):
+            with open(config, encoding="utf-8") as file:
+                self.config = file.read()
 
     def _json(self, name, fallback):
         path = os.path.join(self.dir, name)
