@@ -3,7 +3,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <system_error>
 
 #include "eval/run_comparison.h"
@@ -47,20 +46,21 @@ ReportResult WriteReport(const ReportRequest& request) {
   const std::string& command_line = request.command_line;
   ReportInput input;
   input.command_line = command_line;
-  for (const std::string& run : request.runs) input.runs.push_back(LoadRun(run));
+  if (!request.gt.empty() && request.gt.size() != 1 && request.gt.size() != request.runs.size()) {
+    throw ConfigError("--gt given " + std::to_string(request.gt.size()) + " times for " +
+                      std::to_string(request.runs.size()) +
+                      " runs: give one gt/ folder for every run, or one a run in their order");
+  }
+  for (std::size_t i = 0; i < request.runs.size(); ++i) {
+    const std::string gt = request.gt.empty()      ? std::string()
+                           : request.gt.size() == 1 ? request.gt[0]
+                                                    : request.gt[i];
+    input.runs.push_back(LoadRun(request.runs[i], gt));
+  }
   for (std::size_t i = 1; i < input.runs.size(); ++i) {
     input.comparisons.push_back(CompareRuns(input.runs[0], input.runs[i]));
   }
-  const std::string chart_js = FindChartJs();
-  if (chart_js.empty()) {
-    input.chart_js_source = "looked for /usr/share/javascript/chart.js/chart.min.js";
-  } else {
-    std::ifstream in(chart_js, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    input.chart_js = text.str();
-    input.chart_js_source = chart_js;
-  }
+  input.chart = LoadChartLibrary();
 
   PrepareOutputFolder(request.out, request.overwrite,
                       {"report", {"summary.json", "report.html"}, [](const std::string& folder) {
@@ -76,7 +76,8 @@ ReportResult WriteReport(const ReportRequest& request) {
       {"runs", runs},
       {"comparisons", comparisons},
       {"report", "report.html"},
-      {"chart_js", chart_js.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(chart_js)}};
+      {"chart_js", input.chart.found() ? nlohmann::ordered_json(input.chart.path)
+                                       : nlohmann::ordered_json()}};
   const fs::path out(request.out);
   WriteText(out / "summary.json", JsonText(summary, 2) + "\n");
   WriteText(out / "report.html", ReportHtml(input));

@@ -11,6 +11,9 @@ namespace attend {
 struct ReportRequest {
   std::vector<std::string> runs;  // run folders; the first is A, the others are compared with it
   std::string out;
+  // gt/ folders (holding objects.csv) to score the runs against: one for every run, or one a
+  // run; none: each run's sequence folder's gt/ where it has one.
+  std::vector<std::string> gt;
   bool overwrite = false;    // replace an earlier report in `out`
   std::string command_line;  // recorded in summary.json and the report
 };
@@ -20,7 +23,9 @@ struct ReportResult {
   std::vector<std::string> notes;  // "B vs A: ..." for each comparison's notes
 };
 
-// InputError for a run folder that cannot be read; OutputError when `out` cannot be prepared
+// InputError for a run folder that cannot be read or a gt/ folder without objects.csv;
+// ConfigError for a number of gt/ folders that is neither 1 nor the number of runs;
+// OutputError when `out` cannot be prepared
 // or written (each file is written whole or not at all).
 ReportResult WriteReport(const ReportRequest& request);
 

@@ -15,11 +15,12 @@ namespace {
 struct CompareArguments {
   std::vector<std::string> runs;
   std::string out;
+  std::vector<std::string> gt;
   bool overwrite = false;
 };
 
 int Compare(const CompareArguments& args, const std::string& command_line) {
-  const ReportResult result = WriteReport({args.runs, args.out, args.overwrite, command_line});
+  const ReportResult result = WriteReport({args.runs, args.out, args.gt, args.overwrite, command_line});
   for (const std::string& note : result.notes) std::cerr << "attend: note: " << note << "\n";
   std::cout << result.html << "\n";
   return 0;
@@ -39,6 +40,9 @@ void AddCompareCommand(CLI::App& app, const std::string& command_line, CommandAc
       ->expected(2, -1);
   compare->add_option("--out", args->out, "Output folder for summary.json and report.html")
       ->required();
+  compare->add_option("--gt", args->gt,
+                      "Ground-truth folder holding objects.csv, for runs whose source has no gt/ "
+                      "(a video): once for every run, or once a run in their order");
   compare->add_flag("--overwrite", args->overwrite, "Replace an earlier report in DIR");
   compare->callback([args, action, command_line] {
     *action = [args, command_line] { return Compare(*args, command_line); };
@@ -56,6 +60,10 @@ void AddReportCommand(CLI::App& app, const std::string& command_line, CommandAct
       ->expected(1);
   report->add_option("--out", args->out, "Output folder for summary.json and report.html")
       ->required();
+  report->add_option("--gt", args->gt,
+                     "Ground-truth folder holding objects.csv, for a run whose source has no gt/ "
+                     "(a video)")
+      ->expected(1);
   report->add_flag("--overwrite", args->overwrite, "Replace an earlier report in DIR");
   report->callback([args, action, command_line] {
     *action = [args, command_line] { return Compare(*args, command_line); };

@@ -235,7 +235,7 @@ std::string DumpPath(const std::string& run, const std::string& kind, int frame,
   return (fs::path(run) / kind / (stem + extension)).string();
 }
 
-RunData LoadRun(const std::string& dir) {
+RunData LoadRun(const std::string& dir, const std::string& gt) {
   const fs::path run(dir);
   if (!fs::is_directory(run)) throw InputError(dir + ": no such run folder");
   if (!fs::exists(run / "frames.jsonl")) {
@@ -260,7 +260,15 @@ RunData LoadRun(const std::string& dir) {
     }
   }
   const auto folder = data.config.find("sequence.folder");
-  if (folder != data.config.end() && !folder->second.empty()) {
+  if (!gt.empty()) {
+    const fs::path objects = fs::path(gt) / "objects.csv";
+    std::error_code error;
+    if (!fs::is_regular_file(objects, error)) {
+      throw InputError(objects.string() + ": no ground-truth objects (--gt " + gt + ")");
+    }
+    data.ground_truth = objects.string();
+    data.attention = EvaluateAttention(data.frames, ReadObjectsCsv(objects.string()));
+  } else if (folder != data.config.end() && !folder->second.empty()) {
     const fs::path objects = fs::path(folder->second) / "gt" / "objects.csv";
     std::error_code error;
     if (fs::is_regular_file(objects, error)) {

@@ -83,9 +83,11 @@ struct RunData {
 };
 
 // Reads RUN/frames.jsonl, RUN/config.yaml and RUN/summary.json (the last optional), and scores
-// the run against ground truth when its sequence.folder has gt/objects.csv. A folder without
-// frames.jsonl is an InputError naming it.
-RunData LoadRun(const std::string& dir);
+// the run against ground truth: `gt`'s objects.csv when a gt/ folder is given (a run whose
+// source has none, such as a video), else its sequence.folder's gt/objects.csv when there is
+// one. A folder without frames.jsonl, or a given `gt` without objects.csv, is an InputError
+// naming it.
+RunData LoadRun(const std::string& dir, const std::string& gt = "");
 
 // RUN/<kind>/NNNNNN.<extension>, the dump of one frame.
 std::string DumpPath(const std::string& run, const std::string& kind, int frame,

@@ -20,57 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
-                                    "#9467bd", "#8c564b", "#e377c2", "#17becf"};
-
-const char* Colour(std::size_t i) { return kPalette[i % (sizeof(kPalette) / sizeof(*kPalette))]; }
-
-std::string Escape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
-// `text` safe inside a <script> element: no "</" that could close it.
-std::string ScriptSafe(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (text[i] == '<' && i + 1 < text.size() && text[i + 1] == '/') {
-      out += "<\\/";
-      ++i;
-    } else {
-      out += text[i];
-    }
-  }
-  return out;
-}
-
-// A table cell: `value` with `digits` decimals, "&ndash;" when it is not finite, and no
-// "-0.000".
-std::string Cell(double value, int digits = 3) {
-  if (!std::isfinite(value)) return "&ndash;";
-  if (std::abs(value) < 0.5 * std::pow(10.0, -digits)) value = 0.0;
-  return Fixed(value, digits);
-}
-
 std::string RunLabel(const RunData& run, std::size_t index) {
   const std::string name = fs::path(run.dir).filename().string();
   return std::string(1, static_cast<char>('A' + index % 26)) + " (" +
@@ -111,13 +60,12 @@ cv::Mat SaliencyImage(const std::string& run, int frame) {
 }
 
 std::string ImageCell(const std::string& url, const std::string& caption) {
-  if (url.empty()) return "<td class=\"missing\">" + Escape(caption) + ": not dumped</td>";
-  return "<td><img src=\"" + url + "\" alt=\"" + Escape(caption) + "\"><br>" + Escape(caption) +
+  if (url.empty()) return "<td class=\"missing\">" + HtmlEscape(caption) + ": not dumped</td>";
+  return "<td><img src=\"" + url + "\" alt=\"" + HtmlEscape(caption) + "\"><br>" + HtmlEscape(caption) +
          "</td>";
 }
 
 std::string Notes(const ReportInput& input) {
-  std::string html;
   std::vector<std::string> notes;
   for (const RunComparison& c : input.comparisons) {
     for (const std::string& note : c.notes)
@@ -126,16 +74,8 @@ std::string Notes(const ReportInput& input) {
   if (input.comparisons.empty() && !input.runs.empty() && input.runs[0].interrupted) {
     notes.push_back(input.runs[0].dir + " was interrupted");
   }
-  if (input.chart_js.empty()) {
-    notes.push_back("Chart.js was not found (" + input.chart_js_source +
-                    "; Debian package libjs-chart.js): the charts are left out, the tables "
-                    "are complete");
-  }
-  if (notes.empty()) return "";
-  html += "<section><h2>Notes</h2><ul class=\"notes\">";
-  for (const std::string& note : notes) html += "<li>" + Escape(note) + "</li>";
-  html += "</ul></section>\n";
-  return html;
+  if (!input.chart.found()) notes.push_back(ChartLibraryMissingNote(input.chart));
+  return HtmlNotes(notes);
 }
 
 std::string RunsTable(const ReportInput& input) {
@@ -147,9 +87,9 @@ std::string RunsTable(const ReportInput& input) {
     const RunData& run = input.runs[i];
     double total = 0.0;
     for (const auto& stage : run.mean_timings_ms) total += stage.second;
-    html += "<tr><td>" + Escape(RunLabel(run, i)) + "</td><td>" + Escape(run.dir) + "</td><td>" +
-            Escape(run.sequence) + "</td><td>" + std::to_string(run.frames.size()) + "</td><td>" +
-            std::to_string(SummariseTargets(run.frames).size()) + "</td><td>" + Cell(total, 2) +
+    html += "<tr><td>" + HtmlEscape(RunLabel(run, i)) + "</td><td>" + HtmlEscape(run.dir) + "</td><td>" +
+            HtmlEscape(run.sequence) + "</td><td>" + std::to_string(run.frames.size()) + "</td><td>" +
+            std::to_string(SummariseTargets(run.frames).size()) + "</td><td>" + HtmlNumber(total, 2) +
             "</td></tr>";
   }
   return html + "</table></section>\n";
@@ -170,16 +110,16 @@ std::string AttentionTable(const ReportInput& input) {
       "<th>mean IoU</th></tr>";
   for (std::size_t i = 0; i < input.runs.size(); ++i) {
     const RunData& run = input.runs[i];
-    html += "<tr><td>" + Escape(RunLabel(run, i)) + "</td>";
+    html += "<tr><td>" + HtmlEscape(RunLabel(run, i)) + "</td>";
     if (!run.attention) {
       html += "<td colspan=\"7\" class=\"missing\">no ground truth</td></tr>";
       continue;
     }
     const AttentionScores& s = *run.attention;
     html += "<td>" + std::to_string(s.objects) + "</td><td>" + std::to_string(s.attended) +
-            "</td><td>" + Cell(s.coverage) + "</td><td>" + Cell(s.mean_latency, 2) + "</td><td>" +
+            "</td><td>" + HtmlNumber(s.coverage) + "</td><td>" + HtmlNumber(s.mean_latency, 2) + "</td><td>" +
             std::to_string(s.revisits) + "</td><td>" + std::to_string(s.identity_switches) +
-            "</td><td>" + Cell(s.mean_iou) + "</td></tr>";
+            "</td><td>" + HtmlNumber(s.mean_iou) + "</td></tr>";
   }
   return html +
          "</table><p class=\"small\">As <code>attend eval</code> scores them (SPEC 4, "
@@ -199,15 +139,15 @@ std::string ConfigTable(const ReportInput& input) {
   if (keys.empty()) return html + "<p>None: the runs have the same configuration.</p></section>\n";
   html += "<table><tr><th>key</th>";
   for (std::size_t i = 0; i < input.runs.size(); ++i) {
-    html += "<th>" + Escape(RunLabel(input.runs[i], i)) + "</th>";
+    html += "<th>" + HtmlEscape(RunLabel(input.runs[i], i)) + "</th>";
   }
   html += "</tr>";
   for (const std::string& key : keys) {
-    html += "<tr><td><code>" + Escape(key) + "</code></td>";
+    html += "<tr><td><code>" + HtmlEscape(key) + "</code></td>";
     for (const RunData& run : input.runs) {
       const auto found = run.config.find(key);
       html += found == run.config.end() ? "<td class=\"missing\">absent</td>"
-                                        : "<td><code>" + Escape(found->second) + "</code></td>";
+                                        : "<td><code>" + HtmlEscape(found->second) + "</code></td>";
     }
     html += "</tr>";
   }
@@ -233,9 +173,9 @@ std::string MetricsTable(const ReportInput& input) {
       }
     }
     const auto metric = [&c](double SaliencyMetrics::*field) {
-      return c.mean_saliency ? Cell((*c.mean_saliency).*field) : std::string("&ndash;");
+      return c.mean_saliency ? HtmlNumber((*c.mean_saliency).*field) : std::string("&ndash;");
     };
-    html += "<tr><td>" + Escape(RunLabel(input.runs[i + 1], i + 1)) + "</td><td>" +
+    html += "<tr><td>" + HtmlEscape(RunLabel(input.runs[i + 1], i + 1)) + "</td><td>" +
             std::to_string(c.frames.size()) + "</td><td>" + metric(&SaliencyMetrics::cc) +
             "</td><td>" + metric(&SaliencyMetrics::sim) + "</td><td>" +
             metric(&SaliencyMetrics::kl) + "</td><td>" + std::to_string(matched) + "</td><td>" +
@@ -270,8 +210,8 @@ nlohmann::ordered_json ChartData(const ReportInput& input) {
       }
       datasets.push_back({{"label", RunLabel(input.runs[i + 1], i + 1) + " vs A"},
                           {"data", points},
-                          {"borderColor", Colour(i + 1)},
-                          {"backgroundColor", Colour(i + 1)}});
+                          {"borderColor", ChartColour(i + 1)},
+                          {"backgroundColor", ChartColour(i + 1)}});
     }
     metrics[name] = datasets;
   }
@@ -297,15 +237,15 @@ nlohmann::ordered_json ChartData(const ReportInput& input) {
                                                           : nlohmann::ordered_json(found->second));
     }
     timing_sets.push_back(
-        {{"label", RunLabel(run, i)}, {"data", values}, {"backgroundColor", Colour(i)}});
+        {{"label", RunLabel(run, i)}, {"data", values}, {"backgroundColor", ChartColour(i)}});
     nlohmann::ordered_json points = nlohmann::ordered_json::array();
     for (const FrameRecord& record : run.frames) {
       points.push_back({{"x", record.frame}, {"y", VisibleTargets(record)}});
     }
     target_sets.push_back({{"label", RunLabel(run, i)},
                            {"data", points},
-                           {"borderColor", Colour(i)},
-                           {"backgroundColor", Colour(i)}});
+                           {"borderColor", ChartColour(i)},
+                           {"backgroundColor", ChartColour(i)}});
   }
   data["stages"] = stages;
   data["timings"] = timing_sets;
@@ -313,29 +253,37 @@ nlohmann::ordered_json ChartData(const ReportInput& input) {
   return data;
 }
 
-std::string Charts(const ReportInput& input) {
-  if (input.chart_js.empty()) return "";
-  std::string html = "<section><h2>Charts</h2><div class=\"charts\">";
-  if (!input.comparisons.empty()) {
-    html +=
-        "<figure><canvas id=\"chart-cc\" width=\"560\" height=\"260\"></canvas>"
-        "<figcaption>CC per frame (1: identical)</figcaption></figure>"
-        "<figure><canvas id=\"chart-sim\" width=\"560\" height=\"260\"></canvas>"
-        "<figcaption>SIM per frame (1: identical)</figcaption></figure>"
-        "<figure><canvas id=\"chart-kl\" width=\"560\" height=\"260\"></canvas>"
-        "<figcaption>KL per frame (0: identical)</figcaption></figure>";
+// Whether comparison metric `field` has a value in some frame.
+bool HasMetric(const ReportInput& input, double SaliencyMetrics::*field) {
+  for (const RunComparison& c : input.comparisons) {
+    for (const FrameComparison& f : c.frames) {
+      if (f.saliency && std::isfinite((*f.saliency).*field)) return true;
+    }
   }
-  html +=
-      "<figure><canvas id=\"chart-timings\" width=\"560\" height=\"260\"></canvas>"
-      "<figcaption>Mean milliseconds a frame per stage</figcaption></figure>"
-      "<figure><canvas id=\"chart-targets\" width=\"560\" height=\"260\"></canvas>"
-      "<figcaption>Targets new or tracked per frame</figcaption></figure>"
-      "</div></section>\n";
-  html += "<script>\n" + ScriptSafe(input.chart_js) + "\n</script>\n";
-  html += "<script>\nconst DATA = " + ScriptSafe(JsonText(ChartData(input))) + ";\n";
-  html += R"JS(
-Chart.defaults.animation = false;
-Chart.defaults.responsive = false;
+  return false;
+}
+
+// The charts that have data; one without is left out, not drawn empty.
+std::string Charts(const ReportInput& input) {
+  if (!input.chart.found()) return "";
+  std::string figures;
+  const auto figure = [&figures](const std::string& id, const std::string& caption) {
+    figures += "<figure><canvas id=\"" + id +
+               "\" width=\"560\" height=\"260\"></canvas><figcaption>" + caption +
+               "</figcaption></figure>";
+  };
+  if (HasMetric(input, &SaliencyMetrics::cc)) figure("chart-cc", "CC per frame (1: identical)");
+  if (HasMetric(input, &SaliencyMetrics::sim)) figure("chart-sim", "SIM per frame (1: identical)");
+  if (HasMetric(input, &SaliencyMetrics::kl)) figure("chart-kl", "KL per frame (0: identical)");
+  bool timings = false, targets = false;
+  for (const RunData& run : input.runs) {
+    timings = timings || !run.mean_timings_ms.empty();
+    for (const FrameRecord& record : run.frames) targets = targets || VisibleTargets(record) > 0;
+  }
+  if (timings) figure("chart-timings", "Mean milliseconds a frame per stage");
+  if (targets) figure("chart-targets", "Targets new or tracked per frame");
+  if (figures.empty()) return "";
+  const std::string drawing = R"JS(
 function lineChart(id, datasets, label) {
   const canvas = document.getElementById(id);
   if (!canvas) return;
@@ -348,12 +296,13 @@ lineChart('chart-cc', DATA.metrics.cc, 'CC');
 lineChart('chart-sim', DATA.metrics.sim, 'SIM');
 lineChart('chart-kl', DATA.metrics.kl, 'KL');
 lineChart('chart-targets', DATA.targets, 'targets');
-new Chart(document.getElementById('chart-timings'), {type: 'bar',
-  data: {labels: DATA.stages, datasets: DATA.timings},
-  options: {scales: {y: {title: {display: true, text: 'ms'}}}}});
-</script>
-)JS";
-  return html;
+const timings = document.getElementById('chart-timings');
+if (timings) {
+  new Chart(timings, {type: 'bar', data: {labels: DATA.stages, datasets: DATA.timings},
+    options: {scales: {y: {title: {display: true, text: 'ms'}}}}});
+})JS";
+  return "<section><h2>Charts</h2><div class=\"charts\">" + figures + "</div></section>\n" +
+         ChartScripts(input.chart, JsonText(ChartData(input)), drawing);
 }
 
 std::vector<int> SpreadFrames(const RunData& run, int count) {
@@ -386,12 +335,12 @@ std::string Thumbnails(const ReportInput& input) {
     const RunData& a = input.runs[0];
     const RunData& b = input.runs[i + 1];
     const std::string label_b = RunLabel(b, i + 1).substr(0, 1);
-    html += "<h3>" + Escape(RunLabel(b, i + 1)) + " against A: the frames that differ most</h3>";
+    html += "<h3>" + HtmlEscape(RunLabel(b, i + 1)) + " against A: the frames that differ most</h3>";
     html += "<table class=\"thumbs\">";
     for (const int frame : MostDifferentFrames(c, input.thumbnail_frames)) {
       std::string cc = "&ndash;";
       for (const FrameComparison& f : c.frames) {
-        if (f.frame == frame && f.saliency) cc = Cell(f.saliency->cc);
+        if (f.frame == frame && f.saliency) cc = HtmlNumber(f.saliency->cc);
       }
       html += "<tr><th>frame " + std::to_string(frame) + "<br>CC " + cc + "</th>" +
               ImageCell(Thumbnail(OverlayImage(a.dir, frame), width), "A overlay") +
@@ -408,7 +357,7 @@ std::string Thumbnails(const ReportInput& input) {
 std::string TargetRows(const std::vector<TargetSummary>& targets) {
   std::string html;
   for (const TargetSummary& t : targets) {
-    html += "<tr><td>" + std::to_string(t.id) + "</td><td>" + Escape(t.kind) + "</td><td>" +
+    html += "<tr><td>" + std::to_string(t.id) + "</td><td>" + HtmlEscape(t.kind) + "</td><td>" +
             std::to_string(t.rank + 1) + "</td><td>" + std::to_string(t.first_frame) + "</td><td>" +
             std::to_string(t.last_frame) + "</td><td>" + std::to_string(t.frames) + "</td></tr>";
   }
@@ -429,7 +378,7 @@ std::string TargetTables(const ReportInput& input) {
     std::map<int, const TargetSummary*> in_a, in_b;
     for (const TargetSummary& t : c.targets_a) in_a[t.id] = &t;
     for (const TargetSummary& t : c.targets_b) in_b[t.id] = &t;
-    html += "<h3>" + Escape(RunLabel(input.runs[i + 1], i + 1)) + " against A (attention order " +
+    html += "<h3>" + HtmlEscape(RunLabel(input.runs[i + 1], i + 1)) + " against A (attention order " +
             (c.same_order ? "the same" : "different") + ")</h3>";
     html += "<table><tr><th>A id</th><th>" + b + " id</th><th>kind</th><th>A order</th><th>" + b +
             " order</th><th>A first frame</th><th>" + b +
@@ -445,7 +394,7 @@ std::string TargetTables(const ReportInput& input) {
       html += std::string("<tr") +
               (ta && tb ? (differs ? " class=\"changed\"" : "") : " class=\"only\"") + ">" +
               cell(ta, &TargetSummary::id, 0) + cell(tb, &TargetSummary::id, 0) + "<td>" +
-              Escape(ta ? ta->kind : tb->kind) + "</td>" + cell(ta, &TargetSummary::rank, 1) +
+              HtmlEscape(ta ? ta->kind : tb->kind) + "</td>" + cell(ta, &TargetSummary::rank, 1) +
               cell(tb, &TargetSummary::rank, 1) + cell(ta, &TargetSummary::first_frame, 0) +
               cell(tb, &TargetSummary::first_frame, 0) + "<td>" + std::to_string(m.frames_matched) +
               "</td></tr>";
@@ -457,42 +406,7 @@ std::string TargetTables(const ReportInput& input) {
 
 }  // namespace
 
-std::string Base64(const std::vector<unsigned char>& bytes) {
-  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  std::size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
-    const unsigned v = (bytes[i] << 16) | (bytes[i + 1] << 8) | bytes[i + 2];
-    out += kAlphabet[(v >> 18) & 63];
-    out += kAlphabet[(v >> 12) & 63];
-    out += kAlphabet[(v >> 6) & 63];
-    out += kAlphabet[v & 63];
-  }
-  if (i + 1 == bytes.size()) {
-    const unsigned v = bytes[i] << 16;
-    out += kAlphabet[(v >> 18) & 63];
-    out += kAlphabet[(v >> 12) & 63];
-    out += "==";
-  } else if (i + 2 == bytes.size()) {
-    const unsigned v = (bytes[i] << 16) | (bytes[i + 1] << 8);
-    out += kAlphabet[(v >> 18) & 63];
-    out += kAlphabet[(v >> 12) & 63];
-    out += kAlphabet[(v >> 6) & 63];
-    out += '=';
-  }
-  return out;
-}
 
-std::string FindChartJs() {
-  for (const char* path :
-       {"/usr/share/javascript/chart.js/chart.min.js",
-        "/usr/share/javascript/chart.js/Chart.min.js", "/usr/share/javascript/chart.js/chart.js"}) {
-    std::error_code error;
-    if (fs::is_regular_file(path, error)) return path;
-  }
-  return "";
-}
 
 std::vector<int> MostDifferentFrames(const RunComparison& comparison, int count) {
   std::vector<const FrameComparison*> frames;
@@ -515,26 +429,11 @@ std::vector<int> MostDifferentFrames(const RunComparison& comparison, int count)
 
 std::string ReportHtml(const ReportInput& input) {
   const bool single = input.comparisons.empty();
-  std::string html = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" +
-                     std::string(single ? "attend report" : "attend compare") + "</title>\n" +
-                     R"CSS(<style>
-body { font-family: sans-serif; margin: 1.5em; color: #222; background: #fff; }
-h1 { font-size: 1.5em; } h2 { border-bottom: 1px solid #ccc; margin-top: 1.5em; }
-table { border-collapse: collapse; margin: 0.5em 0; }
-th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; vertical-align: top; }
-th { background: #f0f0f0; }
-td.missing { color: #999; font-style: italic; }
-tr.changed td { background: #fff4d6; } tr.only td { background: #fde2e2; }
-.charts { display: flex; flex-wrap: wrap; gap: 1em; }
-figure { margin: 0; } figcaption { font-size: 0.9em; color: #555; }
-.thumbs img { display: block; }
-.small { font-size: 0.85em; color: #555; } ul.notes li { color: #a33; }
-</style>
-)CSS" + "</head><body>\n<h1>" +
-                     (single ? "attend report: " + Escape(input.runs[0].dir)
-                             : "attend compare: " + std::to_string(input.runs.size()) + " runs") +
-                     "</h1>\n<p class=\"small\"><code>" + Escape(input.command_line) +
-                     "</code></p>\n";
+  std::string html = HtmlPageStart(
+      single ? "attend report" : "attend compare",
+      single ? "attend report: " + HtmlEscape(input.runs[0].dir)
+             : "attend compare: " + std::to_string(input.runs.size()) + " runs",
+      input.command_line);
   html += Notes(input);
   html += RunsTable(input);
   html += ConfigTable(input);
@@ -543,7 +442,7 @@ figure { margin: 0; } figcaption { font-size: 0.9em; color: #555; }
   html += Charts(input);
   html += Thumbnails(input);
   html += TargetTables(input);
-  html += "</body></html>\n";
+  html += HtmlPageEnd();
   return html;
 }
 

@@ -12,6 +12,8 @@ packages=(
   opencv-data     # the cascade models of the faces channel (features/detectors.h)
   # the Python module attend (python/, docs/PYTHON.md), its tests and its example
   pybind11-dev python3-dev python3-numpy python3-pytest python3-pandas python3-matplotlib
+  # attend sweep --slurm and the one-node cluster its tests start (scripts/slurm_local.sh)
+  slurm-wlm munge
 )
 
 missing=()

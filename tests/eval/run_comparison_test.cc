@@ -271,7 +271,7 @@ TEST(RunReport, WithoutChartJsTheTablesStayAndTheReportSaysSo) {
   ReportInput input;
   input.runs = {LoadRun(dir.File("a")), LoadRun(dir.File("b"))};
   input.comparisons = {CompareRuns(input.runs[0], input.runs[1])};
-  input.chart_js_source = "looked for nothing";
+  input.chart.path = "looked for nothing";
   const std::string html = ReportHtml(input);
   EXPECT_NE(html.find("Chart.js was not found"), std::string::npos);
   EXPECT_NE(html.find("features.skin.weight"), std::string::npos);

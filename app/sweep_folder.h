@@ -1,0 +1,105 @@
+// The folder of a sweep (docs/SWEEPS.md) and the work of its cells:
+//
+//   DIR/sweep.yaml              the sweep file as last run (a copy)
+//   DIR/sweep.json              the cells: index, name, input and settings
+//   DIR/cells/NAME/cell.json    the cell: its settings, input, attend version and commands
+//   DIR/cells/NAME/config.yaml  its effective configuration
+//   DIR/cells/NAME/status.json  running, done, failed (exit status and message) or killed
+//   DIR/cells/NAME/scores.json  its scores, once done
+//   DIR/cells/NAME/logs/        each command's standard output and error
+//   DIR/cells/NAME/out/         what its command wrote (the run folder of attend run)
+//   DIR/slurm/                  batch scripts, jobs.json and the array tasks' logs
+//   DIR/sweep.csv, report.html  written by --collect
+//
+// A cell is computed by `attend sweep DIR --cell INDEX`, whichever executor starts it (this
+// machine or a Slurm array task), so both give the same results.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "app/sweep_plan.h"
+
+namespace attend {
+
+struct StoredCell {
+  int index = 0;
+  std::string name;
+  std::string input;
+  std::vector<SweepSetting> settings;
+};
+
+struct StoredSweep {
+  std::string dir;
+  std::string file;     // the sweep file it was made from
+  std::string command;  // run, track or saliency
+  std::vector<std::string> keys;
+  std::vector<StoredCell> cells;  // by index
+  SlurmSettings slurm;
+  std::string CellDir(const StoredCell& cell) const;
+};
+
+// Creates DIR for `plan`, or takes it again when it holds the same sweep (cells with the same
+// names, commands and configurations). A sweep file that adds cells is refused unless `extend`
+// (the new cells are appended, the old keep their indexes); one that changes what an existing
+// cell runs is refused always. ConfigError for both; OutputError when DIR cannot be written or
+// holds something else. `notes` receives what was kept or added.
+StoredSweep PrepareSweepFolder(const SweepPlan& plan, const std::string& dir, bool extend,
+                               std::vector<std::string>* notes);
+
+// Reads DIR/sweep.json. InputError when DIR is not a sweep folder.
+StoredSweep LoadSweepFolder(const std::string& dir);
+
+enum class CellState { kWaiting, kRunning, kDone, kFailed, kKilled, kInterrupted };
+const char* CellStateName(CellState state);
+
+struct CellStatus {
+  CellState state = CellState::kWaiting;
+  int exit_status = 0;
+  std::string message;   // the error of a failed cell, the cause of a killed one
+  double seconds = 0.0;  // wall time of a finished cell
+  std::string host;
+  long pid = 0;
+  std::string executor;    // local or slurm
+  std::string slurm_task;  // JOB_TASK of a Slurm array task
+};
+
+// What DIR/cells/NAME/status.json says (kWaiting when there is none).
+CellStatus ReadCellStatus(const StoredSweep& sweep, const StoredCell& cell);
+
+// The cell's scores (DIR/cells/NAME/scores.json), name to value, in the scorer's order.
+std::vector<std::pair<std::string, double>> ReadCellScores(const StoredSweep& sweep,
+                                                           const StoredCell& cell);
+
+// Computes and scores cell `index` of DIR: its commands one after the other, each a process
+// of this program, recording status.json and scores.json. SIGINT and SIGTERM are passed on to
+// the command running; the cell is then recorded as interrupted (or, in a Slurm job, killed).
+// Returns the cell's exit status (0 done).
+int RunCell(const std::string& dir, int index);
+
+struct LocalProgress {
+  int total = 0;
+  int done = 0;
+  int failed = 0;
+  int running = 0;
+  double elapsed_s = 0.0;
+  double cell_seconds = 0.0;  // sum of the finished cells' wall times
+};
+
+struct LocalSweepResult {
+  LocalProgress progress;
+  int stop_signal = 0;  // the signal that stopped the sweep early, 0 when it ran to the end
+};
+
+// Runs `indexes` of DIR on this machine, `jobs` cells at once, each `attend sweep DIR --cell
+// I`. `stop` ends it early: no new cell starts and the running ones receive the signal. One
+// local sweep at a time per folder (a lock): OutputError for a second.
+LocalSweepResult RunSweepLocally(const StoredSweep& sweep, const std::vector<int>& indexes,
+                                 int jobs, const std::atomic<int>* stop,
+                                 const std::function<void(const LocalProgress&)>& on_progress);
+
+}  // namespace attend
