@@ -236,6 +236,16 @@ void WriteStatus(const fs::path& cell_dir, const Json& status) {
 
 }  // namespace
 
+bool IsEmptyOrScenesOnly(const std::string& dir) {
+  std::error_code error;
+  if (!fs::exists(dir, error)) return true;
+  if (!fs::is_directory(dir, error)) return false;
+  for (const auto& entry : fs::directory_iterator(dir, error)) {
+    if (entry.path().filename() != "scenes") return false;
+  }
+  return true;
+}
+
 std::string StoredSweep::CellDir(const StoredCell& cell) const {
   return (fs::path(dir) / "cells" / cell.name).string();
 }
@@ -266,7 +276,7 @@ StoredSweep PrepareSweepFolder(const SweepPlan& plan, const std::string& dir_tex
   if (fs::exists(dir / "sweep.json", error)) {
     const StoredSweep stored = LoadSweepFolder(dir.string());
     cells = stored.cells;
-  } else if (fs::exists(dir, error) && !fs::is_empty(dir, error)) {
+  } else if (!IsEmptyOrScenesOnly(dir)) {
     throw OutputError(dir.string() + ": not empty and not a sweep folder (no sweep.json)");
   }
   fs::create_directories(dir / "cells", error);

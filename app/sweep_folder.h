@@ -51,6 +51,10 @@ struct StoredSweep {
 StoredSweep PrepareSweepFolder(const SweepPlan& plan, const std::string& dir, bool extend,
                                std::vector<std::string>* notes);
 
+// Whether `dir` can become a new sweep folder: missing, empty, or holding only the scenes/ a
+// sweep file's scene inputs rendered into.
+bool IsEmptyOrScenesOnly(const std::string& dir);
+
 // Reads DIR/sweep.json. InputError when DIR is not a sweep folder.
 StoredSweep LoadSweepFolder(const std::string& dir);
 

@@ -11,7 +11,10 @@
 #include <set>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "app/home.h"
+#include "app/render_scene.h"
 #include "config/param_block.h"
 #include "eval/fixation_data.h"
 #include "io/tracking_files.h"
@@ -34,14 +37,14 @@ const std::vector<std::string>& TopLevelKeys() {
 const std::vector<std::string>& InputKeys() {
   static const std::vector<std::string> keys = {
       "name", "sequence", "video", "images", "left", "right", "side_by_side",
-      "fixations", "gt", "frames", "skip", "first"};
+      "fixations", "scene", "gt", "frames", "skip", "first"};
   return keys;
 }
 
 // The source kinds an input may name (one of them), and `right` beside `left`.
 const std::vector<std::string>& SourceKinds() {
-  static const std::vector<std::string> kinds = {"sequence", "video",        "images",
-                                                 "left",     "side_by_side", "fixations"};
+  static const std::vector<std::string> kinds = {"sequence",     "video",     "images", "left",
+                                                 "side_by_side", "fixations", "scene"};
   return kinds;
 }
 
@@ -173,6 +176,8 @@ struct SweptValues {
   std::vector<YAML::Node> nodes;  // where each value was written
 };
 
+// A grid's list may not hold a value twice (the cells would be the same); a zip group's lists
+// may, as long as no two steps are the same.
 std::vector<SweptValues> ReadValueLists(const SweepReader& reader, const YAML::Node& map,
                                         const std::string& section) {
   if (!map.IsMap()) reader.Fail(map, section, "expected a map of configuration keys to lists");
@@ -192,7 +197,9 @@ std::vector<SweptValues> ReadValueLists(const SweepReader& reader, const YAML::N
     std::set<std::string> seen;
     for (const YAML::Node& value : entry.second) {
       const std::string text = FlowText(value);
-      if (!seen.insert(text).second) reader.Fail(value, path, "the value " + text + " twice");
+      if (!seen.insert(text).second && section == "grid") {
+        reader.Fail(value, path, "the value " + text + " twice");
+      }
       swept.values.push_back(text);
       swept.nodes.push_back(value);
     }
@@ -221,8 +228,20 @@ std::string ReadText(const std::string& path) {
   return text.str();
 }
 
+// The folder a scene renders into: DIR/scenes/<stem>-<FNV-1a of the scene file's text>, so a
+// changed scene renders anew.
+std::string SceneFolder(const std::string& scene, const std::string& dir) {
+  char hash[17];
+  std::snprintf(hash, sizeof(hash), "%016llx",
+                static_cast<unsigned long long>(Fnv1a(ReadText(scene))));
+  return (fs::path(dir.empty() ? "SWEEP_DIR" : dir) / "scenes" /
+          (fs::path(scene).stem().string() + "-" + hash))
+      .lexically_normal()
+      .string();
+}
+
 SweepInput ReadInput(const SweepReader& reader, const YAML::Node& node, std::size_t index,
-                     SweepCommand command) {
+                     SweepCommand command, const std::string& dir) {
   const std::string path = "inputs[" + std::to_string(index) + "]";
   if (!node.IsMap()) reader.Fail(node, path, "expected a map such as {sequence: FOLDER}");
   reader.CheckKeys(node, path, InputKeys());
@@ -246,6 +265,11 @@ SweepInput ReadInput(const SweepReader& reader, const YAML::Node& node, std::siz
   std::error_code error;
   if (folder ? !fs::is_directory(input.path, error) : !fs::is_regular_file(input.path, error)) {
     reader.Fail(source, key, input.path + ": no such " + (folder ? "folder" : "file"));
+  }
+  if (input.kind == "scene") {
+    if (command != SweepCommand::kRun) reader.Fail(source, key, "scenes are for command run");
+    input.scene = input.path;
+    input.path = SceneFolder(input.scene, dir);
   }
   if (node["right"]) {
     if (input.kind != "left") reader.Fail(node["right"], path + ".right", "only beside left");
@@ -288,7 +312,9 @@ SweepInput ReadInput(const SweepReader& reader, const YAML::Node& node, std::siz
       reader.Fail(node["gt"], path + ".gt", input.gt + ": no such file");
     }
   }
-  if (command == SweepCommand::kRun) {
+  // attend eval's ground truth: the input's gt:, else a sequence's own gt/ (a rendered scene
+  // brings its own).
+  if (command == SweepCommand::kRun && !(input.kind == "scene" && input.gt.empty())) {
     const std::string gt =
         !input.gt.empty() ? input.gt
                           : (input.kind == "sequence" ? (fs::path(input.path) / "gt").string() : "");
@@ -305,11 +331,12 @@ SweepInput ReadInput(const SweepReader& reader, const YAML::Node& node, std::siz
   if (node["name"]) {
     input.name = reader.String(node["name"], path + ".name");
   } else {
-    fs::path named(input.path);
+    fs::path named(input.kind == "scene" ? input.scene : input.path);
     // An OTB sequence's frames are in NAME/img.
     if (named.filename() == "img" && named.has_parent_path()) named = named.parent_path();
     input.name = named.filename().string();
-    if (input.kind == "video" || input.kind == "left" || input.kind == "side_by_side") {
+    if (input.kind == "video" || input.kind == "left" || input.kind == "side_by_side" ||
+        input.kind == "scene") {
       input.name = named.stem().string();
     }
   }
@@ -332,10 +359,12 @@ const char* SweepCommandName(SweepCommand command) {
   return "run";
 }
 
-SweepPlan ReadSweepFile(const std::string& path, const std::string* text_override) {
+SweepPlan ReadSweepFile(const std::string& path, const SweepReadOptions& options) {
   SweepPlan plan;
   plan.file = fs::absolute(path).lexically_normal().string();
-  plan.text = text_override != nullptr ? *text_override : ReadText(path);
+  plan.text = options.text != nullptr ? *options.text : ReadText(path);
+  const std::string dir =
+      options.dir.empty() ? "" : fs::absolute(options.dir).lexically_normal().string();
   // ParamBlock checks the text (UTF-8, syntax, duplicate keys, a map at the top) and types the
   // plain sections; the raw tree gives the parameter values and their lines.
   const ParamBlock block = ParamBlock::Parse(plan.text, plan.file);
@@ -416,6 +445,17 @@ SweepPlan ReadSweepFile(const std::string& path, const std::string* text_overrid
     for (const YAML::Node& group : groups) {
       zips.push_back(ReadValueLists(reader, group, "zip"));
       const std::vector<SweptValues>& lists = zips.back();
+      std::set<std::vector<std::string>> steps;
+      for (std::size_t step = 0; step < lists[0].values.size(); ++step) {
+        std::vector<std::string> values;
+        for (const SweptValues& swept : lists) {
+          values.push_back(step < swept.values.size() ? swept.values[step] : "");
+        }
+        if (!steps.insert(values).second) {
+          reader.Fail(lists[0].nodes[step], "zip." + lists[0].key,
+                      "step " + std::to_string(step + 1) + " repeats an earlier step of the group");
+        }
+      }
       for (const SweptValues& swept : lists) {
         claim(swept.nodes[0], swept.key, "zip");
         if (swept.values.size() != lists[0].values.size()) {
@@ -507,7 +547,7 @@ SweepPlan ReadSweepFile(const std::string& path, const std::string* text_overrid
   }
   std::set<std::string> names;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
-    plan.inputs.push_back(ReadInput(reader, inputs[i], i, plan.command));
+    plan.inputs.push_back(ReadInput(reader, inputs[i], i, plan.command, dir));
     if (!names.insert(plan.inputs.back().name).second) {
       reader.Fail(inputs[i], "inputs[" + std::to_string(i) + "]",
                   "a second input named '" + plan.inputs.back().name + "': give each a name:");
@@ -551,6 +591,28 @@ SweepPlan ReadSweepFile(const std::string& path, const std::string* text_overrid
   plan.slurm.cpus_per_task = slurm.GetInt("cpus_per_task", 1, Range::Closed(1, 1024));
   plan.slurm.throttle = slurm.GetInt("throttle", 0, Range::Closed(0, 100000));
   slurm.CheckNoUnknownKeys();
+
+  // The scenes, rendered once everything is checked: beside the target and renamed into place.
+  if (options.render) {
+    for (const SweepInput& input : plan.inputs) {
+      std::error_code error;
+      if (input.kind != "scene" || fs::exists(fs::path(input.path) / "sequence.yaml", error)) {
+        continue;
+      }
+      fs::create_directories(fs::path(input.path).parent_path(), error);
+      const std::string temporary = input.path + ".tmp-" + std::to_string(getpid());
+      fs::remove_all(temporary, error);
+      RenderSceneRequest request;
+      request.scene = input.scene;
+      request.out = temporary;
+      RenderScene(request);
+      fs::rename(temporary, input.path, error);
+      fs::remove_all(temporary, error);
+      if (!fs::exists(fs::path(input.path) / "sequence.yaml", error)) {
+        throw OutputError(input.path + ": cannot write the rendered scene " + input.scene);
+      }
+    }
+  }
 
   // The cells: configurations outermost, then the inputs.
   for (const auto& settings : configurations) {
@@ -596,7 +658,9 @@ std::vector<std::vector<std::string>> CellCommands(const SweepPlan& plan, const 
     case SweepCommand::kRun: {
       compute = {"run", "--config", plan.config};
       compute.insert(compute.end(), sets.begin(), sets.end());
-      const std::string flag = input.kind == "side_by_side" ? "--side-by-side" : "--" + input.kind;
+      const std::string flag = input.kind == "side_by_side" ? "--side-by-side"
+                               : input.kind == "scene"      ? "--sequence"
+                                                            : "--" + input.kind;
       compute.insert(compute.end(), {flag, input.path});
       if (!input.right.empty()) compute.insert(compute.end(), {"--right", input.right});
       if (!input.frames.empty()) compute.insert(compute.end(), {"--frames", input.frames});

@@ -20,8 +20,11 @@ const char* SweepCommandName(SweepCommand command);
 
 struct SweepInput {
   std::string name;  // unique among the inputs; part of the cells' folder names
-  std::string kind;  // sequence, video, images, left (with right), side_by_side, fixations
-  std::string path;  // absolute
+  // sequence, video, images, left (with right), side_by_side, fixations, or scene (a scene
+  // file rendered once into the sweep folder's scenes/, then a sequence)
+  std::string kind;
+  std::string path;   // absolute; for a scene, the sequence it renders into
+  std::string scene;  // a scene's file
   std::string right;  // the right video of a left/right pair
   std::string gt;     // run: a gt/ folder; track: an OTB groundtruth_rect.txt; "" the default
   int gt_id = -1;     // unused today; kept for objects.csv with several objects
@@ -69,9 +72,18 @@ struct SweepPlan {
   std::vector<SweepCell> cells;  // inputs outermost, then the grid (last key fastest), then zips
 };
 
-// Reads and checks a sweep file. `text_override`, when given, is read in place of the file's
-// content (a sweep folder's stored copy), relative paths still resolved from the file's folder.
-SweepPlan ReadSweepFile(const std::string& path, const std::string* text_override = nullptr);
+struct SweepReadOptions {
+  // Read in place of the file's content (a sweep folder's stored copy); relative paths are
+  // still resolved from the file's folder.
+  const std::string* text = nullptr;
+  // The sweep folder: scene inputs render into DIR/scenes/<name>-<hash of the scene file>.
+  std::string dir;
+  // Render the scenes not yet rendered, once everything else is checked.
+  bool render = false;
+};
+
+// Reads and checks a sweep file.
+SweepPlan ReadSweepFile(const std::string& path, const SweepReadOptions& options = {});
 
 // The effective configuration of a cell as YAML (every key, defaults included).
 std::string CellConfigYaml(const SweepPlan& plan, const SweepCell& cell);

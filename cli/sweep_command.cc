@@ -4,6 +4,7 @@
 
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -132,15 +133,26 @@ int Sweep(const SweepArguments& args) {
     std::stringstream text;
     text << in.rdbuf();
     const std::string copy = text.str();
-    plan = ReadSweepFile(stored.file, &copy);
+    SweepReadOptions options;
+    options.text = &copy;
+    options.dir = out;
+    options.render = !args.dry_run;
+    plan = ReadSweepFile(stored.file, options);
   } else {
     std::error_code error;
     if (fs::is_directory(args.target, error)) {
       throw ConfigError(args.target + ": a folder without sweep.json; give a sweep file (YAML) "
                         "or a sweep folder");
     }
-    plan = ReadSweepFile(args.target);
     if (out.empty() && !args.dry_run) throw ConfigError("--out is required with a sweep file");
+    if (!out.empty() && !args.dry_run && !IsEmptyOrScenesOnly(out)) {
+      throw OutputError(out + ": not empty and not a sweep folder (no sweep.json); give a new "
+                        "--out");
+    }
+    SweepReadOptions options;
+    options.dir = out;
+    options.render = !args.dry_run;
+    plan = ReadSweepFile(args.target, options);
   }
   SlurmSettings slurm = plan.slurm;
   if (args.partition) slurm.partition = *args.partition;

@@ -171,7 +171,7 @@ std::string Plots(const SweepReportInput& input, std::vector<std::string>* notes
   if (input.keys.empty()) return "";
   std::vector<std::string> plotted = ComparedScores(input);
   // The headline score of each scorer is shown first.
-  for (const char* headline : {"coverage", "success_auc", "NSS"}) {
+  for (const char* headline : {"coverage", "success_auc", "nss"}) {
     const auto found = std::find(plotted.begin(), plotted.end(), headline);
     if (found != plotted.end()) std::rotate(plotted.begin(), found, found + 1);
   }
@@ -201,18 +201,29 @@ std::string Plots(const SweepReportInput& input, std::vector<std::string>* notes
     for (const std::string& score : plotted) {
       scores[score] = HasValue(cell, score) ? Json(cell.scores.at(score)) : Json();
     }
-    cells.push_back({{"settings", cell.settings}, {"scores", scores}});
+    cells.push_back({{"input", cell.input}, {"settings", cell.settings}, {"scores", scores}});
   }
   data["cells"] = cells;
+  std::vector<std::string> inputs;
+  for (const SweepReportCell& cell : input.cells) {
+    if (std::find(inputs.begin(), inputs.end(), cell.input) == inputs.end()) {
+      inputs.push_back(cell.input);
+    }
+  }
   std::string html =
       "<section><h2>Scores against the swept parameters</h2><p>Score: <select id=\"score\">";
   for (std::size_t s = 0; s < plotted.size(); ++s) {
     html += "<option value=\"" + std::to_string(s) + "\">" + HtmlEscape(plotted[s]) + "</option>";
   }
+  html += "</select> Inputs: <select id=\"input\"><option value=\"\">all</option>";
+  for (const std::string& name : inputs) {
+    html += "<option value=\"" + HtmlEscape(name) + "\">" + HtmlEscape(name) + "</option>";
+  }
   html +=
       "</select></p><p class=\"small\">For each value of a parameter: the mean of the score over "
-      "the done cells with that value (every input and every value of the other parameters), "
-      "with the band of one standard deviation and the range (dashed).</p><div class=\"charts\">";
+      "the done cells with that value (the inputs chosen and every value of the other "
+      "parameters), with the band of one standard deviation and the range (dashed).</p>"
+      "<div class=\"charts\">";
   for (std::size_t k = 0; k < input.keys.size(); ++k) {
     html += "<figure><canvas id=\"plot-" + std::to_string(k) +
             "\" width=\"460\" height=\"260\"></canvas><figcaption><code>" +
@@ -221,9 +232,10 @@ std::string Plots(const SweepReportInput& input, std::vector<std::string>* notes
   html += "</div></section>\n";
   const std::string drawing = R"JS(
 const charts = [];
-function summary(score, key) {
+function summary(score, key, input) {
   return DATA.values[key].map(function (value) {
-    const ys = DATA.cells.filter(function (c) { return c.settings[key] === value; })
+    const ys = DATA.cells.filter(function (c) {
+        return c.settings[key] === value && (input === '' || c.input === input); })
       .map(function (c) { return c.scores[score]; })
       .filter(function (y) { return y !== null; });
     if (ys.length === 0) return {mean: null, sd: null, min: null, max: null};
@@ -234,10 +246,11 @@ function summary(score, key) {
 }
 function draw() {
   const score = DATA.scores[document.getElementById('score').value];
+  const input = document.getElementById('input').value;
   charts.forEach(function (c) { c.destroy(); });
   charts.length = 0;
   DATA.keys.forEach(function (key, k) {
-    const s = summary(score, k);
+    const s = summary(score, k, input);
     charts.push(new Chart(document.getElementById('plot-' + k), {type: 'line',
       data: {labels: DATA.values[k], datasets: [
         {label: 'mean + sd', data: s.map(function (p) { return p.mean === null ? null : p.mean + p.sd; }),
@@ -256,6 +269,7 @@ function draw() {
   });
 }
 document.getElementById('score').addEventListener('change', draw);
+document.getElementById('input').addEventListener('change', draw);
 draw();)JS";
   return html + ChartScripts(input.chart, JsonText(data), drawing);
 }

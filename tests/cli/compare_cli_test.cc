@@ -178,6 +178,57 @@ TEST_F(CompareCli, RunWithoutSaliencyDumpsGivesANote) {
   EXPECT_TRUE(Contains(ReadText(out.File("cmp/report.html")), "lack a saliency map"));
 }
 
+TEST_F(CompareCli, ChartsWithoutDataAreLeftOut) {
+  const TempDir out;
+  fs::copy(fs::path(Run("a")), out.path() / "no_maps", fs::copy_options::recursive);
+  fs::remove_all(out.path() / "no_maps" / "saliency");
+  const Result r = Attend(out, {"compare", Run("a"), "no_maps", "--out", "cmp"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string html = ReadText(out.File("cmp/report.html"));
+  if (!Contains(html, "Chart.js was not found")) {
+    // No saliency metrics to draw; timings and targets are there.
+    EXPECT_FALSE(Contains(html, "id=\"chart-cc\"")) << "an empty CC chart";
+    EXPECT_FALSE(Contains(html, "id=\"chart-kl\""));
+    EXPECT_TRUE(Contains(html, "id=\"chart-timings\""));
+    EXPECT_TRUE(Contains(html, "id=\"chart-targets\""));
+  }
+  const Result with_maps = Attend(out, {"compare", Run("a"), Run("b"), "--out", "cmp2"});
+  ASSERT_EQ(with_maps.status, 0) << with_maps.err;
+  const std::string full = ReadText(out.File("cmp2/report.html"));
+  if (!Contains(full, "Chart.js was not found")) {
+    EXPECT_TRUE(Contains(full, "id=\"chart-cc\""));
+  }
+}
+
+TEST_F(CompareCli, GtScoresARunWhoseSourceHasNone) {
+  // The same frames as a plain folder of images, whose run has no sequence folder and so no gt/.
+  const TempDir out;
+  Result r = Attend(out, {"run", "--images", dir_->File("seq/left"), "--frames", "0:3", "--quiet",
+                          "--set", "features=[{name: colour_contrast}]", "--out", "images"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = Attend(out, {"report", "images", "--out", "plain"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(Summary(out.File("plain"))["runs"][0]["attention"].is_null());
+  r = Attend(out, {"report", "images", "--gt", dir_->File("seq/gt"), "--out", "scored"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json summary = Summary(out.File("scored"));
+  ASSERT_FALSE(summary["runs"][0]["attention"].is_null()) << summary.dump();
+  EXPECT_GT(summary["runs"][0]["attention"]["objects"].get<int>(), 0);
+  EXPECT_TRUE(Contains(summary["runs"][0]["ground_truth"].get<std::string>(), "objects.csv"));
+  // One --gt a run, in their order, for compare; a count that fits neither is refused.
+  r = Attend(out, {"compare", "images", Run("a"), "--gt", dir_->File("seq/gt"), "--gt",
+                   dir_->File("seq/gt"), "--out", "both"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(Summary(out.File("both"))["runs"][0]["attention"].is_null());
+  r = Attend(out, {"compare", "images", Run("a"), Run("b"), "--gt", "x", "--gt", "y", "--out",
+                   "bad"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(Contains(r.err, "--gt given 2 times for 3 runs")) << r.err;
+  r = Attend(out, {"report", "images", "--gt", out.File("nowhere"), "--out", "missing"});
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_TRUE(Contains(r.err, "objects.csv")) << r.err;
+}
+
 // The chromium program on PATH, "" when there is none.
 std::string FindChromium() {
   const char* path = std::getenv("PATH");
