@@ -31,22 +31,6 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-std::string ReadWhole(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void WriteWhole(const fs::path& path, const std::string& text) {
-  ReplaceFile(path.string(), "", [&](const std::string& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    out.close();
-    return static_cast<bool>(out);
-  });
-}
-
 Json ReadJson(const fs::path& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path.string() + ": cannot be read");
@@ -62,12 +46,6 @@ std::string Now() {
   char text[32];
   std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   return text;
-}
-
-std::string HostName() {
-  char name[256] = {0};
-  gethostname(name, sizeof(name) - 1);
-  return name;
 }
 
 Json SettingsJson(const std::vector<SweepSetting>& settings) {
@@ -148,7 +126,7 @@ void WriteSweepJson(const SweepPlan& plan, const fs::path& dir,
                      {"inputs", inputs},
                      {"slurm", SlurmJson(plan.slurm)},
                      {"cells", cell_list}};
-  WriteWhole(dir / "sweep.json", JsonText(json, 2) + "\n");
+  ReplaceFileText((dir / "sweep.json").string(), JsonText(json, 2) + "\n");
 }
 
 std::vector<SweepSetting> ReadSettings(const Json& json) {
@@ -207,13 +185,13 @@ Json CellScores(const std::string& command, const fs::path& cell_dir, const std:
     for (const char* key : {"success_auc", "precision_20", "mean_iou", "frames", "found"}) {
       scores.emplace_back(key, target.at(key).get<double>());
     }
-    const nlohmann::json track = nlohmann::json::parse(ReadWhole(cell_dir / "out" / "track.json"));
+    const nlohmann::json track = nlohmann::json::parse(ReadFileText(cell_dir / "out" / "track.json"));
     if (track.contains("ms_per_frame")) {
       scores.emplace_back("ms_per_frame", track["ms_per_frame"].get<double>());
     }
   } else {
     const nlohmann::json report =
-        nlohmann::json::parse(ReadWhole(cell_dir / "out" / "scores" / "fixations.json"));
+        nlohmann::json::parse(ReadFileText(cell_dir / "out" / "scores" / "fixations.json"));
     for (const auto& [method, entry] : report.at("methods").items()) {
       for (const auto& [metric, value] : entry.items()) {
         if (!value.is_object() || !value.contains("mean")) continue;
@@ -231,7 +209,7 @@ Json CellScores(const std::string& command, const fs::path& cell_dir, const std:
 }
 
 void WriteStatus(const fs::path& cell_dir, const Json& status) {
-  WriteWhole(cell_dir / "status.json", JsonText(status, 2) + "\n");
+  ReplaceFileText((cell_dir / "status.json").string(), JsonText(status, 2) + "\n");
 }
 
 }  // namespace
@@ -292,7 +270,7 @@ StoredSweep PrepareSweepFolder(const SweepPlan& plan, const std::string& dir_tex
     const fs::path cell_dir = dir / "cells" / cell.name;
     PlannedCell planned = PlanCell(plan, cell, cell_dir);
     if (by_name.count(cell.name) != 0) {
-      const std::string old_json = ReadWhole(cell_dir / "cell.json");
+      const std::string old_json = ReadFileText(cell_dir / "cell.json");
       Json old;
       try {
         old = Json::parse(old_json);
@@ -300,7 +278,7 @@ StoredSweep PrepareSweepFolder(const SweepPlan& plan, const std::string& dir_tex
         throw InputError((cell_dir / "cell.json").string() + ": missing or not valid JSON");
       }
       const bool same_commands = old.value("commands", Json()) == planned.json["commands"];
-      const bool same_config = ReadWhole(cell_dir / "config.yaml") == planned.config;
+      const bool same_config = ReadFileText(cell_dir / "config.yaml") == planned.config;
       if (!same_commands || !same_config) {
         throw ConfigError(plan.file + ": the cell " + cell.name + " in " + dir.string() +
                           " would now run " +
@@ -344,14 +322,14 @@ StoredSweep PrepareSweepFolder(const SweepPlan& plan, const std::string& dir_tex
     Json json = planned.json;
     json["index"] = stored.index;
     json["attend_version"] = ATTEND_VERSION;
-    WriteWhole(cell_dir / "config.yaml", planned.config);
-    WriteWhole(cell_dir / "cell.json", JsonText(json, 2) + "\n");
+    ReplaceFileText((cell_dir / "config.yaml").string(), planned.config);
+    ReplaceFileText((cell_dir / "cell.json").string(), JsonText(json, 2) + "\n");
     cells.push_back(std::move(stored));
   }
   if (!cells.empty() && !added.empty() && extend) {
     notes->push_back(std::to_string(added.size()) + " cells added to the sweep");
   }
-  WriteWhole(dir / "sweep.yaml", plan.text);
+  ReplaceFileText((dir / "sweep.yaml").string(), plan.text);
   WriteSweepJson(plan, dir, cells);
   return LoadSweepFolder(dir.string());
 }
@@ -506,10 +484,10 @@ int RunCell(const std::string& dir, int index) {
         return finish("killed", exit.Status(),
                       commands[step][0] + " was killed by " + strsignal(exit.signal));
       }
-      const std::string message = ErrorMessage(ReadWhole(log + ".err"));
+      const std::string message = ErrorMessage(ReadFileText(log + ".err"));
       return finish("failed", exit.code, commands[step][0] + ": " + message);
     }
-    if (step + 1 == commands.size()) scorer_out = ReadWhole(log + ".out");
+    if (step + 1 == commands.size()) scorer_out = ReadFileText(log + ".out");
   }
   if (g_cell_signal.load() != 0) {
     const int signal = g_cell_signal.load();
@@ -521,7 +499,7 @@ int RunCell(const std::string& dir, int index) {
   } catch (const std::exception& e) {
     return finish("failed", 1, std::string("the scores cannot be read: ") + e.what());
   }
-  WriteWhole(cell_dir / "scores.json", JsonText(scores, 2) + "\n");
+  ReplaceFileText((cell_dir / "scores.json").string(), JsonText(scores, 2) + "\n");
   return finish("done", 0, "");
 }
 

@@ -20,6 +20,7 @@
 #include "io/tracking_files.h"
 #include "pipeline/options_io.h"
 #include "util/error.h"
+#include "util/output_folder.h"
 #include "util/strings.h"
 
 namespace attend {
@@ -220,20 +221,12 @@ void CheckConfiguration(SweepCommand command, const std::string& config,
   }
 }
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path + ": cannot read the sweep file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // The folder a scene renders into: DIR/scenes/<stem>-<FNV-1a of the scene file's text>, so a
 // changed scene renders anew.
 std::string SceneFolder(const std::string& scene, const std::string& dir) {
   char hash[17];
   std::snprintf(hash, sizeof(hash), "%016llx",
-                static_cast<unsigned long long>(Fnv1a(ReadText(scene))));
+                static_cast<unsigned long long>(Fnv1a(ReadFileText(scene))));
   return (fs::path(dir.empty() ? "SWEEP_DIR" : dir) / "scenes" /
           (fs::path(scene).stem().string() + "-" + hash))
       .lexically_normal()
@@ -362,7 +355,11 @@ const char* SweepCommandName(SweepCommand command) {
 SweepPlan ReadSweepFile(const std::string& path, const SweepReadOptions& options) {
   SweepPlan plan;
   plan.file = fs::absolute(path).lexically_normal().string();
-  plan.text = options.text != nullptr ? *options.text : ReadText(path);
+  std::error_code error;
+  if (options.text == nullptr && !fs::is_regular_file(path, error)) {
+    throw ConfigError(path + ": no such sweep file");
+  }
+  plan.text = options.text != nullptr ? *options.text : ReadFileText(path);
   const std::string dir =
       options.dir.empty() ? "" : fs::absolute(options.dir).lexically_normal().string();
   // ParamBlock checks the text (UTF-8, syntax, duplicate keys, a map at the top) and types the

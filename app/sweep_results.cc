@@ -21,19 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string HostName() {
-  char name[256] = {0};
-  gethostname(name, sizeof(name) - 1);
-  return name;
-}
-
-std::string ReadWhole(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // A CSV field, quoted when it holds a comma, a quote or a line break (RFC 4180).
 std::string CsvField(const std::string& text) {
   if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
@@ -51,15 +38,6 @@ std::string CsvNumber(double value) {
   text.precision(10);
   text << value;
   return text.str();
-}
-
-void WriteWhole(const fs::path& path, const std::string& text, const std::string& what) {
-  ReplaceFile(path.string(), what, [&](const std::string& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    out.close();
-    return static_cast<bool>(out);
-  });
 }
 
 }  // namespace
@@ -194,7 +172,7 @@ CollectResult CollectSweep(const StoredSweep& sweep, const std::string& command_
       }
     }
     const fs::path cell_dir = sweep.CellDir(stored);
-    cell.config_yaml = ReadWhole(cell_dir / "config.yaml");
+    cell.config_yaml = ReadFileText(cell_dir / "config.yaml");
     std::ifstream description(cell_dir / "cell.json");
     try {
       const nlohmann::json json = nlohmann::json::parse(description);
@@ -232,8 +210,8 @@ CollectResult CollectSweep(const StoredSweep& sweep, const std::string& command_
   report.chart = LoadChartLibrary();
   result.csv = (fs::path(sweep.dir) / "sweep.csv").string();
   result.html = (fs::path(sweep.dir) / "report.html").string();
-  WriteWhole(result.csv, csv, "the sweep's scores");
-  WriteWhole(result.html, SweepReportHtml(report), "the sweep's report");
+  ReplaceFileText(result.csv, csv, "the sweep's scores");
+  ReplaceFileText(result.html, SweepReportHtml(report), "the sweep's report");
   result.notes = report.notes;
   return result;
 }

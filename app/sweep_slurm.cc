@@ -41,7 +41,6 @@ std::string Trim(const std::string& text) {
 // "JOB_TASK STATE" lines of squeue for the user's array tasks.
 std::map<std::string, std::string> QueueStates(std::string* note, bool* queried) {
   std::map<std::string, std::string> states;
-  const char* user = std::getenv("USER");
   std::vector<std::string> argv = {"squeue", "-h", "-r", "-o", "%F_%K %T"};
   const CapturedRun run = RunCaptured(argv);
   if (!run.started) {
@@ -52,7 +51,6 @@ std::map<std::string, std::string> QueueStates(std::string* note, bool* queried)
     *note = "squeue failed: " + Trim(run.err);
     return states;
   }
-  (void)user;
   *queried = true;
   std::istringstream lines(run.out);
   std::string line;
@@ -113,12 +111,7 @@ SlurmSubmission SubmitSlurmArray(const StoredSweep& sweep, const std::string& sc
   Json jobs = ReadJobs(sweep);
   SlurmSubmission submission;
   submission.script_path = (folder / ("array-" + std::to_string(jobs.size()) + ".sbatch")).string();
-  ReplaceFile(submission.script_path, "the batch script", [&](const std::string& temporary) {
-    std::ofstream out(temporary);
-    out << script;
-    out.close();
-    return static_cast<bool>(out);
-  });
+  ReplaceFileText(submission.script_path, script, "the batch script");
   const CapturedRun run = RunCaptured({"sbatch", "--parsable", submission.script_path});
   if (!run.started) {
     throw InputError("sbatch: " + run.start_error +
@@ -148,14 +141,11 @@ SlurmSubmission SubmitSlurmArray(const StoredSweep& sweep, const std::string& sc
                                                 script.find('\n', at) - at - marker.size())},
                   {"script", submission.script_path},
                   {"submitted", stamp}});
-  ReplaceFile(JobsPath(sweep).string(), "", [&](const std::string& temporary) {
-    std::ofstream out(temporary);
-    out << JsonText(jobs, 2) << "\n";
-    out.close();
-    return static_cast<bool>(out);
-  });
+  ReplaceFileText(JobsPath(sweep).string(), JsonText(jobs, 2) + "\n");
   return submission;
 }
+
+namespace {
 
 // The cell indexes an --array value covers ("0-3,5%2").
 std::vector<int> ArrayIndexes(const std::string& spec) {
@@ -173,6 +163,8 @@ std::vector<int> ArrayIndexes(const std::string& spec) {
   }
   return indexes;
 }
+
+}  // namespace
 
 SlurmView QuerySlurm(const StoredSweep& sweep) {
   SlurmView view;

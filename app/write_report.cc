@@ -31,15 +31,6 @@ nlohmann::ordered_json RunJson(const RunData& run) {
           {"targets", TargetsToJson(SummariseTargets(run.frames))}};
 }
 
-void WriteText(const fs::path& path, const std::string& text) {
-  ReplaceFile(path.string(), "", [&](const std::string& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    out.close();
-    return static_cast<bool>(out);
-  });
-}
-
 }  // namespace
 
 ReportResult WriteReport(const ReportRequest& request) {
@@ -79,8 +70,8 @@ ReportResult WriteReport(const ReportRequest& request) {
       {"chart_js", input.chart.found() ? nlohmann::ordered_json(input.chart.path)
                                        : nlohmann::ordered_json()}};
   const fs::path out(request.out);
-  WriteText(out / "summary.json", JsonText(summary, 2) + "\n");
-  WriteText(out / "report.html", ReportHtml(input));
+  ReplaceFileText((out / "summary.json").string(), JsonText(summary, 2) + "\n");
+  ReplaceFileText((out / "report.html").string(), ReportHtml(input));
   ReportResult result;
   result.html = (out / "report.html").string();
   for (const RunComparison& c : input.comparisons) {

@@ -18,6 +18,7 @@
 #include "app/sweep_slurm.h"
 #include "cli/commands.h"
 #include "util/error.h"
+#include "util/output_folder.h"
 #include "util/strings.h"
 #include "util/subprocess.h"
 #include "util/timer.h"
@@ -129,10 +130,7 @@ int Sweep(const SweepArguments& args) {
       throw ConfigError("--out " + out + ": a sweep folder is run again in place; leave --out out");
     }
     out = args.target;
-    std::ifstream in(fs::path(args.target) / "sweep.yaml", std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    const std::string copy = text.str();
+    const std::string copy = ReadFileText((fs::path(args.target) / "sweep.yaml").string());
     SweepReadOptions options;
     options.text = &copy;
     options.dir = out;
@@ -145,7 +143,7 @@ int Sweep(const SweepArguments& args) {
                         "or a sweep folder");
     }
     if (out.empty() && !args.dry_run) throw ConfigError("--out is required with a sweep file");
-    if (!out.empty() && !args.dry_run && !IsEmptyOrScenesOnly(out)) {
+    if (!out.empty() && !args.dry_run && !IsSweepFolder(out) && !IsEmptyOrScenesOnly(out)) {
       throw OutputError(out + ": not empty and not a sweep folder (no sweep.json); give a new "
                         "--out");
     }

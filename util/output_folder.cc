@@ -1,5 +1,9 @@
 #include "util/output_folder.h"
 
+#include <sstream>
+
+#include <fstream>
+
 #include <unistd.h>
 
 #include <filesystem>
@@ -68,6 +72,22 @@ void ReplaceFile(const std::string& path, const std::string& what,
   std::error_code error;
   fs::rename(temporary, target, error);
   if (error) fail(error.message());
+}
+
+void ReplaceFileText(const std::string& path, const std::string& text, const std::string& what) {
+  ReplaceFile(path, what, [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    out.close();
+    return static_cast<bool>(out);
+  });
+}
+
+std::string ReadFileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 }  // namespace attend

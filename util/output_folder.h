@@ -28,4 +28,10 @@ void PrepareOutputFolder(const std::string& folder, bool overwrite, const Output
 void ReplaceFile(const std::string& path, const std::string& what,
                  const std::function<bool(const std::string& temporary)>& write);
 
+// ReplaceFile with `text` as the new content.
+void ReplaceFileText(const std::string& path, const std::string& text, const std::string& what = "");
+
+// The whole content of a file, "" when it cannot be read.
+std::string ReadFileText(const std::string& path);
+
 }  // namespace attend

@@ -155,6 +155,12 @@ std::string ShellQuote(const std::vector<std::string>& argv) {
   return line;
 }
 
+std::string HostName() {
+  char name[256] = {0};
+  gethostname(name, sizeof(name) - 1);
+  return name;
+}
+
 std::string SelfExecutable() {
   std::error_code error;
   const std::filesystem::path path = std::filesystem::read_symlink("/proc/self/exe", error);

@@ -46,6 +46,9 @@ CapturedRun RunCaptured(const std::vector<std::string>& argv);
 // `argv` as one line a POSIX shell reads back to the same words.
 std::string ShellQuote(const std::vector<std::string>& argv);
 
+// This machine's host name.
+std::string HostName();
+
 // The path of the running program (/proc/self/exe).
 std::string SelfExecutable();
 

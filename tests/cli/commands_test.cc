@@ -13,7 +13,7 @@ namespace {
 // The commands of SPEC 3.2, in the order `attend --help` lists them.
 const std::vector<std::string> kCommands = {
     "run",        "synth",   "segment", "disparity", "track",          "eval-tracking", "eval",
-    "skin-train", "compare", "report",  "saliency",  "eval-fixations", "fit-weights"};
+    "skin-train", "compare", "report",  "saliency",  "eval-fixations", "fit-weights", "sweep"};
 
 TEST(Commands, EveryCommandIsAddedInItsOrder) {
   CLI::App app;
