@@ -204,5 +204,27 @@ TEST_F(SweepSlurm, ACellTheSchedulerStopsIsReportedKilledNotDone) {
   EXPECT_EQ(rows[0].at("state"), "killed");
 }
 
+TEST_F(SweepSlurm, ACellPastItsTimeLimitIsReportedAsATimeout) {
+  // A cell of about two minutes (100 frames of the lab scene at 8 times its size) under a time
+  // limit of one minute: Slurm ends it (SIGTERM, then SIGKILL after KillWait) between 60 and
+  // 90 s, when its controller next checks the limits.
+  const TempDir work;
+  Result r = Attend(work, {"synth", (fs::path(testing::ProjectRoot()) / "sequences" / "lab.yaml")
+                                        .string(),
+                           "--out", "long", "--frames", "100", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string file = work.Write(
+      "slow.yaml",
+      "set:\n  threads: 1\n  sequence.width: 2560\n  sequence.height: 1920\n"
+      "grid:\n  select.max_new: [1]\ninputs:\n  - sequence: " + work.File("long") + "\n"
+      "slurm:\n  time: '1'\n");
+  r = Attend(work, {"sweep", file, "--out", "s", "--slurm"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(Contains(ReadText(work.File("s/slurm/array-0.sbatch")), "#SBATCH --time=1\n"));
+  const std::string status = WaitForSweep(work, work.File("s"), 180);
+  EXPECT_TRUE(Contains(status, "1 cells: 0 done, 0 running, 0 failed, 1 killed")) << status;
+  EXPECT_TRUE(Contains(status, "(Slurm: TIMEOUT)")) << status;
+}
+
 }  // namespace
 }  // namespace attend
