@@ -33,13 +33,13 @@ usage() {
 
 # Stops the daemons started from $state (by their pid files), SIGKILL after 5 s.
 stop_daemons() {
-  local name pid i
+  local name pid
   for name in slurmd slurmctld munged; do
     [ -f "$state/$name.pid" ] || continue
     pid="$(cat "$state/$name.pid" 2>/dev/null || true)"
     [ -n "$pid" ] || continue
     kill "$pid" 2>/dev/null || true
-    for i in $(seq 50); do
+    for _ in $(seq 50); do
       kill -0 "$pid" 2>/dev/null || break
       sleep 0.1
     done
@@ -96,7 +96,9 @@ start() {
 
   local user ctld_port slurmd_port memory
   user="$(id -un)"
-  ctld_port="$(free_port 16817)"
+  # From a port of this process's own, so that clusters started at once (tests in parallel)
+  # do not pick the same free port before either listens on it.
+  ctld_port="$(free_port $((20000 + ($$ % 10000) * 2)))"
   slurmd_port="$(free_port $((ctld_port + 1)))"
   # Slurm refuses a node whose RealMemory exceeds what it finds: 90 % of the machine's.
   memory="$(awk '/^MemTotal:/ { printf "%d", $2 / 1024 * 0.9 }' /proc/meminfo)"
@@ -141,8 +143,8 @@ EOF
   slurmd -f "$SLURM_CONF" -N attendnode 2>>"$state/slurmd.log" ||
     fail "slurmd did not start" "$state/slurmd.log"
 
-  local i node=""
-  for i in $(seq 120); do
+  local node=""
+  for _ in $(seq 120); do
     node="$(sinfo -h -n attendnode -o %t 2>/dev/null || true)"
     [ "$node" = "idle" ] && break
     sleep 0.5
