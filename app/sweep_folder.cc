@@ -123,6 +123,7 @@ void WriteSweepJson(const SweepPlan& plan, const fs::path& dir,
                      {"config", plan.config},
                      {"sets", plan.sets},
                      {"keys", plan.keys},
+                     {"key_groups", plan.groups},
                      {"inputs", inputs},
                      {"slurm", SlurmJson(plan.slurm)},
                      {"cells", cell_list}};
@@ -347,6 +348,7 @@ StoredSweep LoadSweepFolder(const std::string& dir_text) {
     sweep.file = json.at("sweep_file").get<std::string>();
     sweep.command = json.at("command").get<std::string>();
     sweep.keys = json.at("keys").get<std::vector<std::string>>();
+    sweep.groups = json.value("key_groups", std::vector<std::vector<int>>());
     const Json& slurm = json.at("slurm");
     sweep.slurm.partition = slurm.at("partition").get<std::string>();
     sweep.slurm.time = slurm.at("time").get<std::string>();

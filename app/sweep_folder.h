@@ -38,6 +38,7 @@ struct StoredSweep {
   std::string file;     // the sweep file it was made from
   std::string command;  // run, track or saliency
   std::vector<std::string> keys;
+  std::vector<std::vector<int>> groups;  // keys swept together (SweepPlan::groups)
   std::vector<StoredCell> cells;  // by index
   SlurmSettings slurm;
   std::string CellDir(const StoredCell& cell) const;

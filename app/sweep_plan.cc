@@ -464,9 +464,16 @@ SweepPlan ReadSweepFile(const std::string& path, const SweepReadOptions& options
       }
     }
   }
-  for (const SweptValues& swept : grid) plan.keys.push_back(swept.key);
+  for (const SweptValues& swept : grid) {
+    plan.groups.push_back({static_cast<int>(plan.keys.size())});
+    plan.keys.push_back(swept.key);
+  }
   for (const auto& group : zips) {
-    for (const SweptValues& swept : group) plan.keys.push_back(swept.key);
+    plan.groups.emplace_back();
+    for (const SweptValues& swept : group) {
+      plan.groups.back().push_back(static_cast<int>(plan.keys.size()));
+      plan.keys.push_back(swept.key);
+    }
   }
 
   // Every value on its own over the base, so an error names its line; then the fixed sets.

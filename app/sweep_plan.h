@@ -66,6 +66,7 @@ struct SweepPlan {
   std::string config;             // the base configuration file, absolute ("" for track)
   std::vector<std::string> sets;  // fixed KEY=VALUE overrides of every cell
   std::vector<std::string> keys;  // the swept keys: the grid's, then each zip group's
+  std::vector<std::vector<int>> groups;  // keys swept together: each grid key alone, each zip
   std::vector<SweepInput> inputs;
   FixationScoring fixations;  // options of eval-fixations
   SlurmSettings slurm;

@@ -152,6 +152,7 @@ CollectResult CollectSweep(const StoredSweep& sweep, const std::string& command_
   report.command = sweep.command;
   report.command_line = command_line;
   report.keys = sweep.keys;
+  report.groups = sweep.groups;
   const std::vector<CellView> views = ViewCells(sweep, &report.notes);
   std::vector<std::vector<std::pair<std::string, double>>> all_scores;
   for (const CellView& view : views) {

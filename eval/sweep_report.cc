@@ -181,19 +181,29 @@ std::string Plots(const SweepReportInput& input, std::vector<std::string>* notes
     return "";
   }
   Json data;
-  data["keys"] = input.keys;
-  data["scores"] = plotted;
-  Json values = Json::array();
-  for (std::size_t k = 0; k < input.keys.size(); ++k) {
-    std::vector<std::string> seen;
+  // One plot a group of keys swept together; its values are the groups' distinct tuples.
+  std::vector<std::vector<int>> groups = input.groups;
+  if (groups.empty()) {
+    for (std::size_t k = 0; k < input.keys.size(); ++k) groups.push_back({static_cast<int>(k)});
+  }
+  Json group_json = Json::array();
+  for (const std::vector<int>& group : groups) {
+    std::vector<std::vector<std::string>> seen;
+    std::vector<std::string> labels, names;
     for (const SweepReportCell& cell : input.cells) {
-      if (std::find(seen.begin(), seen.end(), cell.settings[k]) == seen.end()) {
-        seen.push_back(cell.settings[k]);
+      std::vector<std::string> tuple;
+      for (const int k : group) tuple.push_back(cell.settings[k]);
+      if (std::find(seen.begin(), seen.end(), tuple) == seen.end()) {
+        seen.push_back(tuple);
+        labels.push_back(Join(tuple, " / "));
       }
     }
-    values.push_back(seen);
+    for (const int k : group) names.push_back(input.keys[k]);
+    group_json.push_back({{"label", Join(names, " / ")}, {"keys", group}, {"values", seen},
+                          {"labels", labels}});
   }
-  data["values"] = values;
+  data["groups"] = group_json;
+  data["scores"] = plotted;
   Json cells = Json::array();
   for (const SweepReportCell& cell : input.cells) {
     if (cell.state != "done") continue;
@@ -224,18 +234,23 @@ std::string Plots(const SweepReportInput& input, std::vector<std::string>* notes
       "the done cells with that value (the inputs chosen and every value of the other "
       "parameters), with the band of one standard deviation and the range (dashed).</p>"
       "<div class=\"charts\">";
-  for (std::size_t k = 0; k < input.keys.size(); ++k) {
-    html += "<figure><canvas id=\"plot-" + std::to_string(k) +
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    std::vector<std::string> names;
+    for (const int k : groups[g]) names.push_back(input.keys[k]);
+    html += "<figure><canvas id=\"plot-" + std::to_string(g) +
             "\" width=\"460\" height=\"260\"></canvas><figcaption><code>" +
-            HtmlEscape(input.keys[k]) + "</code></figcaption></figure>";
+            HtmlEscape(Join(names, " / ")) + "</code>" +
+            (groups[g].size() > 1 ? " (zipped: changed together)" : "") +
+            "</figcaption></figure>";
   }
   html += "</div></section>\n";
   const std::string drawing = R"JS(
 const charts = [];
-function summary(score, key, input) {
-  return DATA.values[key].map(function (value) {
+function summary(score, group, input) {
+  return group.values.map(function (tuple) {
     const ys = DATA.cells.filter(function (c) {
-        return c.settings[key] === value && (input === '' || c.input === input); })
+        return group.keys.every(function (k, i) { return c.settings[k] === tuple[i]; }) &&
+               (input === '' || c.input === input); })
       .map(function (c) { return c.scores[score]; })
       .filter(function (y) { return y !== null; });
     if (ys.length === 0) return {mean: null, sd: null, min: null, max: null};
@@ -249,10 +264,10 @@ function draw() {
   const input = document.getElementById('input').value;
   charts.forEach(function (c) { c.destroy(); });
   charts.length = 0;
-  DATA.keys.forEach(function (key, k) {
-    const s = summary(score, k, input);
+  DATA.groups.forEach(function (group, k) {
+    const s = summary(score, group, input);
     charts.push(new Chart(document.getElementById('plot-' + k), {type: 'line',
-      data: {labels: DATA.values[k], datasets: [
+      data: {labels: group.labels, datasets: [
         {label: 'mean + sd', data: s.map(function (p) { return p.mean === null ? null : p.mean + p.sd; }),
          borderWidth: 0, pointRadius: 0, backgroundColor: 'rgba(31,119,180,0.15)', fill: '+1'},
         {label: 'mean - sd', data: s.map(function (p) { return p.mean === null ? null : p.mean - p.sd; }),
@@ -264,7 +279,7 @@ function draw() {
         {label: 'min', data: s.map(function (p) { return p.min; }), borderColor: '#999',
          borderDash: [4, 4], pointRadius: 0, borderWidth: 1}]},
       options: {plugins: {legend: {labels: {filter: function (item) { return item.text === 'mean'; }}}},
-        scales: {x: {title: {display: true, text: DATA.keys[k]}},
+        scales: {x: {title: {display: true, text: group.label}},
                  y: {title: {display: true, text: score}}}}}));
   });
 }

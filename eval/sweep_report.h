@@ -30,6 +30,9 @@ struct SweepReportInput {
   std::string command;  // run, track or saliency
   std::string command_line;
   std::vector<std::string> keys;
+  // Keys swept together (a zip group) are plotted together; a grid key alone. Indexes into
+  // `keys`; empty: each key alone.
+  std::vector<std::vector<int>> groups;
   std::vector<std::string> scores;  // score names, in the scorers' order
   std::vector<SweepReportCell> cells;
   std::vector<std::string> notes;
