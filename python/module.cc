@@ -512,10 +512,11 @@ py::dict EvalFixations(const std::vector<std::string>& maps, const std::string& 
 }
 
 std::string Compare(const std::vector<std::string>& runs, const std::string& out,
-                    bool overwrite) {
+                    bool overwrite, const std::vector<std::string>& gt) {
   ReportRequest request;
   request.runs = runs;
   request.out = out;
+  request.gt = gt;
   request.overwrite = overwrite;
   request.command_line = "python: attend.compare";
   const py::gil_scoped_release release;

@@ -316,13 +316,20 @@ def eval_fixations(maps, dataset, *, out=None, baselines=(), sigma=0.0, max_side
     return report
 
 
-def compare(runs, out=None, overwrite=False):
+def compare(runs, out=None, overwrite=False, gt=None):
     """`attend compare`: each run against the first; returns summary.json's content as a dict
-    (the report.html beside it when out is given)."""
+    (the report.html beside it when out is given). gt: a gt/ folder (holding objects.csv) for
+    every run, or a list of one a run, for runs whose source has none (`--gt`)."""
     runs = [_os.fspath(r) for r in runs]
+    if gt is None:
+        gt = []
+    elif isinstance(gt, (str, _os.PathLike)):
+        gt = [_os.fspath(gt)]
+    else:
+        gt = [_os.fspath(g) for g in gt]
     with _tempfile.TemporaryDirectory(prefix="attend-compare-") as scratch:
         folder = _os.fspath(out) if out else _os.path.join(scratch, "report")
-        _attend.compare(runs, folder, overwrite)
+        _attend.compare(runs, folder, overwrite, gt)
         with open(_os.path.join(folder, "summary.json"), encoding="utf-8") as file:
             return _json.load(file)
 

@@ -154,6 +154,17 @@ def test_compare_a_run_with_itself(cli_run, tmp_path):
     assert "cc" in text.lower()
 
 
+def test_compare_with_ground_truth_given(lab, tmp_path):
+    # The lab frames as a plain folder of images: the run has no sequence folder and no gt/.
+    out = tmp_path / "images"
+    run_attend("run", "--images", os.path.join(lab, "left"), "--out", out, "--quiet",
+               "--set", "features=[{name: colour_contrast}]")
+    assert attend.compare([out, out])["runs"][0]["attention"] is None
+    summary = attend.compare([out, out], gt=os.path.join(lab, "gt"))
+    assert summary["runs"][0]["attention"]["objects"] > 0
+    assert summary["runs"][1]["ground_truth"].endswith("objects.csv")
+
+
 def test_errors_are_the_command_lines(tmp_path, lab):
     with pytest.raises(attend.ConfigError) as from_python:
         attend.Pipeline(set=["segmentation.t_maxx=3"])
