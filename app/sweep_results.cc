@@ -66,8 +66,11 @@ std::vector<CellView> ViewCells(const StoredSweep& sweep, std::vector<std::strin
       case CellState::kKilled: {
         view.state = CellState::kKilled;
         view.detail = status.message;
+        // Slurm's word: the task's state while it still holds it (COMPLETING), else its end.
         const std::string final_state =
-            status.slurm_task.empty() || view.queued ? "" : SlurmFinalState(status.slurm_task);
+            status.slurm_task.empty() ? ""
+            : view.queued             ? slurm_state
+                                      : SlurmFinalState(status.slurm_task);
         if (!final_state.empty()) view.detail += " (Slurm: " + final_state + ")";
         break;
       }

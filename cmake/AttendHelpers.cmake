@@ -9,15 +9,21 @@ function(attend_add_library name)
   target_link_libraries(${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
 endfunction()
 
-# attend_add_test(NAME SOURCES ... DEPS ...)
+# attend_add_test(NAME SOURCES ... DEPS ... [COST SECONDS])
 # One GoogleTest executable; each TEST is registered with ctest separately.
+# COST: ctest's estimate of a test's time, for tests far slower than the rest, so that
+# `ctest -j` starts them first instead of last (ctest has no measured cost in a fresh build).
 function(attend_add_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "COST" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_compile_options(${name} PRIVATE -Wall -Wextra)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} attend_test_support GTest::gtest_main)
+  set(cost_property)
+  if(ARG_COST)
+    set(cost_property COST ${ARG_COST})
+  endif()
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
-    PROPERTIES ENVIRONMENT "ATTEND_HOME=${PROJECT_SOURCE_DIR}")
+    PROPERTIES ENVIRONMENT "ATTEND_HOME=${PROJECT_SOURCE_DIR}" ${cost_property})
 endfunction()
 
 # attend_export_plugin_api(TARGET)

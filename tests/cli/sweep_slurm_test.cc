@@ -77,14 +77,19 @@ class SweepSlurm : public ::testing::Test {
 
   static std::string Scene(const std::string& name) { return dir_->File(name); }
 
-  // Polls --status until no cell is running or waiting; returns the last status text.
-  static std::string WaitForSweep(const TempDir& work, const std::string& sweep, int seconds) {
+  // Polls --status until no cell is running or waiting (and, when given, the text holds
+  // `until`); returns the last status text.
+  static std::string WaitForSweep(const TempDir& work, const std::string& sweep, int seconds,
+                                  const std::string& until = "") {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
     std::string text;
     while (std::chrono::steady_clock::now() < deadline) {
       const Result r = Attend(work, {"sweep", sweep, "--status"});
       text = r.out + r.err;
-      if (r.status == 0 && Contains(r.out, " 0 running,") && Contains(r.out, " 0 waiting")) break;
+      if (r.status == 0 && Contains(r.out, " 0 running,") && Contains(r.out, " 0 waiting") &&
+          Contains(r.out, until)) {
+        break;
+      }
       std::this_thread::sleep_for(std::chrono::milliseconds(500));
     }
     return text;
@@ -221,7 +226,8 @@ TEST_F(SweepSlurm, ACellPastItsTimeLimitIsReportedAsATimeout) {
   r = Attend(work, {"sweep", file, "--out", "s", "--slurm"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(Contains(ReadText(work.File("s/slurm/array-0.sbatch")), "#SBATCH --time=1\n"));
-  const std::string status = WaitForSweep(work, work.File("s"), 180);
+  // The cell records itself killed at Slurm's SIGTERM; Slurm says TIMEOUT once the task ends.
+  const std::string status = WaitForSweep(work, work.File("s"), 180, "(Slurm: TIMEOUT)");
   EXPECT_TRUE(Contains(status, "1 cells: 0 done, 0 running, 0 failed, 1 killed")) << status;
   EXPECT_TRUE(Contains(status, "(Slurm: TIMEOUT)")) << status;
 }
