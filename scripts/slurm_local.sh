@@ -12,38 +12,91 @@
 # and munged on its own socket (nothing in /etc/munge or /run/munge), slurm.conf, the
 # controller's state, the daemons' logs and pid files, and jobcomp.txt, where each finished
 # job's state (COMPLETED, FAILED, TIMEOUT, CANCELLED) is written. slurmctld and slurmd listen on
-# free unprivileged ports; one node (attendnode, all the cores) in one partition (debug).
-# There is no accounting daemon: `sacct` does not work, `scontrol show job` keeps a finished
-# job for 10 minutes (MinJobAge) and jobcomp.txt keeps it for good.
+# free unprivileged ports; one node (attendnode, all the cores) in one partition (debug). No
+# systemd: the daemons are started directly. There is no accounting daemon: `sacct` does not
+# work, `scontrol show job` keeps a finished job for 10 minutes (MinJobAge) and jobcomp.txt
+# keeps it for good.
+#
+# Jobs start about a second after their submission or after a task of their array ends
+# (batch_sched_delay=0; the first job after `start` waits about 3 s). Time limits: KillWait=5
+# and OverTimeLimit=0, so a job past its --time gets SIGTERM and 5 s later SIGKILL, and ends as
+# TIMEOUT. slurmctld looks at time limits every 30 s (fixed in Slurm), so a job with --time=1
+# is ended between 60 and 90 s after it started.
 #
 # `start` installs slurm-wlm and munge through scripts/install_deps.sh when they are missing,
-# and stops a cluster already running from STATE first. When the cluster cannot start, it
-# prints "slurm_local: cannot start: REASON" and the tail of the daemon's log on stderr, stops
-# what it started, and exits 1: the tests skip with that message. slurmd runs jobs as the user
-# who submits them, so `start` needs root (as the tests in CI have).
+# and stops a cluster already running from STATE first; it takes about a second, `stop` half a
+# second. When the cluster cannot start, it prints "slurm_local: cannot start: REASON" and the
+# tail of the daemon's log on stderr, stops what it started, and exits 1: the tests skip with
+# that message. The daemons run as the user who starts them (no root needed): started by root,
+# the cluster runs jobs of any user; started by another user, only that user's jobs. `stop`
+# also kills the jobs still running.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 command="${1:-}"
 state="${2:-${TMPDIR:-/tmp}/attend-slurm-$(id -u)}"
+state="${state%/}"
 
 usage() {
   echo "usage: scripts/slurm_local.sh start|stop|status [STATE]" >&2
   exit 2
 }
 
-# Stops the daemons started from $state (by their pid files), SIGKILL after 5 s.
+# Whether process $1 runs. A zombie does not: this machine's init may never reap them.
+alive() {
+  local stat
+  stat="$(ps -o stat= -p "$1" 2>/dev/null)" || return 1
+  [ -n "$stat" ] && [ "${stat:0:1}" != "Z" ]
+}
+
+# The pid in $state/$1.pid when that process runs and is the daemon started from $state (its
+# command line names a file in $state: not a pid reused since).
+daemon_pid() {
+  local pid
+  pid="$(cat "$state/$1.pid" 2>/dev/null || true)"
+  [ -n "$pid" ] && alive "$pid" || return 1
+  tr '\0' ' ' 2>/dev/null <"/proc/$pid/cmdline" | grep -qF "$state/" || return 1
+  echo "$pid"
+}
+
+# Kills the jobs still running on this cluster: its slurmstepd processes (found by the
+# SLURM_CONF slurmd gave them, so that other clusters' jobs are left alone) and everything
+# under them.
+kill_jobs() {
+  local pid steps=""
+  for pid in $(pgrep -x slurmstepd || true); do
+    alive "$pid" || continue
+    if tr '\0' '\n' 2>/dev/null <"/proc/$pid/environ" |
+      grep -qxF "SLURM_CONF=$state/slurm.conf"; then
+      steps="$steps $pid"
+    fi
+  done
+  [ -n "$steps" ] || return 0
+  # shellcheck disable=SC2046  # one pid a word
+  kill -9 $(ps -eo pid=,ppid= | awk -v roots="$steps" '
+    BEGIN { n = split(roots, r, " "); for (i = 1; i <= n; i++) keep[r[i]] = 1 }
+    { parent[$1] = $2 }
+    END {
+      do {
+        more = 0
+        for (p in parent) if (!(p in keep) && (parent[p] in keep)) { keep[p] = 1; more = 1 }
+      } while (more)
+      for (p in keep) print p
+    }') 2>/dev/null || true
+}
+
+# Stops the jobs and the daemons started from $state (by their pid files), SIGKILL after 5 s.
 stop_daemons() {
   local name pid
+  kill_jobs
   for name in slurmd slurmctld munged; do
-    [ -f "$state/$name.pid" ] || continue
-    pid="$(cat "$state/$name.pid" 2>/dev/null || true)"
-    [ -n "$pid" ] || continue
-    kill "$pid" 2>/dev/null || true
-    for _ in $(seq 50); do
-      kill -0 "$pid" 2>/dev/null || break
-      sleep 0.1
-    done
-    kill -9 "$pid" 2>/dev/null || true
+    if pid="$(daemon_pid "$name")"; then
+      kill "$pid" 2>/dev/null || true
+      for _ in $(seq 50); do
+        alive "$pid" || break
+        sleep 0.1
+      done
+      kill -9 "$pid" 2>/dev/null || true
+    fi
     rm -f "$state/$name.pid"
   done
 }
@@ -77,7 +130,6 @@ start() {
     command -v "$tool" >/dev/null 2>&1 ||
       fail "$tool is missing (Debian packages slurm-wlm and munge, scripts/install_deps.sh)"
   done
-  [ "$(id -u)" -eq 0 ] || fail "slurmd must run as root to run jobs as their users; run as root"
 
   if [ -d "$state" ]; then
     stop_daemons
@@ -125,7 +177,9 @@ JobAcctGatherType=jobacct_gather/none
 AccountingStorageType=accounting_storage/none
 JobCompType=jobcomp/filetxt
 JobCompLoc=$state/jobcomp.txt
+MailProg=/bin/true
 SchedulerType=sched/backfill
+SchedulerParameters=batch_sched_delay=0
 SelectType=select/cons_tres
 SelectTypeParameters=CR_Core
 ReturnToService=2
@@ -143,15 +197,24 @@ EOF
   slurmd -f "$SLURM_CONF" -N attendnode 2>>"$state/slurmd.log" ||
     fail "slurmd did not start" "$state/slurmd.log"
 
-  local node=""
-  for _ in $(seq 120); do
+  local node="" name log deadline=$((SECONDS + 60))
+  while [ "$SECONDS" -lt "$deadline" ]; do
     node="$(sinfo -h -n attendnode -o %t 2>/dev/null || true)"
     [ "$node" = "idle" ] && break
+    # A daemon that has written its pid file and died: no use waiting for it.
+    for name in munged slurmctld slurmd; do
+      if [ -s "$state/$name.pid" ] && ! daemon_pid "$name" >/dev/null; then
+        fail "$name stopped" "$state/$name.log"
+      fi
+    done
     sleep 0.5
   done
-  [ "$node" = "idle" ] ||
-    fail "the node is not idle after 60 s (sinfo says '${node:-nothing}')" "$state/slurmd.log"
-  echo "export SLURM_CONF=$state/slurm.conf" >"$state/env"
+  if [ "$node" != "idle" ]; then
+    log="$state/slurmd.log"
+    [ -s "$log" ] || log="$state/slurmctld.log"
+    fail "the node is not idle after 60 s (sinfo says '${node:-nothing}')" "$log"
+  fi
+  printf 'export SLURM_CONF=%q\n' "$state/slurm.conf" >"$state/env"
   echo "$state/env"
 }
 
@@ -162,7 +225,7 @@ case "$command" in
     rm -rf "$state"
     ;;
   status)
-    [ -f "$state/slurm.conf" ] || exit 1
+    daemon_pid slurmctld >/dev/null || exit 1
     SLURM_CONF="$state/slurm.conf" sinfo
     ;;
   *) usage ;;
