@@ -12,6 +12,7 @@
 #include "synth/render_sequence.h"
 #include "synth/scene.h"
 #include "util/error.h"
+#include "util/strings.h"
 
 namespace fs = std::filesystem;
 
@@ -46,8 +47,7 @@ std::string EnsureBundledSequence(bool quiet) {
   }
   // One folder per version of the scene file (FNV-1a of its text): a changed scene renders
   // into a new folder, and a folder in use by another run is never touched.
-  uint64_t hash = 1469598103934665603ull;
-  for (unsigned char c : scene_text) hash = (hash ^ c) * 1099511628211ull;
+  const uint64_t hash = Fnv1a(scene_text);
   char version[20];
   std::snprintf(version, sizeof(version), "%016llx", static_cast<unsigned long long>(hash));
   const fs::path target =

@@ -41,13 +41,6 @@ Json ReadJson(const fs::path& path) {
   }
 }
 
-std::string Now() {
-  const std::time_t now = std::time(nullptr);
-  char text[32];
-  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return text;
-}
-
 Json SettingsJson(const std::vector<SweepSetting>& settings) {
   Json json = Json::object();
   for (const auto& [key, value] : settings) json[key] = value;
@@ -438,7 +431,7 @@ int RunCell(const std::string& dir, int index) {
                  {"executor", in_slurm ? "slurm" : "local"},
                  {"host", HostName()},
                  {"pid", static_cast<long>(getpid())},
-                 {"started", Now()}};
+                 {"started", UtcTimestamp()}};
   if (in_slurm) status["slurm_task"] = std::string(job) + "_" + task;
   WriteStatus(cell_dir, status);
 
@@ -454,7 +447,7 @@ int RunCell(const std::string& dir, int index) {
     status["state"] = state;
     status["exit_status"] = exit_status;
     if (!message.empty()) status["message"] = message;
-    status["finished"] = Now();
+    status["finished"] = UtcTimestamp();
     status["seconds"] = watch.ElapsedMs() / 1000.0;
     WriteStatus(cell_dir, status);
     return exit_status;

@@ -109,15 +109,6 @@ std::string FlowText(const YAML::Node& node) {
   return emitter.c_str();
 }
 
-std::uint64_t Fnv1a(const std::string& text) {
-  std::uint64_t hash = 1469598103934665603ULL;
-  for (const unsigned char c : text) {
-    hash ^= c;
-    hash *= 1099511628211ULL;
-  }
-  return hash;
-}
-
 // Letters, digits and . _ = + - kept; any other run of bytes becomes one '-'.
 std::string FileSafe(const std::string& text, std::size_t max_length) {
   std::string out;

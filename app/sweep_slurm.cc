@@ -12,6 +12,7 @@
 #include "util/output_folder.h"
 #include "util/strings.h"
 #include "util/subprocess.h"
+#include "util/timer.h"
 
 namespace attend {
 
@@ -131,16 +132,13 @@ SlurmSubmission SubmitSlurmArray(const StoredSweep& sweep, const std::string& sc
   std::vector<int> cells;
   const std::string marker = "#SBATCH --array=";
   const std::size_t at = script.find(marker);
-  const std::time_t now = std::time(nullptr);
-  char stamp[32];
-  std::strftime(stamp, sizeof(stamp), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   jobs.push_back({{"job", submission.job_id},
                   {"array", at == std::string::npos
                                 ? ""
                                 : script.substr(at + marker.size(),
                                                 script.find('\n', at) - at - marker.size())},
                   {"script", submission.script_path},
-                  {"submitted", stamp}});
+                  {"submitted", UtcTimestamp()}});
   ReplaceFileText(JobsPath(sweep).string(), JsonText(jobs, 2) + "\n");
   return submission;
 }

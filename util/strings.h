@@ -1,6 +1,7 @@
 // Small string helpers shared by the configuration and command-line code.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,6 +33,7 @@ size_t NonPrintableAt(std::string_view text);
 
 // The shortest text that reads back as exactly `value` (std::to_chars).
 std::string ShortestNumber(double value);
+
 // The same for a float: the shortest text that reads back as `value` as a float ("0.2").
 std::string ShortestFloat(float value);
 
@@ -43,5 +45,8 @@ std::string Fixed(double value, int digits);
 
 // Joins with a separator.
 std::string Join(const std::vector<std::string>& parts, std::string_view separator);
+
+// The 64-bit FNV-1a hash of `text`: a stable fingerprint for names and cache folders.
+std::uint64_t Fnv1a(std::string_view text);
 
 }  // namespace attend

@@ -273,7 +273,9 @@ TEST_F(SweepCli, ZippedListsChangeTogetherAndListValuedKeysSweep) {
   for (const std::string& cell : CellFolders(work.File("s"))) {
     const FlatConfig config = FlattenConfigFile(cell + "/out/config.yaml");
     const bool two = config.count("features.intensity_contrast.weight") != 0;
-    if (two) EXPECT_DOUBLE_EQ(std::stod(config.at("features.intensity_contrast.weight")), 0.5);
+    if (two) {
+      EXPECT_DOUBLE_EQ(std::stod(config.at("features.intensity_contrast.weight")), 0.5);
+    }
     EXPECT_EQ(config.at("select.max_new") == "1", config.at("select.min_area") == "100") << cell;
   }
 }
