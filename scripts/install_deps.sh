@@ -14,6 +14,9 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest python3-pandas python3-matplotlib
   # attend sweep --slurm and the one-node cluster its tests start (scripts/slurm_local.sh)
   slurm-wlm munge
+  # live input through OpenCV's GStreamer backend and its tests' videotestsrc pipelines
+  gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-tools
+  ccache          # the builds reuse what earlier builds on the machine compiled (scripts/ccache.sh)
 )
 
 missing=()

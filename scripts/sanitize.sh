@@ -13,7 +13,8 @@ build="${ATTEND_SANITIZE_BUILD_DIR:-$root/build-sanitize}"
 # The Python module is left out (-DATTEND_BUILD_PYTHON=OFF): an instrumented extension needs
 # the sanitizer runtime preloaded into the interpreter, whose own allocations LeakSanitizer
 # then reports; its tests run in scripts/test.sh.
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+source "$root/scripts/ccache.sh"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${ccache_args[@]}" \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DATTEND_SANITIZE=address,undefined \
   -DATTEND_BUILD_PYTHON=OFF >/dev/null
 cmake --build "$build" -j"$(nproc)"

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <vector>
@@ -22,11 +25,10 @@ constexpr float kCostScale = 32767.f;
 // A window of this standard deviation or less (grey levels) is flat: its ZNCC is 0.
 constexpr float kFlatSigma = 1e-3f;
 
-// Back-pointer codes: the step t in d(x - 1) = d(x) + t is code - 1.
+// Stage 2's back-pointer codes: the step t in d(y - 1) = d(y) + t is code - 1.
 constexpr uint8_t kFromBelow = 0;  // t = -1
 constexpr uint8_t kFromSame = 1;   // t = 0
 constexpr uint8_t kFromAbove = 2;  // t = +1
-constexpr uint8_t kJump = 3;       // d(x - 1) is the best disparity of column x - 1 (penalty mode)
 
 // Mean and standard deviation over the window around every pixel (borders replicated).
 void WindowStatistics(const cv::Mat& image, int window, cv::Mat* mean, cv::Mat* sigma,
@@ -106,58 +108,214 @@ ATTEND_VECTOR_CLONES void ZnccRow(const float* column_sums, const float* left_me
   }
 }
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ATTEND_DISPARITY_AVX2 1
+// ZnccRow eight disparities at a time, with the same operations in the same order, so the same
+// results; the disparities past the last multiple of eight as ZnccRow computes them.
+__attribute__((target("avx2"))) void ZnccRowAvx2(const float* column_sums, const float* left_mean,
+                                                 const float* left_sigma, const float* right_mean,
+                                                 const float* right_inverse_sigma, int width,
+                                                 int depth, int half, float inverse_count,
+                                                 float* window_sum, float* costs) {
+  const int full = depth / 8 * 8;
+  float* sums = window_sum;
+  std::fill(sums, sums + depth, 0.f);
+  for (int i = -half; i <= half; ++i) {
+    const float* column = column_sums + static_cast<size_t>(std::clamp(i, 0, width - 1)) * depth;
+    for (int d = 0; d < depth; ++d) sums[d] += column[d];
+  }
+  const __m256 count = _mm256_set1_ps(inverse_count);
+  const __m256 low = _mm256_set1_ps(-1.f), high = _mm256_set1_ps(1.f);
+  for (int x = 0; x < width; ++x) {
+    if (x > 0) {
+      const float* in = column_sums + static_cast<size_t>(std::min(x + half, width - 1)) * depth;
+      const float* out = column_sums + static_cast<size_t>(std::max(x - half - 1, 0)) * depth;
+      int d = 0;
+      for (; d < full; d += 8) {
+        const __m256 change = _mm256_sub_ps(_mm256_loadu_ps(in + d), _mm256_loadu_ps(out + d));
+        _mm256_storeu_ps(sums + d, _mm256_add_ps(_mm256_loadu_ps(sums + d), change));
+      }
+      for (; d < depth; ++d) sums[d] += in[d] - out[d];
+    }
+    const float mean = left_mean[x];
+    const float inverse_sigma = left_sigma[x] > kFlatSigma ? 1.f / left_sigma[x] : 0.f;
+    const float* rm = right_mean + (width - 1 - x);
+    const float* ri = right_inverse_sigma + (width - 1 - x);
+    float* c = costs + static_cast<size_t>(x) * depth;
+    const __m256 means = _mm256_set1_ps(mean), inverse_sigmas = _mm256_set1_ps(inverse_sigma);
+    int d = 0;
+    for (; d < full; d += 8) {
+      const __m256 covariance =
+          _mm256_sub_ps(_mm256_mul_ps(_mm256_loadu_ps(sums + d), count),
+                        _mm256_mul_ps(means, _mm256_loadu_ps(rm + d)));
+      const __m256 zncc =
+          _mm256_mul_ps(_mm256_mul_ps(covariance, inverse_sigmas), _mm256_loadu_ps(ri + d));
+      _mm256_storeu_ps(c + d, _mm256_min_ps(_mm256_max_ps(zncc, low), high));
+    }
+    for (; d < depth; ++d) {
+      const float covariance = sums[d] * inverse_count - mean * rm[d];
+      c[d] = std::clamp(covariance * inverse_sigma * ri[d], -1.f, 1.f);
+    }
+    for (d = x + 1; d < depth; ++d) c[d] = -1.f;
+  }
+}
+
+bool HasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+#else
+bool HasAvx2() { return false; }
+#endif
+
+// The kernels in use: the AVX2 ones where the processor has AVX2, unless a test asks for the
+// portable ones.
+bool use_portable_kernels = false;
+bool UseAvx2() { return HasAvx2() && !use_portable_kernels; }
+
+// Stage 1's back-pointers. For every column x and every group of eight disparities
+// (d = 8g .. 8g + 7) two bytes hold one bit a disparity: `a` at [2g] and `b` at [2g + 1]:
+//   a and b: d(x - 1) is the best disparity of column x - 1 (a jump, penalty mode);
+//   a only:  d(x - 1) = d(x);   b only: d(x - 1) = d(x) - 1;   neither: d(x - 1) = d(x) + 1.
+// Comparison masks of eight lanes become these bytes with one instruction each.
+constexpr int kGroup = 8;
+int BackGroups(int depth) { return (depth + kGroup - 1) / kGroup; }
+
+// The step of one voxel, as every kernel computes it: ties keep the disparity, then take the
+// smaller one, then a step, then the jump.
+struct Step {
+  float value;
+  bool a, b;
+};
+inline Step VoxelStep(float below, float same, float above, float jump) {
+  const float side = std::max(below, above);
+  const float step = std::max(same, side);
+  const bool same_wins = same >= side;
+  const bool below_wins = below >= above;
+  const bool jump_wins = jump > step;
+  return {std::max(step, jump), same_wins || jump_wins, (!same_wins && below_wins) || jump_wins};
+}
+
+// The best value of `p[0..depth)` and its first position (penalty mode).
+inline int BestDisparity(const float* p, int depth, float* best_value) {
+  // The maximum in eight lanes (a loop the compiler vectorises, unlike a running maximum),
+  // then its first position.
+  float lanes[kGroup];
+  std::fill(lanes, lanes + kGroup, p[0]);
+  int d = 0;
+  for (; d + kGroup <= depth; d += kGroup) {
+    for (int k = 0; k < kGroup; ++k) lanes[k] = std::max(lanes[k], p[d + k]);
+  }
+  for (; d < depth; ++d) lanes[0] = std::max(lanes[0], p[d]);
+  const float best = *std::max_element(lanes, lanes + kGroup);
+  int from = 0;
+  while (p[from] != best) ++from;
+  *best_value = best;
+  return from;
+}
+
+// Stage 1's step for disparities [first, depth) of one column, one voxel at a time: the
+// portable kernel, and the AVX2 kernel's tail. `masks` is the column's 2 * BackGroups bytes.
+inline void SurfaceColumnScalar(const float* cx, const float* p, float jump, int first, int depth,
+                                float* out, uint8_t* masks) {
+  for (int d = first; d < depth; ++d) {
+    const Step step = VoxelStep(p[d - 1], p[d], p[d + 1], jump);
+    const int group = d / kGroup, bit = d % kGroup;
+    if (bit == 0) masks[2 * group] = masks[2 * group + 1] = 0;
+    masks[2 * group] |= static_cast<uint8_t>(step.a << bit);
+    masks[2 * group + 1] |= static_cast<uint8_t>(step.b << bit);
+    out[d] = cx[d] + step.value;
+  }
+}
+
+#ifdef ATTEND_DISPARITY_AVX2
+// The same step eight disparities at a time: the same comparisons and one addition a voxel, so
+// the same results as SurfaceColumnScalar.
+__attribute__((target("avx2"), always_inline)) inline void SurfaceColumnAvx2(
+    const float* cx, const float* p, float jump, int depth, float* out, uint8_t* masks) {
+  const int full = depth / kGroup * kGroup;
+  const __m256 jumps = _mm256_set1_ps(jump);
+  const bool with_jumps = jump > -std::numeric_limits<float>::infinity();
+  for (int d = 0; d < full; d += kGroup) {
+    const __m256 below = _mm256_loadu_ps(p + d - 1);
+    const __m256 same = _mm256_loadu_ps(p + d);
+    const __m256 above = _mm256_loadu_ps(p + d + 1);
+    const __m256 side = _mm256_max_ps(below, above);
+    __m256 step = _mm256_max_ps(same, side);
+    const __m256 same_wins = _mm256_cmp_ps(same, side, _CMP_GE_OQ);
+    const __m256 below_wins = _mm256_cmp_ps(below, above, _CMP_GE_OQ);
+    __m256 a = same_wins;
+    __m256 b = _mm256_andnot_ps(same_wins, below_wins);
+    if (with_jumps) {
+      const __m256 jump_wins = _mm256_cmp_ps(jumps, step, _CMP_GT_OQ);
+      step = _mm256_blendv_ps(step, jumps, jump_wins);
+      a = _mm256_or_ps(a, jump_wins);
+      b = _mm256_or_ps(b, jump_wins);
+    }
+    _mm256_storeu_ps(out + d, _mm256_add_ps(_mm256_loadu_ps(cx + d), step));
+    masks[2 * (d / kGroup)] = static_cast<uint8_t>(_mm256_movemask_ps(a));
+    masks[2 * (d / kGroup) + 1] = static_cast<uint8_t>(_mm256_movemask_ps(b));
+  }
+  SurfaceColumnScalar(cx, p, jump, full, depth, out, masks);
+}
+
+#endif
+
 // Stage 1 over one row of costs ([x][d]): leaves Y(width - 1, d) in `previous` and writes the
-// 2-bit back-pointers, `packed` bytes a column. `previous` and `current` point one past a -inf
-// pad and have one more -inf pad after depth floats; `codes` holds 4 * packed bytes. With
-// `jump_penalty` >= 0, d may also jump from the best disparity of the previous column at that
-// cost (whose index goes to `jump_from[x]`); otherwise |d(x) - d(x - 1)| <= 1 holds.
-ATTEND_VECTOR_CLONES void MaximumSurfaceRow(const float* costs, int width, int depth, int packed,
-                                            float jump_penalty, float* previous, float* current,
-                                            uint8_t* codes, uint8_t* back, int16_t* jump_from) {
+// back-pointers, 2 * BackGroups(depth) bytes a column. `previous` and `current` point one past
+// a -inf pad and have one more -inf pad after depth floats. With `jump_penalty` >= 0, d may
+// also jump from the best disparity of the previous column at that cost (whose index goes to
+// `jump_from[x]`); otherwise |d(x) - d(x - 1)| <= 1 holds. `Column` is the kernel of one
+// column, compiled into each caller for its instruction set.
+template <typename Column>
+inline __attribute__((always_inline)) void SurfaceRow(const float* costs, int width, int depth,
+                                                      float jump_penalty, float* previous,
+                                                      float* current, uint8_t* back,
+                                                      int16_t* jump_from, Column column) {
   std::copy(costs, costs + depth, previous);
   const bool jumps = jump_penalty >= 0.f;
+  const size_t column_bytes = 2 * static_cast<size_t>(BackGroups(depth));
   for (int x = 1; x < width; ++x) {
-    const float* __restrict cx = costs + static_cast<size_t>(x) * depth;
-    const float* __restrict p = previous;
-    float* __restrict out = current;
-    uint8_t* __restrict code = codes;
     float jump = -std::numeric_limits<float>::infinity();
     if (jumps) {
-      // The column's best value in eight lanes (a loop the compiler vectorises, unlike a
-      // running maximum), then its first position.
-      float lanes[8];
-      std::fill(lanes, lanes + 8, p[0]);
-      int d = 0;
-      for (; d + 8 <= depth; d += 8) {
-        for (int k = 0; k < 8; ++k) lanes[k] = std::max(lanes[k], p[d + k]);
-      }
-      for (; d < depth; ++d) lanes[0] = std::max(lanes[0], p[d]);
-      const float best = *std::max_element(lanes, lanes + 8);
-      int from = 0;
-      while (p[from] != best) ++from;
+      float best = 0.f;
+      jump_from[x] = static_cast<int16_t>(BestDisparity(previous, depth, &best));
       jump = best - jump_penalty;
-      jump_from[x] = static_cast<int16_t>(from);
     }
-    for (int d = 0; d < depth; ++d) {
-      // Ties keep the disparity, then take the smaller one, then a step, then the jump.
-      const float same = p[d], below = p[d - 1], above = p[d + 1];
-      const float side = std::max(below, above);
-      const float step = std::max(same, side);
-      const uint8_t step_code =
-          same >= side ? kFromSame : (below >= above ? kFromBelow : kFromAbove);
-      code[d] = jump > step ? kJump : step_code;
-      out[d] = cx[d] + std::max(step, jump);
-    }
-    uint8_t* __restrict column = back + static_cast<size_t>(x) * packed;
-    for (int k = 0; k < packed; ++k) {
-      const uint8_t* q = codes + 4 * k;
-      column[k] = static_cast<uint8_t>(q[0] | (q[1] << 2) | (q[2] << 4) | (q[3] << 6));
-    }
+    column(costs + static_cast<size_t>(x) * depth, previous, jump, current,
+           back + x * column_bytes);
     std::swap(previous, current);
   }
   // After an odd number of swaps the result is in the caller's `current` array (which
   // `previous` now points to): copy it to the caller's `previous` array.
   if ((width - 1) % 2 == 1) std::copy(previous, previous + depth, current);
+}
+
+#ifdef ATTEND_DISPARITY_AVX2
+__attribute__((target("avx2"))) void MaximumSurfaceRowAvx2(const float* costs, int width,
+                                                          int depth, float jump_penalty,
+                                                          float* previous, float* current,
+                                                          uint8_t* back, int16_t* jump_from) {
+  SurfaceRow(costs, width, depth, jump_penalty, previous, current, back, jump_from,
+             [depth](const float* cx, const float* p, float jump, float* out, uint8_t* masks)
+                 __attribute__((target("avx2"))) {
+                   SurfaceColumnAvx2(cx, p, jump, depth, out, masks);
+                 });
+}
+#endif
+
+void MaximumSurfaceRow(const float* costs, int width, int depth, float jump_penalty,
+                       float* previous, float* current, uint8_t* back, int16_t* jump_from) {
+#ifdef ATTEND_DISPARITY_AVX2
+  if (UseAvx2()) {
+    MaximumSurfaceRowAvx2(costs, width, depth, jump_penalty, previous, current, back, jump_from);
+    return;
+  }
+#endif
+  SurfaceRow(costs, width, depth, jump_penalty, previous, current, back, jump_from,
+             [depth](const float* cx, const float* p, float jump, float* out, uint8_t* masks) {
+               SurfaceColumnScalar(cx, p, jump, 0, depth, out, masks);
+             });
 }
 
 // One left pixel's correlations `c` (for d = 0..count-1) offered to the right pixels x - d,
@@ -187,6 +345,39 @@ ATTEND_VECTOR_CLONES void RightViewRow(const float* costs, int width, int depth,
   }
   for (int xr = 0; xr < width; ++xr) out[xr] = static_cast<float>(best_d[width - 1 - xr]);
 }
+
+#ifdef ATTEND_DISPARITY_AVX2
+// RightViewRow eight disparities at a time (the same comparisons, so the same result).
+__attribute__((target("avx2"))) void RightViewRowAvx2(const float* costs, int width, int depth,
+                                                      float* best, int32_t* best_d, float* out) {
+  std::fill(best, best + width, -std::numeric_limits<float>::infinity());
+  std::fill(best_d, best_d + width, 0);
+  const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  for (int x = 0; x < width; ++x) {
+    const float* c = costs + static_cast<size_t>(x) * depth;
+    float* b = best + (width - 1 - x);
+    int32_t* bd = best_d + (width - 1 - x);
+    const int count = std::min(depth, x + 1);
+    const int full = count / 8 * 8;
+    for (int d = 0; d < full; d += 8) {
+      const __m256 offered = _mm256_loadu_ps(c + d);
+      const __m256 held = _mm256_loadu_ps(b + d);
+      const __m256 better = _mm256_cmp_ps(offered, held, _CMP_GT_OQ);
+      _mm256_storeu_ps(b + d, _mm256_blendv_ps(held, offered, better));
+      const __m256i held_d = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(bd + d));
+      const __m256i offered_d = _mm256_add_epi32(lanes, _mm256_set1_epi32(d));
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(bd + d),
+                          _mm256_blendv_epi8(held_d, offered_d, _mm256_castps_si256(better)));
+    }
+    for (int d = full; d < count; ++d) {
+      const bool better = c[d] > b[d];
+      b[d] = better ? c[d] : b[d];
+      bd[d] = better ? d : bd[d];
+    }
+  }
+  for (int xr = 0; xr < width; ++xr) out[xr] = static_cast<float>(best_d[width - 1 - xr]);
+}
+#endif
 
 // The ZNCC volume, one row at a time. Window sums of L(x) R(x - d) are kept per column for
 // all d and slid down the image (add the entering row, subtract the leaving one), then slid
@@ -226,7 +417,12 @@ class CostRows {
       for (float& sigma : right_inverse_sigma_row_) {
         sigma = sigma > kFlatSigma ? 1.f / sigma : 0.f;
       }
-      ZnccRow(column_sums_.data(), left_mean_.ptr<float>(y), left_sigma_.ptr<float>(y),
+#ifdef ATTEND_DISPARITY_AVX2
+      auto* zncc_row = UseAvx2() ? ZnccRowAvx2 : ZnccRow;
+#else
+      auto* zncc_row = ZnccRow;
+#endif
+      zncc_row(column_sums_.data(), left_mean_.ptr<float>(y), left_sigma_.ptr<float>(y),
               right_mean_row_.data(), right_inverse_sigma_row_.data(), width_, depth_, half_,
               inverse_count_, window_sum_.data(), costs->data());
       consume(y, static_cast<const float*>(costs->data()));
@@ -297,7 +493,7 @@ std::string DisparityOptions::Check() const {
 // The dynamic programming of one view: stage 1's back-pointers and row ends, stage 2's codes
 // and the end disparity of every row.
 struct SurfaceState {
-  std::vector<uint8_t> back;         // [y][x][d / 4], 2 bits a voxel
+  std::vector<uint8_t> back;         // [y][x][2 * BackGroups(depth)], 2 bits a voxel
   std::vector<int16_t> jump_from;    // [y][x]: the best disparity of column x - 1 (penalty mode)
   std::vector<float> row_ends;       // [y][d]: Y(width - 1, y, d)
   std::vector<uint8_t> column_back;  // [y][d]: stage 2's codes
@@ -316,7 +512,6 @@ struct DisparityEstimator::Buffers {
   std::vector<float> right_best;         // one row of the right view: best correlation so far
   std::vector<int32_t> right_best_d;     // and its disparity
   std::vector<int16_t> volume;           // [y][x][d], ZNCC * kCostScale; only for `subpixel`
-  std::vector<uint8_t> codes;            // one column's codes before packing
   std::vector<float> previous, current;  // D + 2 floats, padded with -inf at both ends
   SurfaceState left;                     // the left view's dynamic programming
   cv::Mat right_view;                    // the right image's disparity, for the left-right check
@@ -335,13 +530,15 @@ size_t DisparityEstimator::buffer_bytes() const {
   const Buffers& b = *buffers_;
   size_t bytes = (b.costs.capacity() + b.right_best.capacity()) * sizeof(float) +
                  b.right_best_d.capacity() * sizeof(int32_t) +
-                 b.volume.capacity() * sizeof(int16_t) + b.codes.capacity() +
+                 b.volume.capacity() * sizeof(int16_t) +
                  (b.previous.capacity() + b.current.capacity()) * sizeof(float) + b.left.bytes();
   for (const cv::Mat* m : {&b.left_grey, &b.right_grey, &b.right_view}) {
     bytes += m->total() * m->elemSize();
   }
   return bytes;
 }
+
+void UsePortableDisparityKernels(bool portable) { use_portable_kernels = portable; }
 
 void ZnccSlice(const cv::Mat& left, const cv::Mat& right, int d, int window, cv::Mat* out) {
   CV_Assert(left.type() == CV_8UC1 && right.type() == CV_8UC1 && left.size() == right.size());
@@ -437,14 +634,24 @@ void ChooseRowEnds(int height, int depth, float* previous, float* current, Surfa
 // Backtracks row y of a view from its end: out[x] for x = width-1 down to 0, calling
 // `at(x, d)` for every pixel.
 template <typename Visit>
-void BacktrackRow(const SurfaceState& state, int y, int width, int packed, Visit at) {
+void BacktrackRow(const SurfaceState& state, int y, int width, int depth, Visit at) {
+  const size_t column_bytes = 2 * static_cast<size_t>(BackGroups(depth));
   int d = state.ends[y];
   for (int x = width - 1; x >= 0; --x) {
     at(x, d);
     if (x == 0) break;
-    const uint8_t byte = state.back[(static_cast<size_t>(y) * width + x) * packed + (d >> 2)];
-    const int code = (byte >> ((d & 3) * 2)) & 3;
-    d = code == kJump ? state.jump_from[static_cast<size_t>(y) * width + x] : d + code - 1;
+    const uint8_t* masks =
+        state.back.data() + (static_cast<size_t>(y) * width + x) * column_bytes +
+        2 * (d / kGroup);
+    const int bit = d % kGroup;
+    const bool a = (masks[0] >> bit) & 1, b = (masks[1] >> bit) & 1;
+    if (a && b) {
+      d = state.jump_from[static_cast<size_t>(y) * width + x];
+    } else if (a) {
+      // d(x - 1) = d(x)
+    } else {
+      d += b ? -1 : 1;
+    }
   }
 }
 
@@ -455,17 +662,16 @@ void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right
   Buffers& b = *buffers_;
   const int width = left_grey.cols, height = left_grey.rows;
   const int depth = options_.max_disparity;
-  const int packed = (depth + 3) / 4;
+  const size_t column_bytes = 2 * static_cast<size_t>(BackGroups(depth));
   const bool both = options_.left_right_check;
   const float jump_penalty = options_.smoothness == DisparitySmoothness::kPenalty ? options_.jump_penalty : -1.f;
 
   constexpr float kNone = -std::numeric_limits<float>::infinity();
-  b.codes.resize(static_cast<size_t>(packed) * 4);
   b.previous.assign(depth + 2, kNone);
   b.current.assign(depth + 2, kNone);
   float* previous = b.previous.data() + 1;  // previous[-1] and previous[depth] stay -inf
   float* current = b.current.data() + 1;
-  b.left.back.assign(static_cast<size_t>(width) * height * packed, 0);
+  b.left.back.resize(static_cast<size_t>(width) * height * column_bytes);
   b.left.row_ends.resize(static_cast<size_t>(height) * depth);
   b.left.jump_from.resize(jump_penalty >= 0.f ? static_cast<size_t>(width) * height : 0);
   if (options_.subpixel) b.volume.resize(static_cast<size_t>(width) * height * depth);
@@ -477,8 +683,8 @@ void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right
 
   // Stage 1, row by row as the volume is computed: Y(x, d) = C(x, d) + max_t Y(x - 1, d + t).
   auto stage1 = [&](const float* costs, int y, SurfaceState* state) {
-    MaximumSurfaceRow(costs, width, depth, packed, jump_penalty, previous, current, b.codes.data(),
-                      state->back.data() + static_cast<size_t>(y) * width * packed,
+    MaximumSurfaceRow(costs, width, depth, jump_penalty, previous, current,
+                      state->back.data() + static_cast<size_t>(y) * width * column_bytes,
                       state->jump_from.empty()
                           ? nullptr
                           : state->jump_from.data() + static_cast<size_t>(y) * width);
@@ -494,8 +700,13 @@ void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right
     }
     stage1(c, y, &b.left);
     if (both) {
-      RightViewRow(c, width, depth, b.right_best.data(), b.right_best_d.data(),
-                   b.right_view.ptr<float>(y));
+#ifdef ATTEND_DISPARITY_AVX2
+      auto* right_view_row = UseAvx2() ? RightViewRowAvx2 : RightViewRow;
+#else
+      auto* right_view_row = RightViewRow;
+#endif
+      right_view_row(c, width, depth, b.right_best.data(), b.right_best_d.data(),
+                     b.right_view.ptr<float>(y));
     }
   });
 
@@ -504,7 +715,7 @@ void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right
   disparity->create(height, width, CV_32FC1);
   for (int y = 0; y < height; ++y) {
     float* out = disparity->ptr<float>(y);
-    BacktrackRow(b.left, y, width, packed, [&](int x, int d) {
+    BacktrackRow(b.left, y, width, depth, [&](int x, int d) {
       out[x] = static_cast<float>(d);
       if (options_.subpixel && d > 0 && d < depth - 1) {
         const int16_t* c = b.volume.data() + (static_cast<size_t>(y) * width + x) * depth + d;

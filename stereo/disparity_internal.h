@@ -25,4 +25,9 @@ void CheckLeftRight(const cv::Mat& right_view, int tolerance, cv::Mat* disparity
 // without valid pixels becomes 0.
 void FillInvalidDisparities(cv::Mat* disparity);
 
+// Makes every estimator use its portable kernels (true) or, where the processor has AVX2, the
+// AVX2 ones (false, the default). Both give the same maps, bit for bit; tests compare them.
+// Not thread-safe: for tests only.
+void UsePortableDisparityKernels(bool portable);
+
 }  // namespace attend

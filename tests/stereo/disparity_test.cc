@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
+#include <cstring>
 #include <random>
 
 #include "eval/disparity_scores.h"
@@ -249,6 +250,52 @@ TEST(Disparity, SynthGroundTruthBadPixelRateIsBounded) {
   DisparityEstimator penalty(defaults);
   penalty.Compute(frame.left, frame.right, &disparity);
   EXPECT_LT(EvaluateDisparity(disparity, frame.disparity).bad1, 0.07);
+}
+
+// The AVX2 kernels must give the portable kernels' maps bit for bit, for every mode and for
+// ranges that are and are not multiples of the kernels' eight lanes.
+TEST(Disparity, Avx2KernelsGiveThePortableKernelsMaps) {
+#if defined(__x86_64__) && defined(__GNUC__)
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this processor has no AVX2";
+#else
+  GTEST_SKIP() << "the AVX2 kernels exist only on x86-64";
+#endif
+  const SceneRenderer renderer(LoadScene(testing::ProjectRoot() + "/sequences/lab.yaml"));
+  const RenderedFrame frame = renderer.Render(30);
+  struct Case {
+    int max_disparity;
+    DisparitySmoothness smoothness;
+    bool subpixel, left_right_check;
+  };
+  const Case cases[] = {{32, DisparitySmoothness::kHard, false, true},
+                        {37, DisparitySmoothness::kHard, false, false},
+                        {13, DisparitySmoothness::kPenalty, true, true},
+                        {64, DisparitySmoothness::kPenalty, false, true},
+                        {5, DisparitySmoothness::kHard, true, false}};
+  for (const Case& c : cases) {
+    DisparityOptions options;
+    options.max_disparity = c.max_disparity;
+    options.smoothness = c.smoothness;
+    options.jump_penalty = 0.5f;
+    options.subpixel = c.subpixel;
+    options.left_right_check = c.left_right_check;
+    cv::Mat maps[2];
+    for (int portable = 0; portable < 2; ++portable) {
+      UsePortableDisparityKernels(portable == 1);
+      DisparityEstimator estimator(options);
+      estimator.Compute(frame.left, frame.right, &maps[portable]);
+    }
+    UsePortableDisparityKernels(false);
+    ASSERT_EQ(maps[0].size(), maps[1].size());
+    const size_t bytes = maps[0].total() * maps[0].elemSize();
+    EXPECT_EQ(std::memcmp(maps[0].data, maps[1].data, bytes), 0)
+        << "D " << c.max_disparity << ", " << DisparitySmoothnessName(c.smoothness)
+        << ", subpixel " << c.subpixel << ", left-right check " << c.left_right_check;
+    // A map of a real scene, not a constant one: the comparison means something.
+    double low = 0, high = 0;
+    cv::minMaxLoc(maps[0], &low, &high);
+    EXPECT_GT(high - low, 3.0);
+  }
 }
 
 TEST(Disparity, BadInputIsReported) {
