@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "bench/bench_common.h"
+#include "bench/bench_scenes.h"
 #include "eval/disparity_scores.h"
 #include "stereo/disparity.h"
 #include "stereo/disparity_internal.h"
@@ -118,23 +119,6 @@ void AddMiddlebury(const fs::path& root, const std::string& name, const std::str
   pairs->push_back(pair);
 }
 
-// The lab scene at twice its size: every length in pixels doubles (image, focal length, paths,
-// oscillations), so the picture is the same one at 640x480 with twice the disparities.
-attend::Scene Doubled(attend::Scene scene) {
-  scene.width *= 2;
-  scene.height *= 2;
-  scene.focal_px *= 2.0;
-  for (attend::SceneObject& object : scene.objects) {
-    for (attend::PathKeyframe& key : object.path) {
-      key.x *= 2.0;
-      key.y *= 2.0;
-    }
-    object.oscillation.amplitude_x *= 2.0;
-    object.oscillation.amplitude_y *= 2.0;
-  }
-  return scene;
-}
-
 void AddSynthetic(const attend::Scene& scene, const std::string& name, int frame, int max_disparity,
                   std::vector<Pair>* pairs) {
   const attend::SceneRenderer renderer(scene);
@@ -171,7 +155,7 @@ std::vector<Pair> LoadPairs(const Options& options, cv::Size* large_size) {
     for (const int frame : kOcclusionFrames) {
       AddSynthetic(occlusions, "occlusions", frame, kSynthMaxDisparity, &pairs);
     }
-    const attend::Scene large = Doubled(lab);
+    const attend::Scene large = attend::bench::Doubled(lab);
     *large_size = cv::Size(large.width, large.height);
     AddSynthetic(large, "lab 640x480", kLargeFrame, kLargeMaxDisparity, &pairs);
   } catch (const std::exception& e) {

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "util/error.h"
+#include "util/float_checks.h"
 #include "util/strings.h"
 
 namespace fs = std::filesystem;
@@ -89,7 +90,7 @@ void CheckFeatureOutput(const FeatureRegistry::Entry& entry, const cv::Mat& map,
                       "; a feature map must be CV_32FC1 of the frame's size " +
                       std::to_string(size.width) + "x" + std::to_string(size.height));
   }
-  if (!cv::checkRange(map, true)) {
+  if (!AllFloatsFinite(map)) {
     throw ConfigError(who + " returned a map with NaN or infinite values");
   }
 }

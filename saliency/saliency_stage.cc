@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "util/error.h"
+#include "util/float_checks.h"
 
 namespace attend {
 
@@ -20,7 +21,7 @@ void CheckNormalisedMap(const SaliencyInput& input, const cv::Mat& normalised, c
   if (normalised.type() != CV_32FC1 || normalised.size() != size) {
     throw ConfigError(who + " returned a map that is not CV_32FC1 of the feature map's size");
   }
-  if (!cv::checkRange(normalised, true, nullptr, 0.0, std::nextafter(1.0, 2.0))) {
+  if (!AllFloatsWithin(normalised, 0.f, 1.f)) {
     throw ConfigError(who + " returned values outside [0, 1] or not finite");
   }
 }

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -91,10 +92,12 @@ pid_t StartProcess(const std::vector<std::string>& argv, const std::string& stdo
 
 ProcessExit WaitProcess(pid_t pid) {
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
+  struct rusage usage {};
+  while (wait4(pid, &status, 0, &usage) < 0) {
     if (errno != EINTR) return {127, 0};
   }
   ProcessExit exit;
+  exit.peak_rss_kb = usage.ru_maxrss;
   if (WIFSIGNALED(status)) {
     exit.signal = WTERMSIG(status);
   } else {

@@ -13,6 +13,7 @@ namespace attend {
 struct ProcessExit {
   int code = 0;    // its exit status when it exited
   int signal = 0;  // the signal that ended it, 0 when it exited
+  long peak_rss_kb = 0;  // its peak resident set, KiB (getrusage's ru_maxrss), from WaitProcess
   // The shell's convention: the exit status, or 128 + the signal.
   int Status() const { return signal != 0 ? 128 + signal : code; }
 };
@@ -25,7 +26,7 @@ struct ProcessExit {
 pid_t StartProcess(const std::vector<std::string>& argv, const std::string& stdout_path,
                    const std::string& stderr_path, std::string* error, bool own_group = false);
 
-// Waits for `pid` to end (through interrupted waits).
+// Waits for `pid` to end (through interrupted waits), with its peak resident set.
 ProcessExit WaitProcess(pid_t pid);
 
 // Whether a process of this pid exists (on this machine).
