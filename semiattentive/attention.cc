@@ -555,17 +555,25 @@ void AttentionStage::Impl::RankCandidates(Candidates* c) {
   c->peak_value.assign(count, -1.f);
   c->low.assign(count, {c->labels.cols, c->labels.rows});
   c->high.assign(count, {-1, -1});
+  // A row at a time, a run of one label at a time: the sums, peaks and extents are taken
+  // in the same order as pixel by pixel, so they are the same, at a fraction of the cost.
   for (int y = 0; y < c->labels.rows; ++y) {
     const int* label = c->labels.ptr<int>(y);
     const float* s = inhibited_.ptr<float>(y);
-    for (int x = 0; x < c->labels.cols; ++x) {
+    for (int x = 0; x < c->labels.cols;) {
       const int r = label[x];
+      const int first = x;
+      while (x < c->labels.cols && label[x] == r) ++x;
       if (r < 0) continue;
-      c->sum[r] += s[x];
-      ++c->area[r];
-      if (s[x] > c->peak_value[r]) c->peak_value[r] = s[x], c->peak[r] = {x, y};
-      c->low[r] = {std::min(c->low[r].x, x), std::min(c->low[r].y, y)};
-      c->high[r] = {std::max(c->high[r].x, x), std::max(c->high[r].y, y)};
+      double& sum = c->sum[r];
+      float& peak = c->peak_value[r];
+      for (int i = first; i < x; ++i) {
+        sum += s[i];
+        if (s[i] > peak) peak = s[i], c->peak[r] = {i, y};
+      }
+      c->area[r] += x - first;
+      c->low[r] = {std::min(c->low[r].x, first), std::min(c->low[r].y, y)};
+      c->high[r] = {std::max(c->high[r].x, x - 1), std::max(c->high[r].y, y)};
     }
   }
   c->ranked.clear();
