@@ -20,8 +20,6 @@
 // report gives medians over the rounds of the time a frame and of the ratio to SGBM's median
 // call in the same round, and the largest resident set.
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -29,6 +27,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/core/utility.hpp>
@@ -102,10 +101,12 @@ double SgbmCallMs(const Size& size) {
 bool RunAttend(const std::string& attend, const Size& size, const fs::path& work, Run* run,
                double* frame_ms, std::string* error) {
   const fs::path out = work / "run";
-  std::vector<std::string> argv = {attend,   "run",         "--sequence", size.sequence,
-                                   "--out",  out.string(),  "--overwrite", "--quiet",
-                                   "--set",  "threads=" + std::to_string(run->threads),
-                                   "--set",  "output.dump=[]"};
+  std::vector<std::string> argv = {attend,        "run",
+                                   "--sequence",  size.sequence,
+                                   "--out",       out.string(),
+                                   "--overwrite", "--quiet",
+                                   "--set",       "threads=" + std::to_string(run->threads),
+                                   "--set",       "output.dump=[]"};
   for (const std::string& set : run->sets) {
     argv.push_back("--set");
     argv.push_back(set);
@@ -147,8 +148,10 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if ((arg == "--attend" || arg == "--frames") && i + 1 < argc) {
-      if (arg == "--attend") attend = argv[++i];
-      else frames = std::atoi(argv[++i]);
+      if (arg == "--attend")
+        attend = argv[++i];
+      else
+        frames = std::atoi(argv[++i]);
     } else {
       shared.push_back(argv[i]);
     }
@@ -165,7 +168,8 @@ int main(int argc, char** argv) {
   }
   cv::setNumThreads(1);
 
-  const fs::path work = fs::temp_directory_path() / ("attend-loop-bench-" + std::to_string(getpid()));
+  const fs::path work =
+      fs::temp_directory_path() / ("attend-loop-bench-" + std::to_string(getpid()));
   fs::create_directories(work);
   std::vector<Size> sizes(2);
   try {
@@ -202,9 +206,7 @@ int main(int argc, char** argv) {
   };
   // Runs of a size after that size's SGBM; the 640x480-from-320x240 run is compared with the
   // 640x480 SGBM (the size it computes at).
-  auto sgbm_size = [](const Run& run) {
-    return run.sets.empty() ? run.size : 1;
-  };
+  auto sgbm_size = [](const Run& run) { return run.sets.empty() ? run.size : 1; };
 
   for (int round = 0; round <= options.repeat; ++round) {  // round 0 warms up
     std::vector<int> order = {0, 1};

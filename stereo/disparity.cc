@@ -145,9 +145,8 @@ __attribute__((target("avx2"))) void ZnccRowAvx2(const float* column_sums, const
     const __m256 means = _mm256_set1_ps(mean), inverse_sigmas = _mm256_set1_ps(inverse_sigma);
     int d = 0;
     for (; d < full; d += 8) {
-      const __m256 covariance =
-          _mm256_sub_ps(_mm256_mul_ps(_mm256_loadu_ps(sums + d), count),
-                        _mm256_mul_ps(means, _mm256_loadu_ps(rm + d)));
+      const __m256 covariance = _mm256_sub_ps(_mm256_mul_ps(_mm256_loadu_ps(sums + d), count),
+                                              _mm256_mul_ps(means, _mm256_loadu_ps(rm + d)));
       const __m256 zncc =
           _mm256_mul_ps(_mm256_mul_ps(covariance, inverse_sigmas), _mm256_loadu_ps(ri + d));
       _mm256_storeu_ps(c + d, _mm256_min_ps(_mm256_max_ps(zncc, low), high));
@@ -292,15 +291,14 @@ inline __attribute__((always_inline)) void SurfaceRow(const float* costs, int wi
 }
 
 #ifdef ATTEND_DISPARITY_AVX2
-__attribute__((target("avx2"))) void MaximumSurfaceRowAvx2(const float* costs, int width,
-                                                          int depth, float jump_penalty,
-                                                          float* previous, float* current,
-                                                          uint8_t* back, int16_t* jump_from) {
-  SurfaceRow(costs, width, depth, jump_penalty, previous, current, back, jump_from,
-             [depth](const float* cx, const float* p, float jump, float* out, uint8_t* masks)
-                 __attribute__((target("avx2"))) {
-                   SurfaceColumnAvx2(cx, p, jump, depth, out, masks);
-                 });
+__attribute__((target("avx2"))) void MaximumSurfaceRowAvx2(const float* costs, int width, int depth,
+                                                           float jump_penalty, float* previous,
+                                                           float* current, uint8_t* back,
+                                                           int16_t* jump_from) {
+  SurfaceRow(
+      costs, width, depth, jump_penalty, previous, current, back, jump_from,
+      [depth](const float* cx, const float* p, float jump, float* out, uint8_t* masks)
+          __attribute__((target("avx2"))) { SurfaceColumnAvx2(cx, p, jump, depth, out, masks); });
 }
 #endif
 
@@ -347,6 +345,39 @@ ATTEND_VECTOR_CLONES void RightViewRow(const float* costs, int width, int depth,
 }
 
 #ifdef ATTEND_DISPARITY_AVX2
+// SlideColumnSums eight disparities at a time, the same operations in the same order.
+__attribute__((target("avx2"))) void SlideColumnSumsAvx2(const float* left_in,
+                                                         const float* reversed_in,
+                                                         const float* left_out,
+                                                         const float* reversed_out, int width,
+                                                         int depth, float* column_sums) {
+  const int full = depth / 8 * 8;
+  for (int x = 0; x < width; ++x) {
+    const float a = left_in[x];
+    const __m256 as = _mm256_set1_ps(a);
+    const float* r_in = reversed_in + (width - 1 - x);
+    float* sums = column_sums + static_cast<size_t>(x) * depth;
+    int d = 0;
+    if (left_out == nullptr) {
+      for (; d < full; d += 8) {
+        const __m256 product = _mm256_mul_ps(as, _mm256_loadu_ps(r_in + d));
+        _mm256_storeu_ps(sums + d, _mm256_add_ps(_mm256_loadu_ps(sums + d), product));
+      }
+      for (; d < depth; ++d) sums[d] += a * r_in[d];
+    } else {
+      const float b = left_out[x];
+      const __m256 bs = _mm256_set1_ps(b);
+      const float* r_out = reversed_out + (width - 1 - x);
+      for (; d < full; d += 8) {
+        const __m256 change = _mm256_sub_ps(_mm256_mul_ps(as, _mm256_loadu_ps(r_in + d)),
+                                            _mm256_mul_ps(bs, _mm256_loadu_ps(r_out + d)));
+        _mm256_storeu_ps(sums + d, _mm256_add_ps(_mm256_loadu_ps(sums + d), change));
+      }
+      for (; d < depth; ++d) sums[d] += a * r_in[d] - b * r_out[d];
+    }
+  }
+}
+
 // RightViewRow eight disparities at a time (the same comparisons, so the same result).
 __attribute__((target("avx2"))) void RightViewRowAvx2(const float* costs, int width, int depth,
                                                       float* best, int32_t* best_d, float* out) {
@@ -423,8 +454,8 @@ class CostRows {
       auto* zncc_row = ZnccRow;
 #endif
       zncc_row(column_sums_.data(), left_mean_.ptr<float>(y), left_sigma_.ptr<float>(y),
-              right_mean_row_.data(), right_inverse_sigma_row_.data(), width_, depth_, half_,
-              inverse_count_, window_sum_.data(), costs->data());
+               right_mean_row_.data(), right_inverse_sigma_row_.data(), width_, depth_, half_,
+               inverse_count_, window_sum_.data(), costs->data());
       consume(y, static_cast<const float*>(costs->data()));
     }
   }
@@ -436,9 +467,13 @@ class CostRows {
   }
   // Adds row `in` to the column sums and, when `out` >= 0, removes row `out`.
   void SlideDown(int in, int out) {
-    SlideColumnSums(left_.ptr<float>(in), ReversedRight(in),
-                    out >= 0 ? left_.ptr<float>(out) : nullptr,
-                    out >= 0 ? ReversedRight(out) : nullptr, width_, depth_, column_sums_.data());
+#ifdef ATTEND_DISPARITY_AVX2
+    auto* slide = UseAvx2() ? SlideColumnSumsAvx2 : SlideColumnSums;
+#else
+    auto* slide = SlideColumnSums;
+#endif
+    slide(left_.ptr<float>(in), ReversedRight(in), out >= 0 ? left_.ptr<float>(out) : nullptr,
+          out >= 0 ? ReversedRight(out) : nullptr, width_, depth_, column_sums_.data());
   }
 
   int width_, height_, depth_, half_;
@@ -474,8 +509,7 @@ const OptionFields<DisparityOptions>& DisparityOptions::Fields() {
       {"subpixel", &O::subpixel, "parabola through the correlation peak: fractions of a pixel"},
       {"left_right_check", &O::left_right_check,
        "left-right consistency check, then fill from the farther valid neighbour"},
-      {"lr_tolerance", &O::lr_tolerance, Range::AtLeast(0),
-       "the check's tolerance, px"},
+      {"lr_tolerance", &O::lr_tolerance, Range::AtLeast(0), "the check's tolerance, px"},
       {"smoothness", EnumField<&O::smoothness, kSmoothness>(),
        "hard: the thesis's |d(x) - d(x-1)| <= 1; penalty: jumps at jump_penalty"},
       {"jump_penalty", &O::jump_penalty, Range::AtLeast(0),
@@ -641,8 +675,7 @@ void BacktrackRow(const SurfaceState& state, int y, int width, int depth, Visit 
     at(x, d);
     if (x == 0) break;
     const uint8_t* masks =
-        state.back.data() + (static_cast<size_t>(y) * width + x) * column_bytes +
-        2 * (d / kGroup);
+        state.back.data() + (static_cast<size_t>(y) * width + x) * column_bytes + 2 * (d / kGroup);
     const int bit = d % kGroup;
     const bool a = (masks[0] >> bit) & 1, b = (masks[1] >> bit) & 1;
     if (a && b) {
@@ -664,7 +697,8 @@ void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right
   const int depth = options_.max_disparity;
   const size_t column_bytes = 2 * static_cast<size_t>(BackGroups(depth));
   const bool both = options_.left_right_check;
-  const float jump_penalty = options_.smoothness == DisparitySmoothness::kPenalty ? options_.jump_penalty : -1.f;
+  const float jump_penalty =
+      options_.smoothness == DisparitySmoothness::kPenalty ? options_.jump_penalty : -1.f;
 
   constexpr float kNone = -std::numeric_limits<float>::infinity();
   b.previous.assign(depth + 2, kNone);
