@@ -513,7 +513,9 @@ const OptionFields<DisparityOptions>& DisparityOptions::Fields() {
       {"smoothness", EnumField<&O::smoothness, kSmoothness>(),
        "hard: the thesis's |d(x) - d(x-1)| <= 1; penalty: jumps at jump_penalty"},
       {"jump_penalty", &O::jump_penalty, Range::AtLeast(0),
-       "penalty: the cost of a jump, ZNCC units"}};
+       "penalty: the cost of a jump, ZNCC units"},
+      {"max_width", &O::max_width, Range::Closed(0, 1 << 16),
+       "wider pairs are halved until they fit, D with them; 0: full size"}};
   return fields;
 }
 
@@ -549,6 +551,8 @@ struct DisparityEstimator::Buffers {
   std::vector<float> previous, current;  // D + 2 floats, padded with -inf at both ends
   SurfaceState left;                     // the left view's dynamic programming
   cv::Mat right_view;                    // the right image's disparity, for the left-right check
+  cv::Mat left_small, right_small;       // the pair shrunk to max_width, when wider
+  cv::Mat small_map;                     // and its disparity map
 };
 
 DisparityEstimator::DisparityEstimator(DisparityOptions options)
@@ -566,7 +570,8 @@ size_t DisparityEstimator::buffer_bytes() const {
                  b.right_best_d.capacity() * sizeof(int32_t) +
                  b.volume.capacity() * sizeof(int16_t) +
                  (b.previous.capacity() + b.current.capacity()) * sizeof(float) + b.left.bytes();
-  for (const cv::Mat* m : {&b.left_grey, &b.right_grey, &b.right_view}) {
+  for (const cv::Mat* m :
+       {&b.left_grey, &b.right_grey, &b.right_view, &b.left_small, &b.right_small, &b.small_map}) {
     bytes += m->total() * m->elemSize();
   }
   return bytes;
@@ -629,10 +634,34 @@ void DisparityEstimator::Compute(const cv::Mat& left, const cv::Mat& right, cv::
   };
   grey(left, &b.left_grey);
   grey(right, &b.right_grey);
-  Estimate(b.left_grey, b.right_grey, disparity);
+  // Wider than max_width: the pair halved (by area) until it fits, the range with it, and the
+  // map scaled back (nearest neighbour, each disparity times the factor).
+  int factor = 1;
+  while (options_.max_width > 0 && left.cols / factor > options_.max_width &&
+         left.cols / (2 * factor) >= 2) {
+    factor *= 2;
+  }
+  const cv::Mat* left_grey = &b.left_grey;
+  const cv::Mat* right_grey = &b.right_grey;
+  int depth = options_.max_disparity;
+  cv::Mat* map = disparity;
+  if (factor > 1) {
+    const cv::Size small(left.cols / factor, left.rows / factor);
+    cv::resize(b.left_grey, b.left_small, small, 0, 0, cv::INTER_AREA);
+    cv::resize(b.right_grey, b.right_small, small, 0, 0, cv::INTER_AREA);
+    left_grey = &b.left_small;
+    right_grey = &b.right_small;
+    depth = std::min((depth + factor - 1) / factor, small.width - 1);
+    map = &b.small_map;
+  }
+  Estimate(*left_grey, *right_grey, depth, map);
   if (options_.left_right_check) {
-    CheckLeftRight(b.right_view, options_.lr_tolerance, disparity);
-    FillInvalidDisparities(disparity);
+    CheckLeftRight(b.right_view, options_.lr_tolerance, map);
+    FillInvalidDisparities(map);
+  }
+  if (factor > 1) {
+    cv::resize(*map, *disparity, left.size(), 0, 0, cv::INTER_NEAREST);
+    *disparity *= static_cast<double>(factor);
   }
   milliseconds_ = stopwatch.ElapsedMs();
 }
@@ -690,11 +719,11 @@ void BacktrackRow(const SurfaceState& state, int y, int width, int depth, Visit 
 
 }  // namespace
 
-void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right_grey,
+void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right_grey, int depth,
                                   cv::Mat* disparity) {
   Buffers& b = *buffers_;
   const int width = left_grey.cols, height = left_grey.rows;
-  const int depth = options_.max_disparity;
+  
   const size_t column_bytes = 2 * static_cast<size_t>(BackGroups(depth));
   const bool both = options_.left_right_check;
   const float jump_penalty =

@@ -55,6 +55,13 @@ struct DisparityOptions {
   // are in [-1, 1] per pixel) and so keeps depth edges sharp (a departure, docs/DISPARITY.md).
   DisparitySmoothness smoothness = DisparitySmoothness::kHard;
   float jump_penalty = 1.0f;
+  // The widest image the estimator works on: a wider pair is halved (area averaging) until it
+  // is at most this wide, D with it (rounded up), and the map is scaled back to the pair's size
+  // (nearest neighbour, disparities times the factor), so its values step by the factor. The
+  // time then stays near that of a pair of this width: 640x480 with D = 64 and max_width 320
+  // costs about an eighth. 0: always full size (the thesis's computation). The attention
+  // loop's configuration sets 320 (configs/default.yaml; docs/DISPARITY.md measures the loss).
+  int max_width = 0;
 
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
@@ -87,7 +94,7 @@ class DisparityEstimator {
 
  private:
   struct Buffers;
-  void Estimate(const cv::Mat& left, const cv::Mat& right, cv::Mat* disparity);
+  void Estimate(const cv::Mat& left, const cv::Mat& right, int depth, cv::Mat* disparity);
 
   DisparityOptions options_;
   // Owned through unique_ptr so that it is freed when the constructor throws on bad options.

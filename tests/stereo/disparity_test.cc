@@ -298,6 +298,41 @@ TEST(Disparity, Avx2KernelsGiveThePortableKernelsMaps) {
   }
 }
 
+// A pair wider than max_width is computed halved: the map has the pair's size, its values are
+// even (the half-size disparities doubled) and follow the truth within the factor.
+TEST(Disparity, WidePairsAreComputedAtMaxWidth) {
+  const cv::Mat truth = SquareOnPlane(cv::Size(256, 96), cv::Rect(96, 24, 64, 48));
+  truth *= 2.0;  // 4 on the plane, 14 on the square: even, so exact at half size
+  const Stereogram s = MakeStereogram(truth, 11);
+  DisparityOptions options;
+  options.max_disparity = 24;
+  options.left_right_check = false;
+  cv::Mat full, halved;
+  DisparityEstimator(options).Compute(s.left, s.right, &full);
+  options.max_width = 128;
+  DisparityEstimator estimator(options);
+  estimator.Compute(s.left, s.right, &halved);
+  ASSERT_EQ(halved.size(), s.left.size());
+  int odd = 0, off = 0, inside = 0;
+  for (int y = 8; y < truth.rows - 8; ++y) {
+    for (int x = 24; x < truth.cols - 8; ++x) {
+      const float d = halved.at<float>(y, x);
+      odd += static_cast<int>(d) % 2 != 0;
+      off += std::abs(d - truth.at<float>(y, x)) > 2.f;
+      ++inside;
+    }
+  }
+  EXPECT_EQ(odd, 0);
+  EXPECT_LT(off, inside / 10) << "of " << inside;
+  // Its buffers are those of the half-size pair, not of the full one.
+  EXPECT_GT(halved.at<float>(48, 128), 10.f);
+  // Not wider than max_width: the full-size computation, bit for bit.
+  options.max_width = 256;
+  cv::Mat same;
+  DisparityEstimator(options).Compute(s.left, s.right, &same);
+  EXPECT_EQ(cv::norm(same, full, cv::NORM_INF), 0.0);
+}
+
 TEST(Disparity, BadInputIsReported) {
   DisparityEstimator estimator;
   cv::Mat out;
