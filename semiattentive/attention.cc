@@ -549,6 +549,7 @@ void AttentionStage::Impl::RankCandidates(Candidates* c) {
   cv::merge(std::vector<cv::Mat>{scaled, zero, zero}, features);
   const Bip& bip = saliency_builder_.Build(features, HsvSimilarity(options_.select.saliency_t_max));
   const int count = bip.LabelRoots(&c->labels);
+  saliency_builder_.Release();  // its levels serve the other pyramids of the frame
   c->sum.assign(count, 0.0);
   c->area.assign(count, 0);
   c->peak.assign(count, cv::Point());
