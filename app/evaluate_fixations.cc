@@ -18,6 +18,7 @@
 #include "io/pfm.h"
 #include "util/error.h"
 #include "util/json_text.h"
+#include "util/opencv_extra.h"
 
 namespace attend {
 
@@ -173,7 +174,8 @@ std::vector<std::vector<Fixation>> NormalisedFixations(const std::vector<Fixatio
   for (size_t i = 0; i < items.size(); ++i) {
     const cv::Size size = [&] {
       // The header alone would do; the decoder reads the whole image, once more later.
-      const cv::Mat bgr = cv::imread(items[i].stimulus_path, cv::IMREAD_REDUCED_GRAYSCALE_8);
+      const cv::Mat bgr = cvextra::Get("eval-fixations")
+                              .Read(items[i].stimulus_path, cv::IMREAD_REDUCED_GRAYSCALE_8);
       return bgr.empty() ? cv::Size() : cv::Size(bgr.cols * 8, bgr.rows * 8);
     }();
     if (size.area() == 0) continue;

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 void WritePreview(const std::string& path, const cv::Mat& map) {
   cv::Mat preview;
   map.convertTo(preview, CV_8U, 255.0);
-  if (!cv::imwrite(path, preview)) throw InputError(path + ": cannot be written");
+  if (!WriteImage(path, preview)) throw InputError(path + ": cannot be written");
 }
 
 void WriteMaps(const fs::path& folder, const std::string& stem, const cv::Mat& map) {

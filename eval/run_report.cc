@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "io/image_file.h"
 #include "io/pfm.h"
 #include "util/json_text.h"
 #include "util/strings.h"
@@ -32,13 +33,13 @@ std::string Thumbnail(cv::Mat image, int width) {
   const double scale = static_cast<double>(width) / image.cols;
   if (scale < 1.0) cv::resize(image, image, cv::Size(), scale, scale, cv::INTER_AREA);
   std::vector<unsigned char> png;
-  if (!cv::imencode(".png", image, png)) return "";
+  if (!EncodeImage(".png", image, &png)) return "";
   return "data:image/png;base64," + Base64(png);
 }
 
 cv::Mat OverlayImage(const std::string& run, int frame) {
   const std::string path = DumpPath(run, "overlay", frame, "png");
-  return fs::exists(path) ? cv::imread(path, cv::IMREAD_COLOR) : cv::Mat();
+  return fs::exists(path) ? ReadImageFileOrEmpty(path, cv::IMREAD_COLOR) : cv::Mat();
 }
 
 // The saliency map in false colour, from the PFM dump or else the PNG preview.
@@ -51,7 +52,7 @@ cv::Mat SaliencyImage(const std::string& run, int frame) {
     if (map.channels() != 1) return {};
     map.convertTo(grey, CV_8U, 255.0);
   } else if (fs::exists(png)) {
-    grey = cv::imread(png, cv::IMREAD_GRAYSCALE);
+    grey = ReadImageFileOrEmpty(png, cv::IMREAD_GRAYSCALE);
   }
   if (grey.empty()) return {};
   cv::Mat colour;

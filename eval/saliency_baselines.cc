@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/saliency.hpp>
 #include <stdexcept>
 
 #include "eval/fixation_metrics.h"
+#include "util/opencv_extra.h"
 
 namespace attend {
 
@@ -24,9 +24,10 @@ cv::Mat MinMax(const cv::Mat& map) {
   return out;
 }
 
-cv::Mat OpenCvStatic(cv::Ptr<cv::saliency::StaticSaliency> detector, const cv::Mat& bgr) {
+cv::Mat OpenCvStatic(cvextra::StaticSaliencyType type, const cv::Mat& bgr) {
   cv::Mat map;
-  if (!detector->computeSaliency(bgr, map) || map.empty()) {
+  if (!cvextra::Get("OpenCV's static saliency baselines").ComputeStaticSaliency(type, bgr, &map) ||
+      map.empty()) {
     return cv::Mat::zeros(bgr.size(), CV_32FC1);
   }
   if (map.size() != bgr.size()) cv::resize(map, map, bgr.size(), 0, 0, cv::INTER_LINEAR);
@@ -48,9 +49,9 @@ cv::Mat BaselineMap(const std::string& name, const cv::Mat& bgr, double blur) {
     return map;
   }
   if (name == "spectral_residual") {
-    map = OpenCvStatic(cv::saliency::StaticSaliencySpectralResidual::create(), bgr);
+    map = OpenCvStatic(cvextra::StaticSaliencyType::kSpectralResidual, bgr);
   } else if (name == "fine_grained") {
-    map = OpenCvStatic(cv::saliency::StaticSaliencyFineGrained::create(), bgr);
+    map = OpenCvStatic(cvextra::StaticSaliencyType::kFineGrained, bgr);
   } else {
     throw std::invalid_argument("unknown saliency baseline '" + name + "'");
   }

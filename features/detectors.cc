@@ -6,11 +6,11 @@
 #include <fstream>
 #include <limits>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/objdetect.hpp>
 
 #include "config/read_fields.h"
 #include "util/box.h"
 #include "util/enum_table.h"
+#include "util/opencv_extra.h"
 
 namespace attend {
 
@@ -34,34 +34,32 @@ cv::Rect ObjectInWindow(const cv::Rect& window, double width, double height) {
 
 // The pyramid levels (OpenCV's nlevels) whose window holds objects of at most
 // `max_object_height` px: level k holds objects of object_height x scale^k.
+// cv::HOGDescriptor::DEFAULT_NLEVELS.
+constexpr int kHogDefaultLevels = 64;
+
 int LevelsUpTo(double max_object_height, double object_height, double scale) {
-  if (max_object_height <= 0.0) return cv::HOGDescriptor::DEFAULT_NLEVELS;
+  if (max_object_height <= 0.0) return kHogDefaultLevels;
   if (max_object_height < object_height) return 0;
   const double levels = std::floor(std::log(max_object_height / object_height) / std::log(scale));
-  return std::min<int>(cv::HOGDescriptor::DEFAULT_NLEVELS, static_cast<int>(levels) + 1);
+  return std::min<int>(kHogDefaultLevels, static_cast<int>(levels) + 1);
 }
 
 class HogPeopleSearch {
  public:
-  explicit HogPeopleSearch(const HogPeopleOptions& options) : options_(options) {
-    if (options_.model == "daimler") {
-      hog_ =
-          cv::HOGDescriptor(cv::Size(48, 96), cv::Size(16, 16), cv::Size(8, 8), cv::Size(8, 8), 9);
-      hog_.setSVMDetector(cv::HOGDescriptor::getDaimlerPeopleDetector());
-    } else {
-      hog_.setSVMDetector(cv::HOGDescriptor::getDefaultPeopleDetector());
-    }
-  }
+  explicit HogPeopleSearch(const HogPeopleOptions& options)
+      : options_(options),
+        hog_(cvextra::Get("the people channel (OpenCV's HOG)")
+                 .CreateHog(options_.model == "daimler")),
+        window_(hog_->WindowSize()) {}
 
   void Run(const cv::Mat& image, double max_object_height, std::vector<Detection>* found) {
     found->clear();
-    if (image.cols < hog_.winSize.width || image.rows < hog_.winSize.height) return;
-    hog_.nlevels =
-        LevelsUpTo(max_object_height, hog_.winSize.height * options_.box_height, options_.scale);
-    if (hog_.nlevels == 0) return;
-    hog_.detectMultiScale(image, windows_, weights_, options_.hit_threshold,
-                          cv::Size(options_.stride, options_.stride), cv::Size(), options_.scale,
-                          options_.min_neighbours, false);
+    if (image.cols < window_.width || image.rows < window_.height) return;
+    const int levels =
+        LevelsUpTo(max_object_height, window_.height * options_.box_height, options_.scale);
+    if (levels == 0) return;
+    hog_->Detect(image, levels, options_.hit_threshold, cv::Size(options_.stride, options_.stride),
+                 options_.scale, options_.min_neighbours, &windows_, &weights_);
     for (size_t i = 0; i < windows_.size(); ++i) {
       found->push_back({ObjectInWindow(windows_[i], options_.box_width, options_.box_height),
                         "person", ScoreToConfidence(weights_[i])});
@@ -70,19 +68,20 @@ class HogPeopleSearch {
 
  private:
   HogPeopleOptions options_;
-  cv::HOGDescriptor hog_;
+  std::unique_ptr<cvextra::HogDetector> hog_;
+  cv::Size window_;
   std::vector<cv::Rect> windows_;
   std::vector<double> weights_;
 };
 
 class CascadeSearch {
  public:
-  CascadeSearch(cv::CascadeClassifier cascade, const FaceCascadeOptions& options)
+  CascadeSearch(std::unique_ptr<cvextra::Cascade> cascade, const FaceCascadeOptions& options)
       : cascade_(std::move(cascade)), options_(options) {}
 
   void Run(const cv::Mat& image, double max_object_height, std::vector<Detection>* found) {
     found->clear();
-    const cv::Size window = cascade_.getOriginalWindowSize();
+    const cv::Size window = cascade_->OriginalWindowSize();
     if (image.cols < window.width || image.rows < window.height) return;
     if (image.channels() == 3) {
       cv::cvtColor(image, grey_, cv::COLOR_BGR2GRAY);
@@ -96,15 +95,15 @@ class CascadeSearch {
       const double grow = max_object_height / window.height;
       max_size = cv::Size(cvFloor(window.width * grow), cvFloor(max_object_height));
     }
-    cascade_.detectMultiScale(grey_, boxes_, levels_, weights_, options_.scale,
-                              options_.min_neighbours, 0, window, max_size, true);
+    cascade_->Detect(grey_, options_.scale, options_.min_neighbours, window, max_size, &boxes_,
+                     &levels_, &weights_);
     for (size_t i = 0; i < boxes_.size(); ++i) {
       found->push_back({boxes_[i], "face", ScoreToConfidence(weights_[i])});
     }
   }
 
  private:
-  cv::CascadeClassifier cascade_;
+  std::unique_ptr<cvextra::Cascade> cascade_;
   FaceCascadeOptions options_;
   cv::Mat grey_;
   std::vector<cv::Rect> boxes_;
@@ -420,18 +419,17 @@ ObjectSearch MakeFaceCascadeSearch(const FaceCascadeOptions& options, const Para
   if (!std::ifstream(options.model).good()) {
     params.Fail(key, options.model + ": cannot be read; " + kOpencvDataHint);
   }
-  cv::CascadeClassifier cascade;
-  bool loaded = false;
+  std::unique_ptr<cvextra::Cascade> cascade;
   try {
-    loaded = cascade.load(options.model);
+    cascade = cvextra::Get("the faces channel (OpenCV's cascades)").LoadCascade(options.model);
   } catch (const cv::Exception& e) {
     params.Fail(
         key, options.model + ": not a cascade classifier file (" + e.err + "); " + kOpencvDataHint);
   }
-  if (!loaded || cascade.empty()) {
+  if (cascade == nullptr || cascade->Empty()) {
     params.Fail(key, options.model + ": not a cascade classifier file; " + kOpencvDataHint);
   }
-  const cv::Size window = cascade.getOriginalWindowSize();
+  const cv::Size window = cascade->OriginalWindowSize();
   *geometry = {window, static_cast<double>(window.height)};
   auto search = std::make_shared<CascadeSearch>(std::move(cascade), options);
   return [search](const cv::Mat& image, double max_object_height, std::vector<Detection>* found) {

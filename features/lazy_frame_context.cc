@@ -91,6 +91,9 @@ const Segmentation& LazyFrameContext::Regions() const {
   std::lock_guard<std::mutex> lock(regions_slot_.mutex);
   if (!regions_slot_.ready) {
     segmenter_.SegmentCylinder(cylinder, &regions_);
+    // The pyramid's levels go back to the shared pool for the tracker's and the saliency's
+    // pyramids; the segmentation is all the frame needs of it.
+    segmenter_.ReleasePyramid();
     regions_slot_.ready = true;
   }
   return regions_;

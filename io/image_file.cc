@@ -5,9 +5,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgcodecs.hpp>  // the IMREAD_ and IMWRITE_ constants only
 
+#include "io/image_codecs.h"
 #include "util/error.h"
+#include "util/opencv_extra.h"
+#include "util/strings.h"
 
 namespace attend {
 
@@ -51,18 +54,21 @@ std::string IncompleteImage(const std::vector<uchar>& bytes) {
   return "";
 }
 
-cv::Mat ReadImageFile(const std::string& path, int flags, const std::string& where) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(where + ": cannot be read (missing or not readable)");
-  std::vector<uchar> bytes((std::istreambuf_iterator<char>(file)),
-                           std::istreambuf_iterator<char>());
-  if (file.bad()) throw InputError(where + ": cannot be read");
-  if (bytes.empty()) throw InputError(where + ": the file is empty");
-  const std::string incomplete = IncompleteImage(bytes);
-  if (!incomplete.empty()) throw InputError(where + ": " + incomplete);
+cv::Mat DecodeImage(const std::vector<uchar>& bytes, int flags, const std::string& where) {
+  // PNG and JPEG in colour, the frames of every sequence, without OpenCV's imgcodecs; what
+  // these decoders do not read (another format or flag, a damaged file) is OpenCV's to answer.
+  if (flags == cv::IMREAD_COLOR) {
+    cv::Mat image;
+    if (IsPng(bytes)) {
+      image = DecodePngColour(bytes);
+    } else if (IsJpeg(bytes)) {
+      image = DecodeJpegColour(bytes);
+    }
+    if (!image.empty()) return image;
+  }
   cv::Mat image;
   try {
-    image = cv::imdecode(bytes, flags);
+    image = cvextra::Get(where + ": decoding this image").Decode(bytes, flags);
   } catch (const cv::Exception& e) {
     // OpenCV refuses images beyond its pixel limit, among others, by throwing.
     throw InputError(where + ": cannot be decoded: " + e.err);
@@ -73,6 +79,18 @@ cv::Mat ReadImageFile(const std::string& path, int flags, const std::string& whe
   return image;
 }
 
+cv::Mat ReadImageFile(const std::string& path, int flags, const std::string& where) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(where + ": cannot be read (missing or not readable)");
+  std::vector<uchar> bytes((std::istreambuf_iterator<char>(file)),
+                           std::istreambuf_iterator<char>());
+  if (file.bad()) throw InputError(where + ": cannot be read");
+  if (bytes.empty()) throw InputError(where + ": the file is empty");
+  const std::string incomplete = IncompleteImage(bytes);
+  if (!incomplete.empty()) throw InputError(where + ": " + incomplete);
+  return DecodeImage(bytes, flags, where);
+}
+
 cv::Mat ReadNamedImageFile(const std::string& path, int flags, const std::string& what) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
@@ -81,17 +99,65 @@ cv::Mat ReadNamedImageFile(const std::string& path, int flags, const std::string
   return ReadImageFile(path, flags, path);
 }
 
+cv::Mat ReadImageFileOrEmpty(const std::string& path, int flags) {
+  try {
+    return ReadImageFile(path, flags, path);
+  } catch (const InputError&) {
+    return cv::Mat();
+  }
+}
+
+namespace {
+
+// The zlib level of a PNG written with `params`: OpenCV's default (1) or its
+// IMWRITE_PNG_COMPRESSION; -1 when other parameters ask for what only OpenCV does.
+int PngLevel(const std::vector<int>& params) {
+  if (params.empty()) return 1;
+  if (params.size() == 2 && params[0] == cv::IMWRITE_PNG_COMPRESSION && params[1] >= 0 &&
+      params[1] <= 9) {
+    return params[1];
+  }
+  return -1;
+}
+
+bool IsPngPath(const std::string& path) {
+  return Lowercase(std::filesystem::path(path).extension().string()) == ".png";
+}
+
+}  // namespace
+
+bool EncodeImage(const std::string& extension, const cv::Mat& image, std::vector<uchar>* bytes,
+                 const std::vector<int>& params) {
+  const int level = PngLevel(params);
+  if (Lowercase(extension) == ".png" && level >= 0 && EncodePng(image, level, bytes)) return true;
+  try {
+    return cvextra::Get("writing a " + extension + " image").Encode(extension, image, params, bytes);
+  } catch (const cv::Exception&) {
+    return false;
+  }
+}
+
+bool WriteImage(const std::string& path, const cv::Mat& image, const std::vector<int>& params) {
+  const int level = PngLevel(params);
+  std::vector<uchar> bytes;
+  if (IsPngPath(path) && level >= 0 && EncodePng(image, level, &bytes)) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    out.close();
+    return static_cast<bool>(out);
+  }
+  try {
+    return cvextra::Get("writing " + path).Write(path, image, params);
+  } catch (const cv::Exception&) {
+    return false;
+  }
+}
+
 void WriteImageFile(const std::string& path, const cv::Mat& image) {
   std::error_code error;
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent, error);
-  bool written = false;
-  try {
-    written = !error && cv::imwrite(path, image);
-  } catch (const cv::Exception&) {
-    written = false;
-  }
-  if (!written) throw OutputError(path + ": cannot write the image");
+  if (error || !WriteImage(path, image)) throw OutputError(path + ": cannot write the image");
 }
 
 }  // namespace attend

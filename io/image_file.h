@@ -16,8 +16,14 @@ namespace attend {
 // PNG: a whole IEND chunk must be there (bytes after it are ignored, as decoders do).
 std::string IncompleteImage(const std::vector<uchar>& bytes);
 
-// Reads and decodes an image file with cv::imdecode `flags`. Throws InputError starting with
-// `where` (a frame and path, or the path) when the file is missing, unreadable, incomplete
+// Decodes the whole content of an image file as cv::imdecode with `flags` does. PNG and JPEG
+// in colour (IMREAD_COLOR) are decoded by io/image_codecs.h, everything else by OpenCV's
+// imgcodecs in the optional module (util/opencv_extra.h). Throws InputError starting with
+// `where` when the bytes cannot be decoded.
+cv::Mat DecodeImage(const std::vector<uchar>& bytes, int flags, const std::string& where);
+
+// Reads and decodes an image file (DecodeImage). Throws InputError starting with `where` (a
+// frame and path, or the path) when the file is missing, unreadable, incomplete
 // (IncompleteImage) or not decodable.
 cv::Mat ReadImageFile(const std::string& path, int flags, const std::string& where);
 
@@ -25,8 +31,21 @@ cv::Mat ReadImageFile(const std::string& path, int flags, const std::string& whe
 // not a regular file, otherwise as ReadImageFile with the path as `where`.
 cv::Mat ReadNamedImageFile(const std::string& path, int flags, const std::string& what = "image");
 
-// Writes `image` with cv::imwrite (the format by the extension), creating the folders above it.
-// OutputError "PATH: cannot write the image" when that fails.
+// ReadImageFile, or an empty image when the file is missing or cannot be decoded (as cv::imread).
+cv::Mat ReadImageFileOrEmpty(const std::string& path, int flags);
+
+// Encodes `image` in the format of `extension` (".png", ".jpg"...) with cv::imwrite's
+// `params`, as cv::imencode; PNG without other parameters than IMWRITE_PNG_COMPRESSION is
+// written by io/image_codecs.h. False when it cannot be encoded.
+bool EncodeImage(const std::string& extension, const cv::Mat& image, std::vector<uchar>* bytes,
+                 const std::vector<int>& params = {});
+
+// Writes `image` to `path` (the format by its extension) as cv::imwrite; false when that
+// fails. PNG as in EncodeImage.
+bool WriteImage(const std::string& path, const cv::Mat& image, const std::vector<int>& params = {});
+
+// Writes `image` (WriteImage), creating the folders above it. OutputError "PATH: cannot write
+// the image" when that fails.
 void WriteImageFile(const std::string& path, const cv::Mat& image);
 
 }  // namespace attend

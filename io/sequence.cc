@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
+#include <opencv2/videoio.hpp>  // the CAP_ constants only
 #include <optional>
 #include <utility>
 #include <vector>
@@ -15,6 +15,7 @@
 #include "config/param_block.h"
 #include "io/image_file.h"
 #include "util/error.h"
+#include "util/opencv_extra.h"
 #include "util/strings.h"
 
 namespace attend {
@@ -203,11 +204,10 @@ class VideoReader final : public NativeReader {
       layout_ = Layout::kPair;
       paths_ = {options.left_video, options.right_video};
     }
-    captures_.resize(paths_.size());
     std::vector<int> counts;
     for (size_t i = 0; i < paths_.size(); ++i) {
-      OpenCapture(paths_[i], &captures_[i]);
-      const double count = captures_[i].get(cv::CAP_PROP_FRAME_COUNT);
+      captures_.push_back(OpenCapture(paths_[i]));
+      const double count = captures_[i]->Get(cv::CAP_PROP_FRAME_COUNT);
       counts.push_back(count > 0 && std::isfinite(count) ? static_cast<int>(count) : -1);
     }
     count_ = counts[0];
@@ -220,7 +220,7 @@ class VideoReader final : public NativeReader {
     }
     info->stereo = layout_ != Layout::kMono;
     info->name = fs::path(paths_[0]).stem().string();
-    const double fps = captures_[0].get(cv::CAP_PROP_FPS);
+    const double fps = captures_[0]->Get(cv::CAP_PROP_FPS);
     if (fps > 0 && std::isfinite(fps)) info->fps = fps;
   }
 
@@ -264,22 +264,25 @@ class VideoReader final : public NativeReader {
   }
 
  private:
-  static void OpenCapture(const std::string& path, cv::VideoCapture* capture) {
+  static std::unique_ptr<cvextra::Capture> OpenCapture(const std::string& path) {
     // A missing file is reported before OpenCV tries every backend on it. Paths with '%' are
     // image-sequence patterns ("frames/%06d.png") that only the video backend can resolve.
     std::error_code error;
     if (path.find('%') == std::string::npos && !fs::exists(path, error)) {
       throw InputError("video " + path + ": no such file");
     }
-    bool opened = false;
+    // OpenCV's videoio is in the optional module (util/opencv_extra.h).
+    cvextra::Module& opencv = cvextra::Get("video " + path);
+    std::unique_ptr<cvextra::Capture> capture;
     try {
-      opened = capture->open(path);
+      capture = opencv.OpenCapture(path, cv::CAP_ANY);
     } catch (const cv::Exception& e) {
       throw InputError("video " + path + ": cannot be opened: " + e.what());
     }
-    if (!opened) {
+    if (capture == nullptr || !capture->IsOpened()) {
       throw InputError("video " + path + ": cannot be opened (not a video OpenCV can decode)");
     }
+    return capture;
   }
 
   std::string FramePath(size_t view, int index) const {
@@ -294,10 +297,10 @@ class VideoReader final : public NativeReader {
       if (decode) {
         // A fresh matrix per frame: frames handed out earlier must never share its buffer.
         cv::Mat image;
-        ok[i] = captures_[i].read(image) && !image.empty();
+        ok[i] = captures_[i]->Read(&image) && !image.empty();
         images->push_back(image);
       } else {
-        ok[i] = captures_[i].grab();
+        ok[i] = captures_[i]->Grab();
       }
     }
     const int index = position_;
@@ -313,7 +316,7 @@ class VideoReader final : public NativeReader {
 
   Layout layout_ = Layout::kMono;
   std::vector<std::string> paths_;
-  std::vector<cv::VideoCapture> captures_;
+  std::vector<std::unique_ptr<cvextra::Capture>> captures_;
   int count_ = -1;
   int position_ = 0;  // index of the frame the next read or grab returns
 };

@@ -3,12 +3,12 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "io/ground_truth.h"
+#include "io/image_file.h"
 #include "io/pfm.h"
 #include "util/error.h"
+#include "util/opencv_extra.h"
 #include "util/output_folder.h"
 #include "util/json_text.h"
 
@@ -122,7 +122,7 @@ void RunFolder::WriteImage(const std::string& kind, int frame, const cv::Mat& im
   fs::create_directories(folder, error);
   const std::string path = (folder / (FrameStem(frame) + ".png")).string();
   if (error) throw OutputError(folder.string() + ": cannot create the folder: " + error.message());
-  WritePending(path, [&](const std::string& file) { return cv::imwrite(file, image); });
+  WritePending(path, [&](const std::string& file) { return attend::WriteImage(file, image); });
 }
 
 void RunFolder::WriteMap(const std::string& kind, int frame, const cv::Mat& map,
@@ -141,21 +141,21 @@ void RunFolder::WriteMap(const std::string& kind, int frame, const cv::Mat& map,
     cv::Mat image;
     preview.convertTo(image, CV_8U, 255.0);
     WritePending((folder / (FrameStem(frame) + ".png")).string(),
-                 [&](const std::string& file) { return cv::imwrite(file, image); });
+                 [&](const std::string& file) { return attend::WriteImage(file, image); });
   }
 }
 
 void RunFolder::AppendVideoFrame(const std::string& name, const cv::Mat& image, double fps) {
   if (!video_) {
     video_path_ = (fs::path(dir_) / (name + ".avi")).string();
-    video_ = std::make_unique<cv::VideoWriter>(
-        video_path_, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), fps, image.size());
-    if (!video_->isOpened()) {
+    video_ = cvextra::Get("output.video").OpenWriter(
+        video_path_, cvextra::FourCc('M', 'J', 'P', 'G'), fps, image.size());
+    if (!video_->IsOpened()) {
       throw OutputError(video_path_ + ": this OpenCV build cannot write Motion-JPEG video " +
                         "(set output.video: false)");
     }
   }
-  video_->write(image);
+  video_->Write(image);
 }
 
 void RunFolder::WriteSummary(const nlohmann::ordered_json& summary) {

@@ -14,9 +14,9 @@
 
 #include "io/frame_record.h"
 
-namespace cv {
-class VideoWriter;
-}
+namespace attend::cvextra {
+class Writer;
+}  // namespace attend::cvextra
 
 namespace attend {
 
@@ -57,7 +57,7 @@ class RunFolder {
   std::string dir_;
   std::ofstream frames_;
   uintmax_t frames_bytes_ = 0;  // the size of frames.jsonl up to its last whole record
-  std::unique_ptr<cv::VideoWriter> video_;
+  std::unique_ptr<cvextra::Writer> video_;
   std::string video_path_;
   // Files written under a temporary name, with the names they take at the next AppendFrame.
   std::vector<std::pair<std::string, std::string>> pending_;

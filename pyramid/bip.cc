@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 #include "util/error.h"
 #include "util/vector_clones.h"
@@ -99,7 +100,167 @@ ATTEND_VECTOR_CLONES void DivideByArea(const int32_t* __restrict area, int count
   }
 }
 
+// Resizes to n, allocating exactly n when the capacity is short: a vector grown by resize()
+// alone doubles, and these are the largest buffers of a frame.
+template <typename T>
+void Fit(std::vector<T>* v, size_t n) {
+  if (v->capacity() < n) v->reserve(n);
+  v->resize(n);
+}
+
+template <typename T>
+size_t CapacityBytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
 }  // namespace
+
+struct BipScratch {
+  // CSR adjacency of the current level's explicit edges, over all ids.
+  std::vector<int32_t> adjacency_offsets_;
+  std::vector<int32_t> adjacency_;
+  // Squared distances between each cell of the current level and its east, south, south-east
+  // and south-west neighbours: computed once, read by decimation and by the orphans.
+  std::vector<float> distance_[4];
+  std::vector<float> planes_[3];  // the current level's features, one plane per component
+  // The sons of each virtual vertex of the level being built (CSR), and a stamp per vertex.
+  std::vector<int32_t> son_offsets_;
+  std::vector<int32_t> sons_;
+  std::vector<int32_t> virtual_sons_;  // ungrouped
+  std::vector<int32_t> stamp_;
+  // Row and column of each cell of the level being built (variant edges).
+  std::vector<int32_t> cell_row_;
+  std::vector<int32_t> cell_col_;
+  // Columns of the orphans of one row, for stage 2.
+  std::vector<int32_t> row_orphans_;
+  // Vertices of the current level linked to a parent by stages 2 and 3.
+  std::vector<int32_t> linked_;
+  // Bip::LabelRoots.
+  std::vector<int32_t> label_[2];
+  std::vector<Bip::VertexRef> roots_;
+
+  size_t Bytes() const {
+    size_t bytes = CapacityBytes(adjacency_offsets_) + CapacityBytes(adjacency_) +
+                   CapacityBytes(son_offsets_) + CapacityBytes(sons_) +
+                   CapacityBytes(virtual_sons_) + CapacityBytes(stamp_) +
+                   CapacityBytes(cell_row_) + CapacityBytes(cell_col_) +
+                   CapacityBytes(row_orphans_) + CapacityBytes(linked_) +
+                   CapacityBytes(label_[0]) + CapacityBytes(label_[1]) + CapacityBytes(roots_);
+    for (const auto& plane : distance_) bytes += CapacityBytes(plane);
+    for (const auto& plane : planes_) bytes += CapacityBytes(plane);
+    return bytes;
+  }
+};
+
+namespace {
+
+// The pixels a level set has room for: the capacity of its base's Hom.
+size_t LevelCells(const std::vector<BipLevel>& levels) {
+  return levels.empty() ? 0 : levels[0].hom.capacity();
+}
+
+size_t LevelBytes(const std::vector<BipLevel>& levels) {
+  size_t bytes = 0;
+  for (const BipLevel& level : levels) {
+    bytes += CapacityBytes(level.hom) + CapacityBytes(level.feature) +
+             CapacityBytes(level.area) + CapacityBytes(level.parent) +
+             CapacityBytes(level.edges);
+  }
+  return bytes;
+}
+
+}  // namespace
+
+BipPool::BipPool() = default;
+BipPool::~BipPool() = default;
+
+BipPool& BipPool::Shared() {
+  // Never destroyed: builders in objects with static storage may give buffers back at exit.
+  static BipPool* const pool = new BipPool();
+  return *pool;
+}
+
+std::unique_ptr<BipScratch> BipPool::TakeScratch() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (!idle_scratch_.empty()) {
+      std::unique_ptr<BipScratch> scratch = std::move(idle_scratch_.back());
+      idle_scratch_.pop_back();
+      return scratch;
+    }
+  }
+  return std::make_unique<BipScratch>();
+}
+
+void BipPool::GiveScratch(std::unique_ptr<BipScratch> scratch) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  idle_scratch_.push_back(std::move(scratch));
+}
+
+std::unique_ptr<BipPool::Levels> BipPool::TakeLevels(size_t cells) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    // The smallest set with room, unless it is far larger than needed (a crop of a tracker
+    // would otherwise hold a whole frame's set); else the largest one without room, which
+    // grows; else a new one.
+    int fit = -1, grow = -1;
+    for (int i = 0; i < static_cast<int>(idle_levels_.size()); ++i) {
+      const size_t room = LevelCells(*idle_levels_[i]);
+      if (room >= cells) {
+        if (room <= 4 * cells + 4096 &&
+            (fit < 0 || room < LevelCells(*idle_levels_[fit]))) {
+          fit = i;
+        }
+      } else if (grow < 0 || room > LevelCells(*idle_levels_[grow])) {
+        grow = i;
+      }
+    }
+    const int chosen = fit >= 0 ? fit : grow;
+    if (chosen >= 0) {
+      std::unique_ptr<Levels> levels = std::move(idle_levels_[chosen]);
+      idle_levels_.erase(idle_levels_.begin() + chosen);
+      return levels;
+    }
+  }
+  return std::make_unique<Levels>();
+}
+
+void BipPool::GiveLevels(std::unique_ptr<Levels> levels) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (static_cast<int>(idle_levels_.size()) < kMaxIdleLevelSets) {
+    idle_levels_.push_back(std::move(levels));
+    return;
+  }
+  // Keep the larger sets: they are the costly ones to make again.
+  auto smallest = std::min_element(
+      idle_levels_.begin(), idle_levels_.end(),
+      [](const auto& a, const auto& b) { return LevelCells(*a) < LevelCells(*b); });
+  if (LevelCells(**smallest) < LevelCells(*levels)) *smallest = std::move(levels);
+}
+
+size_t BipPool::IdleBytes() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  size_t bytes = 0;
+  for (const auto& scratch : idle_scratch_) bytes += scratch->Bytes();
+  for (const auto& levels : idle_levels_) bytes += LevelBytes(*levels);
+  return bytes;
+}
+
+int BipPool::IdleScratches() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<int>(idle_scratch_.size());
+}
+
+int BipPool::IdleLevelSets() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<int>(idle_levels_.size());
+}
+
+void BipPool::Clear() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  idle_scratch_.clear();
+  idle_levels_.clear();
+}
 
 const OptionFields<BipOptions>& BipOptions::Fields() {
   using O = BipOptions;
@@ -115,9 +276,27 @@ std::string BipOptions::Check() const { return CheckFieldRanges(*this, Fields())
 
 int BipLevel::CountRegular() const { return num_regular; }
 
-BipBuilder::BipBuilder(BipOptions options) : options_(options) {
+BipBuilder::BipBuilder(BipOptions options, BipPool* pool) : options_(options), pool_(pool) {
   const std::string problem = options_.Check();
   ATTEND_CHECK(problem.empty()) << problem;
+  ATTEND_CHECK(pool_ != nullptr) << "a BipBuilder needs a pool";
+  bip_.pool_ = pool_;
+}
+
+BipBuilder::~BipBuilder() { Release(); }
+
+void BipBuilder::Release() {
+  if (levels_ != nullptr) pool_->GiveLevels(std::move(levels_));
+  bip_.levels_ = nullptr;
+  bip_.num_levels_ = 0;
+}
+
+int BipBuilder::AdjacencyBegin(int id) const {
+  return scratch_->adjacency_.empty() ? 0 : scratch_->adjacency_offsets_[id];
+}
+
+int BipBuilder::AdjacencyEnd(int id) const {
+  return scratch_->adjacency_.empty() ? 0 : scratch_->adjacency_offsets_[id + 1];
 }
 
 const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& policy,
@@ -127,18 +306,31 @@ const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& po
   ATTEND_CHECK(mask.empty() || (mask.type() == CV_8UC1 && mask.size() == features.size()))
       << "the BIP mask must be CV_8UC1 of the features' size";
   const int width = features.cols, height = features.rows;
-  if (levels_.empty()) levels_.resize(1);
+  const size_t cells = static_cast<size_t>(width) * height;
+  if (levels_ == nullptr) levels_ = pool_->TakeLevels(cells);
+  if (levels_->empty()) levels_->resize(1);
+  // The scratch goes back to the pool however the build ends.
+  struct ScratchLease {
+    BipPool* pool;
+    BipScratch** held;
+    std::unique_ptr<BipScratch> scratch;
+    ~ScratchLease() {
+      *held = nullptr;
+      pool->GiveScratch(std::move(scratch));
+    }
+  } lease{pool_, &scratch_, pool_->TakeScratch()};
+  scratch_ = lease.scratch.get();
 
-  BipLevel& base = levels_[0];
+  BipLevel& base = (*levels_)[0];
   base.cols = width;
   base.rows = height;
   base.num_virtual = 0;
   base.num_regular = 0;
-  const size_t cells = static_cast<size_t>(width) * height;
-  base.hom.resize(cells);
-  base.area.resize(cells);
-  base.parent.assign(cells, -1);
-  base.feature.resize(3 * cells);
+  Fit(&base.hom, cells);
+  Fit(&base.area, cells);
+  Fit(&base.parent, cells);
+  std::fill(base.parent.begin(), base.parent.end(), -1);
+  Fit(&base.feature, 3 * cells);
   base.edges.clear();
   for (int row = 0; row < height; ++row) {
     const float* in = features.ptr<float>(row);
@@ -160,7 +352,7 @@ const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& po
     }
   }
 
-  bip_.levels_ = &levels_;
+  bip_.levels_ = levels_.get();
   bip_.width_ = width;
   bip_.height_ = height;
   const int side = schedule_side > 0 ? schedule_side : std::min(width, height);
@@ -171,7 +363,7 @@ const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& po
     const float threshold = policy.Threshold(l, bip_.top_regular_level_);
     bip_.thresholds_.push_back(threshold);
     BuildLevel(l, threshold);
-    const BipLevel& up = levels_[l + 1];
+    const BipLevel& up = (*levels_)[l + 1];
     if (up.num_virtual == 0 && up.num_regular == 0) break;  // the stop rule
     bip_.num_levels_ = l + 2;
   }
@@ -179,28 +371,38 @@ const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& po
 }
 
 void BipBuilder::BuildLevel(int l, float threshold) {
-  if (static_cast<int>(levels_.size()) < l + 2) levels_.resize(l + 2);
-  BipLevel& up = levels_[l + 1];
-  const BipLevel& cur = levels_[l];
+  if (static_cast<int>(levels_->size()) < l + 2) levels_->resize(l + 2);
+  BipLevel& up = (*levels_)[l + 1];
+  const BipLevel& cur = (*levels_)[l];
   up.cols = cur.cols / 2;
   up.rows = cur.rows / 2;
   up.num_virtual = 0;
   up.num_regular = 0;
   const size_t cells = static_cast<size_t>(up.cols) * up.rows;
   // Regular decimation writes every cell's Hom, area and feature.
-  up.hom.resize(cells);
-  up.area.resize(cells);
-  up.parent.assign(cells, -1);
-  up.feature.resize(3 * cells);
+  Fit(&up.hom, cells);
+  Fit(&up.area, cells);
+  Fit(&up.parent, cells);
+  std::fill(up.parent.begin(), up.parent.end(), -1);
+  Fit(&up.feature, 3 * cells);
   up.edges.clear();
 
   const float t2 = threshold * threshold;
-  linked_.clear();
+  scratch_->linked_.clear();
   NeighbourDistances(l);
   RegularDecimation(l, t2);  // stage 1
   BuildAdjacency(l);
   RegularOrphans(l, t2);  // stage 2
   VirtualOrphans(l, t2);  // stage 3
+  // The virtual vertices made by stages 2 and 3, each with a zero feature sum and area and
+  // no parent yet; added at once, so that the level's arrays are allocated to their size.
+  const size_t ids = static_cast<size_t>(up.num_ids());
+  Fit(&up.feature, 3 * ids);
+  Fit(&up.area, ids);
+  Fit(&up.parent, ids);
+  std::fill(up.feature.begin() + 3 * cells, up.feature.end(), 0.f);
+  std::fill(up.area.begin() + cells, up.area.end(), 0);
+  std::fill(up.parent.begin() + cells, up.parent.end(), -1);
   UpdateParents(l);
   IntraLevelEdges(l);  // stage 4
 }
@@ -208,32 +410,32 @@ void BipBuilder::BuildLevel(int l, float threshold) {
 enum Direction { kEast = 0, kSouth = 1, kSouthEast = 2, kSouthWest = 3 };
 
 void BipBuilder::NeighbourDistances(int l) {
-  const BipLevel& cur = levels_[l];
+  const BipLevel& cur = (*levels_)[l];
   const int cols = cur.cols, rows = cur.rows;
   const size_t cells = static_cast<size_t>(cols) * rows;
   // Grow only: resizing back up after a smaller level would zero-fill every frame.
-  for (auto& plane : distance_) {
-    if (plane.size() < cells) plane.resize(cells);
+  for (auto& plane : scratch_->distance_) {
+    if (plane.size() < cells) Fit(&plane, cells);
   }
   if (cells == 0) return;  // a 1-wide level halves to 0 columns
   // One plane per feature component, so that the loops below vectorise.
-  for (auto& plane : planes_) {
-    if (plane.size() < cells) plane.resize(cells);
+  for (auto& plane : scratch_->planes_) {
+    if (plane.size() < cells) Fit(&plane, cells);
   }
-  const float* p0 = planes_[0].data();
-  const float* p1 = planes_[1].data();
-  const float* p2 = planes_[2].data();
-  SplitPlanes(cur.feature.data(), cells, planes_[0].data(), planes_[1].data(), planes_[2].data());
+  const float* p0 = scratch_->planes_[0].data();
+  const float* p1 = scratch_->planes_[1].data();
+  const float* p2 = scratch_->planes_[2].data();
+  SplitPlanes(cur.feature.data(), cells, scratch_->planes_[0].data(), scratch_->planes_[1].data(), scratch_->planes_[2].data());
   // With holes, a pair with a hole gets kHoleBits, so that stage 2 need not look at Hom.
   const bool holes = cur.num_regular < static_cast<int>(cells);
   auto distances = [&](float* d, size_t begin, size_t end, size_t offset) {
     PlaneDistances(p0, p1, p2, begin, end, offset, d);
     if (holes) MarkHoles(cur.hom.data(), begin, end, offset, d);
   };
-  float* east = distance_[kEast].data();
-  float* south = distance_[kSouth].data();
-  float* south_east = distance_[kSouthEast].data();
-  float* south_west = distance_[kSouthWest].data();
+  float* east = scratch_->distance_[kEast].data();
+  float* south = scratch_->distance_[kSouth].data();
+  float* south_east = scratch_->distance_[kSouthEast].data();
+  float* south_west = scratch_->distance_[kSouthWest].data();
   // Whole-plane passes; the entries that wrap around a row end are overwritten below.
   distances(east, 0, cells - 1, 1);
   east[cells - 1] = kFar;
@@ -259,17 +461,17 @@ void BipBuilder::NeighbourDistances(int l) {
 // every window's sons get their parent or -1 (which they hold already), without a branch:
 // which windows pass is unpredictable in textured areas.
 void BipBuilder::RegularDecimation(int l, float t2) {
-  const BipLevel& cur = levels_[l];
-  BipLevel& up = levels_[l + 1];
-  const float* east = distance_[kEast].data();
-  const float* south = distance_[kSouth].data();
-  const float* south_east = distance_[kSouthEast].data();
-  const float* south_west = distance_[kSouthWest].data();
+  const BipLevel& cur = (*levels_)[l];
+  BipLevel& up = (*levels_)[l + 1];
+  const float* east = scratch_->distance_[kEast].data();
+  const float* south = scratch_->distance_[kSouth].data();
+  const float* south_east = scratch_->distance_[kSouthEast].data();
+  const float* south_west = scratch_->distance_[kSouthWest].data();
   // Plain pointers and a local count: the Hom bytes written below may alias anything, which
   // would make the compiler reload every vector's data and the count after each window.
   const float* son_feature = cur.feature.data();
   const int32_t* son_area = cur.area.data();
-  int32_t* son_parent = levels_[l].parent.data();
+  int32_t* son_parent = (*levels_)[l].parent.data();
   uint8_t* hom = up.hom.data();
   int32_t* area = up.area.data();
   float* feature = up.feature.data();
@@ -305,36 +507,32 @@ void BipBuilder::RegularDecimation(int l, float t2) {
 }
 
 void BipBuilder::BuildAdjacency(int l) {
-  const BipLevel& cur = levels_[l];
+  const BipLevel& cur = (*levels_)[l];
   if (cur.edges.empty()) {  // level 0, and levels without virtual vertices
-    adjacency_offsets_.clear();
-    adjacency_.clear();
+    scratch_->adjacency_offsets_.clear();
+    scratch_->adjacency_.clear();
     return;
   }
   const int ids = cur.num_ids();
-  adjacency_offsets_.assign(ids + 1, 0);
+  scratch_->adjacency_offsets_.assign(ids + 1, 0);
   for (uint64_t key : cur.edges) {
-    ++adjacency_offsets_[(key >> 32) + 1];
-    ++adjacency_offsets_[(key & 0xffffffffu) + 1];
+    ++scratch_->adjacency_offsets_[(key >> 32) + 1];
+    ++scratch_->adjacency_offsets_[(key & 0xffffffffu) + 1];
   }
-  for (int i = 0; i < ids; ++i) adjacency_offsets_[i + 1] += adjacency_offsets_[i];
-  adjacency_.resize(2 * cur.edges.size());
-  stamp_.assign(adjacency_offsets_.begin(), adjacency_offsets_.end() - 1);  // fill cursor
+  for (int i = 0; i < ids; ++i) scratch_->adjacency_offsets_[i + 1] += scratch_->adjacency_offsets_[i];
+  scratch_->adjacency_.resize(2 * cur.edges.size());
+  scratch_->stamp_.assign(scratch_->adjacency_offsets_.begin(), scratch_->adjacency_offsets_.end() - 1);  // fill cursor
   for (uint64_t key : cur.edges) {
     const auto a = static_cast<int32_t>(key >> 32), b = static_cast<int32_t>(key & 0xffffffffu);
-    adjacency_[stamp_[a]++] = b;
-    adjacency_[stamp_[b]++] = a;
+    scratch_->adjacency_[scratch_->stamp_[a]++] = b;
+    scratch_->adjacency_[scratch_->stamp_[b]++] = a;
   }
 }
 
 int BipBuilder::NewVirtual(BipLevel* up) {
+  // Its feature, area and parent are added once the stages that make them are done.
   const int id = up->num_cells() + up->num_virtual;
   ++up->num_virtual;
-  up->feature.push_back(0.f);
-  up->feature.push_back(0.f);
-  up->feature.push_back(0.f);
-  up->area.push_back(0);
-  up->parent.push_back(-1);
   return id;
 }
 
@@ -343,16 +541,16 @@ int BipBuilder::NewVirtual(BipLevel* up) {
 // neighbour (conditions 2 and 3), each only below the threshold.
 void BipBuilder::Link(int l, int id, int parented, float parented_d2, int orphan, float orphan_d2,
                       float t2) {
-  BipLevel& cur = levels_[l];
+  BipLevel& cur = (*levels_)[l];
   if (parented_d2 < t2) {
     cur.parent[id] = cur.parent[parented];
-    linked_.push_back(id);
+    scratch_->linked_.push_back(id);
   } else if (orphan_d2 < t2) {
-    const int fresh = NewVirtual(&levels_[l + 1]);
+    const int fresh = NewVirtual(&(*levels_)[l + 1]);
     cur.parent[id] = fresh;
     cur.parent[orphan] = fresh;
-    linked_.push_back(id);
-    linked_.push_back(orphan);
+    scratch_->linked_.push_back(id);
+    scratch_->linked_.push_back(orphan);
   }
 }
 
@@ -361,12 +559,12 @@ void BipBuilder::Link(int l, int id, int parented, float parented_d2, int orphan
 // Longer than most on purpose: the raster scan applies the thesis's conditions 1 and 2 to
 // each orphan in turn, each reading what the earlier ones of the scan linked.
 void BipBuilder::RegularOrphans(int l, float t2) {
-  BipLevel& cur = levels_[l];
+  BipLevel& cur = (*levels_)[l];
   const bool across = options_.link_across_kinds;
-  const float* east = distance_[kEast].data();
-  const float* south = distance_[kSouth].data();
-  const float* south_east = distance_[kSouthEast].data();
-  const float* south_west = distance_[kSouthWest].data();
+  const float* east = scratch_->distance_[kEast].data();
+  const float* south = scratch_->distance_[kSouth].data();
+  const float* south_east = scratch_->distance_[kSouthEast].data();
+  const float* south_west = scratch_->distance_[kSouthWest].data();
   const int cols = cur.cols;
   const int grid[8] = {-cols - 1, -cols, -cols + 1, -1, 1, cols - 1, cols, cols + 1};
   // The most similar neighbour among those of one kind, from its key.
@@ -378,18 +576,18 @@ void BipBuilder::RegularOrphans(int l, float t2) {
     best.distance2 = found ? std::bit_cast<float>(static_cast<uint32_t>(key >> 3)) : kFar;
     return best;
   };
-  row_orphans_.resize(cols);
+  scratch_->row_orphans_.resize(cols);
   for (int row = 0; row < cur.rows; ++row) {
     // The row's orphans, gathered without a branch per cell: whether a cell is an orphan
     // alternates unpredictably in textured areas.
     const int first = row * cols;
     int count = 0;
     for (int col = 0; col < cols; ++col) {
-      row_orphans_[count] = col;
+      scratch_->row_orphans_[count] = col;
       count += (cur.hom[first + col] != 0) & (cur.parent[first + col] < 0);
     }
     for (int k = 0; k < count; ++k) {
-      const int col = row_orphans_[k];
+      const int col = scratch_->row_orphans_[k];
       const int id = first + col;
       if (cur.parent[id] >= 0) continue;  // twinned earlier in this row
       Best parented, orphan;
@@ -436,7 +634,7 @@ void BipBuilder::RegularOrphans(int l, float t2) {
       if (across) {
         const float* colour = cur.Feature(id);
         for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) {
-          const int n = adjacency_[e];
+          const int n = scratch_->adjacency_[e];
           const float d2 = Distance2(colour, cur.Feature(n));
           if (cur.parent[n] >= 0) {
             parented.Offer(n, d2);
@@ -452,14 +650,14 @@ void BipBuilder::RegularOrphans(int l, float t2) {
 
 // Stage 3, in order of creation: virtual parent search, else virtual linking (condition 3).
 void BipBuilder::VirtualOrphans(int l, float t2) {
-  BipLevel& cur = levels_[l];
+  BipLevel& cur = (*levels_)[l];
   const bool across = options_.link_across_kinds;
   for (int id = cur.num_cells(); id < cur.num_ids(); ++id) {
     if (cur.parent[id] >= 0) continue;
     const float* colour = cur.Feature(id);
     Best parented, orphan;
     for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) {
-      const int n = adjacency_[e];
+      const int n = scratch_->adjacency_[e];
       const bool is_virtual = cur.IsVirtual(n);
       if (!is_virtual && !across) continue;
       const float d2 = Distance2(colour, cur.Feature(n));
@@ -476,9 +674,9 @@ void BipBuilder::VirtualOrphans(int l, float t2) {
 // Area-weighted means of the sons: the parents' features and areas. Decimation already
 // summed the regular parents' four sons; the sons linked in stages 2 and 3 are added here.
 void BipBuilder::UpdateParents(int l) {
-  const BipLevel& cur = levels_[l];
-  BipLevel& up = levels_[l + 1];
-  for (int id : linked_) {
+  const BipLevel& cur = (*levels_)[l];
+  BipLevel& up = (*levels_)[l + 1];
+  for (int id : scratch_->linked_) {
     const int p = cur.parent[id];
     const float weight = static_cast<float>(cur.area[id]);
     const float* son = cur.Feature(id);
@@ -495,21 +693,21 @@ void BipBuilder::UpdateParents(int l) {
 // cells are not adjacent in the array. Parent search grows a regular parent's window past its
 // 2x2 block, so this happens; the thesis leaves such pairs implicit, that is unconnected.
 void BipBuilder::DistantRegularEdges(int l) {
-  const BipLevel& cur = levels_[l];
-  BipLevel& up = levels_[l + 1];
+  const BipLevel& cur = (*levels_)[l];
+  BipLevel& up = (*levels_)[l + 1];
   const int first_virtual = up.num_cells();
   // Row and column of every cell of l + 1, so that the test below needs no division.
-  cell_row_.resize(first_virtual);
-  cell_col_.resize(first_virtual);
+  scratch_->cell_row_.resize(first_virtual);
+  scratch_->cell_col_.resize(first_virtual);
   for (int row = 0, id = 0; row < up.rows; ++row) {
     for (int col = 0; col < up.cols; ++col, ++id) {
-      cell_row_[id] = row;
-      cell_col_[id] = col;
+      scratch_->cell_row_[id] = row;
+      scratch_->cell_col_[id] = col;
     }
   }
   auto add = [&](int p, int q) {
     if (p < 0 || q < 0 || p == q || p >= first_virtual || q >= first_virtual) return;
-    if (std::abs(cell_row_[p] - cell_row_[q]) <= 1 && std::abs(cell_col_[p] - cell_col_[q]) <= 1) {
+    if (std::abs(scratch_->cell_row_[p] - scratch_->cell_row_[q]) <= 1 && std::abs(scratch_->cell_col_[p] - scratch_->cell_col_[q]) <= 1) {
       return;  // implicit in the array
     }
     up.edges.push_back(EdgeKey(p, q));
@@ -518,34 +716,34 @@ void BipBuilder::DistantRegularEdges(int l) {
   // neighbours; decimation sons of two parents are only ever array neighbours. The sons are
   // grouped by parent (counting sort) and a stamp per neighbour parent skips repeats, so each
   // pair is pushed at most once from each side.
-  son_offsets_.assign(first_virtual + 1, 0);
-  for (int id : linked_) {
-    if (cur.parent[id] < first_virtual) ++son_offsets_[cur.parent[id] + 1];
+  scratch_->son_offsets_.assign(first_virtual + 1, 0);
+  for (int id : scratch_->linked_) {
+    if (cur.parent[id] < first_virtual) ++scratch_->son_offsets_[cur.parent[id] + 1];
   }
-  for (int p = 0; p < first_virtual; ++p) son_offsets_[p + 1] += son_offsets_[p];
-  sons_.resize(son_offsets_[first_virtual]);
-  stamp_.assign(son_offsets_.begin(), son_offsets_.end() - 1);  // fill cursor
-  for (int id : linked_) {
-    if (cur.parent[id] < first_virtual) sons_[stamp_[cur.parent[id]]++] = id;
+  for (int p = 0; p < first_virtual; ++p) scratch_->son_offsets_[p + 1] += scratch_->son_offsets_[p];
+  scratch_->sons_.resize(scratch_->son_offsets_[first_virtual]);
+  scratch_->stamp_.assign(scratch_->son_offsets_.begin(), scratch_->son_offsets_.end() - 1);  // fill cursor
+  for (int id : scratch_->linked_) {
+    if (cur.parent[id] < first_virtual) scratch_->sons_[scratch_->stamp_[cur.parent[id]]++] = id;
   }
-  stamp_.assign(first_virtual, -1);
+  scratch_->stamp_.assign(first_virtual, -1);
   const int cols = cur.cols, rows = cur.rows;
   const int grid[8] = {-cols - 1, -cols, -cols + 1, -1, 1, cols - 1, cols, cols + 1};
   for (int p = 0; p < first_virtual; ++p) {
-    if (son_offsets_[p] == son_offsets_[p + 1]) continue;
-    const int p_row = cell_row_[p], p_col = cell_col_[p];
+    if (scratch_->son_offsets_[p] == scratch_->son_offsets_[p + 1]) continue;
+    const int p_row = scratch_->cell_row_[p], p_col = scratch_->cell_col_[p];
     // Cheapest and most selective tests first: most neighbours have no parent, a virtual one,
     // p or an array neighbour of p, none of which makes an edge here.
     auto visit = [&](int neighbour) {
       const int q = cur.parent[neighbour];
       if (static_cast<unsigned>(q) >= static_cast<unsigned>(first_virtual)) return;
-      if (std::abs(cell_row_[q] - p_row) <= 1 && std::abs(cell_col_[q] - p_col) <= 1) return;
-      if (stamp_[q] == p) return;
-      stamp_[q] = p;
+      if (std::abs(scratch_->cell_row_[q] - p_row) <= 1 && std::abs(scratch_->cell_col_[q] - p_col) <= 1) return;
+      if (scratch_->stamp_[q] == p) return;
+      scratch_->stamp_[q] = p;
       up.edges.push_back(EdgeKey(p, q));
     };
-    for (int k = son_offsets_[p]; k < son_offsets_[p + 1]; ++k) {
-      const int id = sons_[k];
+    for (int k = scratch_->son_offsets_[p]; k < scratch_->son_offsets_[p + 1]; ++k) {
+      const int id = scratch_->sons_[k];
       if (!cur.IsVirtual(id)) {
         const int row = id / cols, col = id - row * cols;
         if (row > 0 && col > 0 && row + 1 < rows && col + 1 < cols) {
@@ -557,7 +755,7 @@ void BipBuilder::DistantRegularEdges(int l) {
           }
         }
       }
-      for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) visit(adjacency_[e]);
+      for (int e = AdjacencyBegin(id); e < AdjacencyEnd(id); ++e) visit(scratch_->adjacency_[e]);
     }
   }
   // Explicit edges of level l between any two sons.
@@ -572,8 +770,8 @@ void BipBuilder::DistantRegularEdges(int l) {
 // sorting is needed: a virtual-virtual pair is emitted by its smaller id, a virtual-regular
 // pair by the virtual end.
 void BipBuilder::IntraLevelEdges(int l) {
-  const BipLevel& cur = levels_[l];
-  BipLevel& up = levels_[l + 1];
+  const BipLevel& cur = (*levels_)[l];
+  BipLevel& up = (*levels_)[l + 1];
   up.edges.clear();
   if (options_.link_across_kinds) DistantRegularEdges(l);
   if (up.num_virtual == 0) return;
@@ -583,39 +781,39 @@ void BipBuilder::IntraLevelEdges(int l) {
   // unpredictable).
   const int first_virtual = up.num_cells();
   const int parents = up.num_ids();
-  virtual_sons_.resize(linked_.size());
+  scratch_->virtual_sons_.resize(scratch_->linked_.size());
   int num_sons = 0;
-  for (int id : linked_) {
-    virtual_sons_[num_sons] = id;
+  for (int id : scratch_->linked_) {
+    scratch_->virtual_sons_[num_sons] = id;
     num_sons += cur.parent[id] >= first_virtual;
   }
-  son_offsets_.assign(up.num_virtual + 1, 0);
+  scratch_->son_offsets_.assign(up.num_virtual + 1, 0);
   for (int k = 0; k < num_sons; ++k) {
-    ++son_offsets_[cur.parent[virtual_sons_[k]] - first_virtual + 1];
+    ++scratch_->son_offsets_[cur.parent[scratch_->virtual_sons_[k]] - first_virtual + 1];
   }
-  for (int v = 0; v < up.num_virtual; ++v) son_offsets_[v + 1] += son_offsets_[v];
-  sons_.resize(num_sons);
-  stamp_.assign(son_offsets_.begin(), son_offsets_.end() - 1);  // fill cursor
+  for (int v = 0; v < up.num_virtual; ++v) scratch_->son_offsets_[v + 1] += scratch_->son_offsets_[v];
+  scratch_->sons_.resize(num_sons);
+  scratch_->stamp_.assign(scratch_->son_offsets_.begin(), scratch_->son_offsets_.end() - 1);  // fill cursor
   for (int k = 0; k < num_sons; ++k) {
-    const int id = virtual_sons_[k];
-    sons_[stamp_[cur.parent[id] - first_virtual]++] = id;
+    const int id = scratch_->virtual_sons_[k];
+    scratch_->sons_[scratch_->stamp_[cur.parent[id] - first_virtual]++] = id;
   }
-  // stamp_[q + 1] == p once p has seen parent q; slot 0 stands for "no parent" (q = -1).
-  stamp_.assign(parents + 1, -1);
+  // scratch_->stamp_[q + 1] == p once p has seen parent q; slot 0 stands for "no parent" (q = -1).
+  scratch_->stamp_.assign(parents + 1, -1);
   const int cols = cur.cols, rows = cur.rows;
   const int grid[8] = {-cols - 1, -cols, -cols + 1, -1, 1, cols - 1, cols, cols + 1};
   for (int p = first_virtual; p < parents; ++p) {
     // Marking "no parent" and p itself as seen leaves one test per neighbour.
-    stamp_[0] = p;
-    stamp_[p + 1] = p;
+    scratch_->stamp_[0] = p;
+    scratch_->stamp_[p + 1] = p;
     auto visit = [&](int neighbour) {
       const int q = cur.parent[neighbour];
-      const bool seen = stamp_[q + 1] == p;
-      stamp_[q + 1] = p;
+      const bool seen = scratch_->stamp_[q + 1] == p;
+      scratch_->stamp_[q + 1] = p;
       if (!seen && (q < first_virtual || q > p)) up.edges.push_back(EdgeKey(p, q));
     };
-    for (int k = son_offsets_[p - first_virtual]; k < son_offsets_[p - first_virtual + 1]; ++k) {
-      const int son = sons_[k];
+    for (int k = scratch_->son_offsets_[p - first_virtual]; k < scratch_->son_offsets_[p - first_virtual + 1]; ++k) {
+      const int son = scratch_->sons_[k];
       if (!cur.IsVirtual(son)) {
         const int row = son / cols, col = son - row * cols;
         if (row > 0 && col > 0 && row + 1 < rows && col + 1 < cols) {
@@ -627,7 +825,7 @@ void BipBuilder::IntraLevelEdges(int l) {
           }
         }
       }
-      for (int e = AdjacencyBegin(son); e < AdjacencyEnd(son); ++e) visit(adjacency_[e]);
+      for (int e = AdjacencyBegin(son); e < AdjacencyEnd(son); ++e) visit(scratch_->adjacency_[e]);
     }
   }
 }
@@ -644,10 +842,16 @@ int Bip::CountRoots() const {
 }
 
 int Bip::LabelRoots(cv::Mat* labels, std::vector<VertexRef>* root_refs) const {
+  ATTEND_CHECK(levels_ != nullptr) << "labelling a released pyramid";
+  struct ScratchLease {
+    BipPool* pool;
+    std::unique_ptr<BipScratch> scratch;
+    ~ScratchLease() { pool->GiveScratch(std::move(scratch)); }
+  } lease{pool_, pool_->TakeScratch()};
   // Top-down: a vertex takes its parent's root, or starts a new one.
-  std::vector<int32_t>& above = label_scratch_[0];
-  std::vector<int32_t>& current = label_scratch_[1];
-  std::vector<VertexRef>& found = root_scratch_;
+  std::vector<int32_t>& above = lease.scratch->label_[0];
+  std::vector<int32_t>& current = lease.scratch->label_[1];
+  std::vector<VertexRef>& found = lease.scratch->roots_;
   found.clear();
   int roots = 0;
   for (int l = num_levels_ - 1; l >= 1; --l) {
@@ -670,7 +874,7 @@ int Bip::LabelRoots(cv::Mat* labels, std::vector<VertexRef>* root_refs) const {
   // visited.
   const BipLevel& base = (*levels_)[0];
   labels->create(height_, width_, CV_32SC1);
-  std::vector<int32_t>& renumber = label_scratch_[1];
+  std::vector<int32_t>& renumber = lease.scratch->label_[1];
   renumber.assign(roots + base.num_regular, -1);  // level 0 adds at most num_regular roots
   int next = 0;
   for (int row = 0; row < height_; ++row) {

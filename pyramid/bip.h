@@ -16,6 +16,8 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -69,7 +71,9 @@ struct BipLevel {
   int CountRegular() const;
 };
 
-// A built pyramid. Valid until the BipBuilder that made it builds again.
+class BipPool;
+
+// A built pyramid. Valid until the BipBuilder that made it builds again or is released.
 class Bip {
  public:
   int width() const { return width_; }
@@ -106,21 +110,70 @@ class Bip {
  private:
   friend class BipBuilder;
   const std::vector<BipLevel>* levels_ = nullptr;
+  BipPool* pool_ = nullptr;  // lends LabelRoots its scratch
   std::vector<float> thresholds_;
   int width_ = 0;
   int height_ = 0;
   int num_levels_ = 0;
   int top_regular_level_ = 0;
-  // Reused by LabelRoots so that labelling a frame allocates nothing after the first.
-  mutable std::vector<int32_t> label_scratch_[2];
-  mutable std::vector<VertexRef> root_scratch_;
 };
 
-// Builds pyramids. It owns every buffer, and keeps them between builds, so that after the
-// first frame of a size a build allocates nothing: use one builder per stream of frames.
+// The working buffers of a build (and of labelling its roots), needed only while it runs.
+struct BipScratch;
+
+// Buffers shared by every pyramid of the process (docs/PYRAMID.md, "Memory"). The pyramids
+// of a frame (its segmentation, the trackers', the saliency segmentation) are built one after
+// another, or two at a time with a second thread, so they need not each keep their own: a
+// build borrows a scratch for as long as it runs, and a BipBuilder borrows the levels its
+// pyramid lives in from its Build() until its Release(). Idle buffers are kept for the next
+// build (so a stream of frames allocates nothing after the first), lent to the build they fit
+// best, and the pool keeps only a few idle level sets. Thread-safe.
+class BipPool {
+ public:
+  BipPool();
+  ~BipPool();
+  BipPool(const BipPool&) = delete;
+  BipPool& operator=(const BipPool&) = delete;
+
+  // The pool of every BipBuilder that is not given another.
+  static BipPool& Shared();
+
+  // Idle buffers, in bytes of capacity (what the pool holds beyond what is lent out).
+  size_t IdleBytes() const;
+  // Idle scratches and level sets.
+  int IdleScratches() const;
+  int IdleLevelSets() const;
+  // Frees the idle buffers.
+  void Clear();
+
+ private:
+  friend class BipBuilder;
+  friend class Bip;
+  using Levels = std::vector<BipLevel>;
+  // At most this many idle level sets are kept; a set given back beyond it is freed.
+  static constexpr int kMaxIdleLevelSets = 6;
+
+  std::unique_ptr<BipScratch> TakeScratch();
+  void GiveScratch(std::unique_ptr<BipScratch> scratch);
+  // A level set for a pyramid over `cells` pixels: the idle one that fits best.
+  std::unique_ptr<Levels> TakeLevels(size_t cells);
+  void GiveLevels(std::unique_ptr<Levels> levels);
+
+  mutable std::mutex mutex_;
+  std::vector<std::unique_ptr<BipScratch>> idle_scratch_;
+  std::vector<std::unique_ptr<Levels>> idle_levels_;
+};
+
+// Builds pyramids. Its buffers are borrowed from a BipPool (the shared one unless another is
+// given): the scratch while a build runs, the levels from Build() until Release() (or the
+// builder's end), so that builders used one after another share their memory and a stream of
+// frames allocates nothing after the first.
 class BipBuilder {
  public:
-  explicit BipBuilder(BipOptions options = {});
+  explicit BipBuilder(BipOptions options = {}, BipPool* pool = &BipPool::Shared());
+  ~BipBuilder();
+  BipBuilder(const BipBuilder&) = delete;
+  BipBuilder& operator=(const BipBuilder&) = delete;
 
   // Builds the pyramid over `features` (CV_32FC3, level-0 vectors as made by the policy's
   // Features()). With a non-empty `mask` (CV_8UC1, same size) only pixels where it is
@@ -130,6 +183,9 @@ class BipBuilder {
   // builder's buffers.
   const Bip& Build(const cv::Mat& features, const SimilarityPolicy& policy,
                    const cv::Mat& mask = cv::Mat(), int schedule_side = 0);
+
+  // Gives the levels back to the pool: bip() is no longer valid (until the next Build()).
+  void Release();
 
   const Bip& bip() const { return bip_; }
   const BipOptions& options() const { return options_; }
@@ -147,31 +203,14 @@ class BipBuilder {
   int NewVirtual(BipLevel* up);
   void Link(int l, int id, int parented, float parented_d2, int orphan, float orphan_d2, float t2);
   // The range in adjacency_ of a vertex's explicit neighbours (empty when the level has none).
-  int AdjacencyBegin(int id) const { return adjacency_.empty() ? 0 : adjacency_offsets_[id]; }
-  int AdjacencyEnd(int id) const { return adjacency_.empty() ? 0 : adjacency_offsets_[id + 1]; }
+  int AdjacencyBegin(int id) const;
+  int AdjacencyEnd(int id) const;
 
   BipOptions options_;
-  std::vector<BipLevel> levels_;
+  BipPool* pool_;
+  std::unique_ptr<std::vector<BipLevel>> levels_;  // borrowed from pool_, or null
   Bip bip_;
-  // CSR adjacency of the current level's explicit edges, over all ids.
-  std::vector<int32_t> adjacency_offsets_;
-  std::vector<int32_t> adjacency_;
-  // Squared distances between each cell of the current level and its east, south, south-east
-  // and south-west neighbours: computed once, read by decimation and by the orphans.
-  std::vector<float> distance_[4];
-  std::vector<float> planes_[3];  // the current level's features, one plane per component
-  // The sons of each virtual vertex of the level being built (CSR), and a stamp per vertex.
-  std::vector<int32_t> son_offsets_;
-  std::vector<int32_t> sons_;
-  std::vector<int32_t> virtual_sons_;  // ungrouped
-  std::vector<int32_t> stamp_;
-  // Row and column of each cell of the level being built (variant edges).
-  std::vector<int32_t> cell_row_;
-  std::vector<int32_t> cell_col_;
-  // Columns of the orphans of one row, for stage 2.
-  std::vector<int32_t> row_orphans_;
-  // Vertices of the current level linked to a parent by stages 2 and 3.
-  std::vector<int32_t> linked_;
+  BipScratch* scratch_ = nullptr;  // borrowed from pool_ while Build() runs
 };
 
 }  // namespace attend

@@ -29,8 +29,9 @@ struct SegmentationOptions {
   static const OptionFields<SegmentationOptions>& Fields();
 };
 
-// Segments images; keeps the pyramid and all scratch buffers between calls, so one Segmenter
-// per stream of frames allocates (almost) nothing after the first frame.
+// Segments images; keeps its scratch buffers between calls and borrows the pyramid's from the
+// shared BipPool, so one Segmenter per stream of frames allocates (almost) nothing after the
+// first frame.
 class Segmenter {
  public:
   explicit Segmenter(SegmentationOptions options = {});
@@ -43,8 +44,11 @@ class Segmenter {
   // Segments from a precomputed HSV cylinder image (colour/colour.h), optionally within a mask.
   void SegmentCylinder(const cv::Mat& cylinder, Segmentation* out, const cv::Mat& mask = cv::Mat());
 
-  // The pyramid of the last call.
+  // The pyramid of the last call, until ReleasePyramid().
   const Bip& bip() const { return builder_.bip(); }
+  // Gives the pyramid's levels back to the shared pool (pyramid/bip.h) for other builds; the
+  // segmentation made from it stays valid.
+  void ReleasePyramid() { builder_.Release(); }
   const SegmentationOptions& options() const { return options_; }
 
  private:

@@ -34,6 +34,7 @@
 #include "python/python_features.h"
 #include "stereo/disparity.h"
 #include "tracker/target_tracker.h"
+#include "util/opencv_extra.h"
 #include "util/error.h"
 #include "util/json_text.h"
 #include "util/timer.h"
@@ -569,9 +570,13 @@ void RegisterErrors(py::module_& m) {
 
 }  // namespace attend::python
 
+// The optional OpenCV module's entry point, compiled into this module (python/CMakeLists.txt).
+extern "C" attend::cvextra::Module* attend_opencv_extra(int abi_version);
+
 PYBIND11_MODULE(_attend, m) {
   using namespace attend;
   using namespace attend::python;
+  cvextra::SetOpenCvExtra(attend_opencv_extra(cvextra::kAbiVersion));
   m.doc() = "attend's C++ core (docs/PYTHON.md); use the package attend";
   m.attr("__version__") = ATTEND_VERSION;
   RegisterErrors(m);
@@ -611,7 +616,7 @@ PYBIND11_MODULE(_attend, m) {
   });
   m.def("disparity", &Disparity);
   m.def("imread", &ReadImage, py::arg("path"), py::arg("grey") = false);
-  m.def("imwrite", &WriteImage, py::arg("path"), py::arg("image"));
+  m.def("imwrite", &attend::python::WriteImage, py::arg("path"), py::arg("image"));
   m.def("read_pfm", &ReadPfmArray, py::arg("path"));
   m.def("write_pfm", &WritePfmArray, py::arg("path"), py::arg("map"));
   m.def("_frame_files", &FrameFiles);

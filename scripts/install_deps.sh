@@ -10,6 +10,7 @@ packages=(
   libjs-chart.js  # the charts of attend compare's report, inlined (docs/COMPARE.md)
   chromium        # renders the report in its test (tests/cli/compare_cli_test.cc)
   opencv-data     # the cascade models of the faces channel (features/detectors.h)
+  libspng-dev libjpeg62-turbo-dev  # PNG and JPEG without OpenCV's imgcodecs (io/image_codecs.h)
   # the Python module attend (python/, docs/PYTHON.md), its tests and its example
   pybind11-dev python3-dev python3-numpy python3-pytest python3-pandas python3-matplotlib
   # attend sweep --slurm and the one-node cluster its tests start (scripts/slurm_local.sh)

@@ -4,12 +4,12 @@
 #include <map>
 #include <memory>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/video/tracking.hpp>
 #include <utility>
 
 #include "features/skin.h"
 #include "pyramid/similarity.h"
 #include "util/assignment.h"
+#include "util/opencv_extra.h"
 #include "util/box.h"
 #include "util/enum_table.h"
 #include "util/error.h"
@@ -290,7 +290,7 @@ struct AttentionStage::Impl {
   // Motion grouping: the grey frames, the flow between them and its mean per colour region.
   static constexpr int kFlowBorder = 3;  // px: a region's flow is taken this far inside it
   cv::Mat grey_, previous_grey_, flow_, border_;
-  cv::Ptr<cv::DISOpticalFlow> flow_solver_;
+  std::unique_ptr<cvextra::DenseFlow> flow_solver_;
   int flow_state_ = 0;  // this frame: 0 not computed yet, 1 computed, -1 none possible
   std::vector<cv::Point2f> region_flow_;
 };
@@ -300,6 +300,13 @@ AttentionStage::Impl::Impl(const AttentionOptions& options, SkinModel skin_model
   const std::string error = options_.Check();
   if (!error.empty()) throw ConfigError(error);
   tracker_ = TargetTracker::Create(options_.tracker);
+  // OpenCV's DIS flow is in the optional OpenCV module (util/opencv_extra.h): loaded now, so
+  // that a missing module is reported before the run starts.
+  if (options_.select.group_min_speed > 0.f) {
+    constexpr int kDisPresetMedium = 2;  // cv::DISOpticalFlow::PRESET_MEDIUM
+    flow_solver_ = cvextra::Get("select.group_min_speed (OpenCV's DIS optical flow)")
+                       .CreateDisFlow(kDisPresetMedium);
+  }
   const int margin = options_.inhibition.margin;
   kernel_ = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * margin + 1, 2 * margin + 1));
 }
@@ -549,6 +556,7 @@ void AttentionStage::Impl::RankCandidates(Candidates* c) {
   cv::merge(std::vector<cv::Mat>{scaled, zero, zero}, features);
   const Bip& bip = saliency_builder_.Build(features, HsvSimilarity(options_.select.saliency_t_max));
   const int count = bip.LabelRoots(&c->labels);
+  saliency_builder_.Release();  // its levels serve the other pyramids of the frame
   c->sum.assign(count, 0.0);
   c->area.assign(count, 0);
   c->peak.assign(count, cv::Point());
@@ -870,8 +878,8 @@ bool AttentionStage::Impl::RegionFlow(const Segmentation& segmentation) {
   if (flow_state_ != 0) return flow_state_ > 0;
   flow_state_ = -1;
   if (previous_grey_.empty() || previous_grey_.size() != grey_.size()) return false;
-  if (!flow_solver_) flow_solver_ = cv::DISOpticalFlow::create(cv::DISOpticalFlow::PRESET_MEDIUM);
-  flow_solver_->calc(previous_grey_, grey_, flow_);
+  ATTEND_CHECK(flow_solver_ != nullptr) << "motion grouping without its flow";
+  flow_solver_->Calc(previous_grey_, grey_, &flow_);
   // The flow bleeds across the edges of what moves (the solver smooths it), so a region's flow
   // is its mean away from its border, kFlowBorder px in; a region that is all border keeps all
   // its pixels.

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "io/ground_truth.h"
+#include "io/image_file.h"
 #include "io/pfm.h"
 #include "synth/renderer.h"
 #include "util/error.h"
@@ -80,7 +81,7 @@ void WritePng(const fs::path& path, const cv::Mat& image) {
   const std::vector<int> params = {cv::IMWRITE_PNG_COMPRESSION, 1};
   bool written = false;
   try {
-    written = cv::imwrite(path.string(), image, params);
+    written = WriteImage(path.string(), image, params);
   } catch (const cv::Exception& e) {
     throw OutputError(path.string() + ": cannot write the image: " + e.what());
   }

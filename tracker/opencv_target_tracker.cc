@@ -3,11 +3,10 @@
 #include <map>
 #include <memory>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/tracking.hpp>
-#include <opencv2/video/tracking.hpp>
 
 #include "tracker/tracker_kinds.h"
 #include "util/error.h"
+#include "util/opencv_extra.h"
 #include "util/timer.h"
 
 namespace attend {
@@ -16,8 +15,13 @@ namespace {
 
 class OpenCvTargetTracker final : public TargetTracker {
  public:
+  // Loads the optional OpenCV module (util/opencv_extra.h) at once, so that a missing one is
+  // reported before the run starts.
   OpenCvTargetTracker(TrackerKind kind, const OpenCvTrackerOptions& options)
-      : kind_(kind), options_(options) {}
+      : kind_(kind),
+        options_(options),
+        opencv_(&cvextra::Get(std::string("tracker.kind ") +
+                              (kind == TrackerKind::kKcf ? "kcf" : "csrt"))) {}
 
   int StartFromBox(const cv::Mat& frame, const cv::Rect& box, TrackSimilarity,
                    const cv::Mat&) override {
@@ -45,7 +49,7 @@ class OpenCvTargetTracker final : public TargetTracker {
       cv::Rect box = target.box;
       bool found = false;
       try {
-        found = target.tracker->update(frame, box);
+        found = target.tracker->Update(frame, &box);
       } catch (const cv::Exception&) {
         found = false;  // OpenCV refuses a degenerate window: a failure like any other
       }
@@ -91,20 +95,17 @@ class OpenCvTargetTracker final : public TargetTracker {
 
  private:
   struct Target {
-    cv::Ptr<cv::Tracker> tracker;
+    std::unique_ptr<cvextra::Tracker> tracker;
     cv::Rect box;      // the last box found
     cv::Mat shape;     // CV_8UC1 of the start box's size: the target's start shape
     cv::Mat mask;      // frame size; empty when not found in the last frame
     int failures = 0;  // failed updates in a row
   };
 
-  cv::Ptr<cv::Tracker> MakeTracker() const {
-    if (kind_ == TrackerKind::kKcf) {
-      cv::TrackerKCF::Params params;
-      params.detect_thresh = options_.kcf_detect_thresh;
-      return cv::TrackerKCF::create(params);
-    }
-    return cv::TrackerCSRT::create();
+  std::unique_ptr<cvextra::Tracker> MakeTracker() const {
+    return opencv_->CreateTracker(
+        kind_ == TrackerKind::kKcf ? cvextra::TrackerType::kKcf : cvextra::TrackerType::kCsrt,
+        options_.kcf_detect_thresh);
   }
 
   // The start shape resized to `box` and placed there, in a mask of `size`.
@@ -120,7 +121,7 @@ class OpenCvTargetTracker final : public TargetTracker {
     Target target;
     target.tracker = MakeTracker();
     try {
-      target.tracker->init(frame, box);
+      target.tracker->Init(frame, box);
     } catch (const cv::Exception&) {
       return -1;  // a box too small for the tracker's features
     }
@@ -134,6 +135,7 @@ class OpenCvTargetTracker final : public TargetTracker {
 
   TrackerKind kind_;
   OpenCvTrackerOptions options_;
+  cvextra::Module* opencv_;
   std::map<int, Target> targets_;
   int next_id_ = 1;
   double milliseconds_ = 0.0;

@@ -214,6 +214,12 @@ void MultiTracker::Impl::Merge(size_t a, size_t b, std::vector<cv::Rect>* groups
   }
 }
 
+void MultiTracker::Impl::ReleasePyramids() {
+  for (auto& pool : hierarchies) {
+    for (auto& h : pool) h->Release();
+  }
+}
+
 Hierarchy& MultiTracker::Impl::Pyramid(TrackSimilarity similarity, size_t index) {
   auto& pool = hierarchies[similarity == TrackSimilarity::kSkin ? 1 : 0];
   while (pool.size() <= index) pool.push_back(std::make_unique<Hierarchy>());
@@ -530,6 +536,7 @@ void MultiTracker::Impl::Track(const cv::Mat& frame, const cv::Mat& skin, const 
   }
   std::sort(results->begin(), results->end(),
             [](const TrackResult& a, const TrackResult& b) { return a.id < b.id; });
+  ReleasePyramids();
   targets.erase(std::remove_if(targets.begin(), targets.end(),
                                [](const Target& t) { return t.levels.empty(); }),
                 targets.end());
@@ -732,9 +739,15 @@ int MultiTracker::Impl::Start(const cv::Mat& frame, const cv::Mat& skin, TrackSi
                             ? cv::boundingRect(target_mask)
                             : cv::Rect(0, 0, frame.cols, frame.rows);
   PaintTarget(h, in_target, keep, frame.size(), &target.mask);
-  if (cv::countNonZero(target.mask) == 0) return -1;
+  if (cv::countNonZero(target.mask) == 0) {
+    h.Release();
+    return -1;
+  }
   target.levels = MakeTemplate(h, in_target, keep, nullptr, {}, h.bip->num_levels());
-  if (target.levels.empty()) return -1;
+  if (target.levels.empty()) {
+    h.Release();
+    return -1;
+  }
   const cv::Moments moments = cv::moments(target.mask, true);
   target.box = cv::boundingRect(target.mask);
   target.centroid = {static_cast<float>(moments.m10 / moments.m00),
@@ -748,6 +761,7 @@ int MultiTracker::Impl::Start(const cv::Mat& frame, const cv::Mat& skin, TrackSi
       LearnAppearance(&target);
     }
   }
+  h.Release();
   target.id = next_id++;
   targets.push_back(std::move(target));
   return targets.back().id;
@@ -817,6 +831,7 @@ int MultiTracker::StartFromBox(const cv::Mat& frame, const cv::Rect& box,
                            image;
   Segmentation segmentation;
   impl_->segmenter.Segment(frame(context), &segmentation);
+  impl_->segmenter.ReleasePyramid();
   const cv::Rect local = inside - context.tl();
   std::vector<int> within(segmentation.regions.size(), 0);
   for (int y = local.y; y < local.y + local.height; ++y) {

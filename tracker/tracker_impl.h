@@ -55,6 +55,12 @@ struct Hierarchy {
   std::vector<std::vector<int32_t>> region;  // per level, per vertex id: root index, -1 none
   int regions = 0;
 
+  // Gives the pyramid's buffers back to the pool (pyramid/bip.h) once the frame is done with
+  // it; the region labels are kept, to be refilled by the next frame.
+  void Release() {
+    builder.Release();
+    bip = nullptr;
+  }
   // Region of every vertex, from the top level down.
   void LabelRegions() {
     const int levels = bip->num_levels();
@@ -237,6 +243,8 @@ struct MultiTracker::Impl {
   // Joins group b into group a (a < b): their crops and spans, and the targets' group numbers.
   void Merge(size_t a, size_t b, std::vector<cv::Rect>* groups, std::vector<cv::Rect>* spans);
 
+  // Gives every pyramid's levels back to the pool, at the end of a frame's tracking.
+  void ReleasePyramids();
   // The `index`-th pyramid of a similarity, made on first use; each keeps its buffers.
   tracker_internal::Hierarchy& Pyramid(TrackSimilarity similarity, size_t index);
 

@@ -7,6 +7,7 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <set>
+#include <thread>
 
 #include "colour/colour.h"
 
@@ -302,6 +303,134 @@ TEST(Bip, IntraLevelEdgesFollowTheSonsAdjacency) {
     ExpectParentsOfNeighboursAreNeighbours(variant.Build(Features(image), HsvSimilarity(30.f)),
                                            true);
   }
+}
+
+}  // namespace
+}  // namespace attend
+
+namespace attend {
+namespace {
+
+cv::Mat BlurredNoise(int width, int height, int seed) {
+  cv::Mat image(height, width, CV_8UC3);
+  cv::RNG rng(seed);
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  cv::GaussianBlur(image, image, cv::Size(7, 7), 2.0);
+  return image;
+}
+
+cv::Mat PoolFeatures(const cv::Mat& bgr) {
+  cv::Mat features;
+  HsvSimilarity::Features(bgr, &features);
+  return features;
+}
+
+cv::Mat Labels(const Bip& bip) {
+  cv::Mat labels;
+  bip.LabelRoots(&labels);
+  return labels;
+}
+
+// Builders used one after another share one scratch and, once released, one level set; the
+// pyramids are those of builders with pools of their own.
+TEST(BipPool, BuildersOneAfterAnotherShareTheirBuffers) {
+  const cv::Mat a = BlurredNoise(120, 90, 1), b = BlurredNoise(120, 90, 2);
+  const HsvSimilarity policy(25.f);
+  BipPool pool;
+  BipBuilder first(BipOptions{}, &pool), second(BipOptions{}, &pool);
+  const cv::Mat labels_a = Labels(first.Build(PoolFeatures(a), policy));
+  EXPECT_EQ(pool.IdleScratches(), 1);  // given back when the build ended
+  EXPECT_EQ(pool.IdleLevelSets(), 0);  // held until Release()
+  first.Release();
+  EXPECT_EQ(pool.IdleLevelSets(), 1);
+  const size_t idle = pool.IdleBytes();
+  const cv::Mat labels_b = Labels(second.Build(PoolFeatures(b), policy));
+  second.Release();
+  // The second build reused the first one's buffers: one scratch and one level set, grown at
+  // most by what the second image has more of (virtual vertices, edges).
+  EXPECT_EQ(pool.IdleScratches(), 1);
+  EXPECT_EQ(pool.IdleLevelSets(), 1);
+  EXPECT_LT(pool.IdleBytes(), idle + idle / 4);
+
+  BipPool own_a, own_b;
+  BipBuilder alone_a(BipOptions{}, &own_a), alone_b(BipOptions{}, &own_b);
+  EXPECT_EQ(cv::countNonZero(Labels(alone_a.Build(PoolFeatures(a), policy)) != labels_a), 0);
+  EXPECT_EQ(cv::countNonZero(Labels(alone_b.Build(PoolFeatures(b), policy)) != labels_b), 0);
+}
+
+// A pyramid stays valid while its builder holds it, whatever other builders of the pool do.
+TEST(BipPool, AHeldPyramidIsNotDisturbedByOtherBuilds) {
+  const cv::Mat a = BlurredNoise(100, 80, 3), b = BlurredNoise(64, 48, 4);
+  const HsvSimilarity policy(25.f);
+  BipPool pool;
+  BipBuilder held(BipOptions{}, &pool), other(BipOptions{}, &pool);
+  const Bip& bip = held.Build(PoolFeatures(a), policy);
+  const cv::Mat before = Labels(bip);
+  for (int k = 0; k < 3; ++k) {
+    other.Build(PoolFeatures(k % 2 == 0 ? b : a), policy);
+    other.Release();
+  }
+  EXPECT_EQ(cv::countNonZero(Labels(bip) != before), 0);
+  EXPECT_EQ(pool.IdleLevelSets(), 1);  // other's; held keeps its own
+}
+
+// A small build does not take a level set far larger than it needs: a tracker's crop must not
+// hold a whole frame's buffers, which the next whole-frame build would then have to make again.
+TEST(BipPool, ASmallBuildLeavesALargeLevelSetToLargeBuilds) {
+  const HsvSimilarity policy(25.f);
+  BipPool pool;
+  BipBuilder large(BipOptions{}, &pool), small(BipOptions{}, &pool);
+  large.Build(PoolFeatures(BlurredNoise(320, 240, 5)), policy);
+  large.Release();
+  const size_t one_large = pool.IdleBytes();
+  small.Build(PoolFeatures(BlurredNoise(40, 30, 6)), policy);
+  EXPECT_EQ(pool.IdleLevelSets(), 1);  // the large set stays idle
+  small.Release();
+  EXPECT_EQ(pool.IdleLevelSets(), 2);
+  large.Build(PoolFeatures(BlurredNoise(320, 240, 7)), policy);
+  large.Release();
+  // The large build took the large set back: the pool grew by the small set only.
+  EXPECT_LT(pool.IdleBytes(), one_large + one_large / 10);
+  pool.Clear();
+  EXPECT_EQ(pool.IdleBytes(), 0u);
+}
+
+// With a second thread two builds run at once, each with its own scratch; the pyramids are
+// those of serial builds.
+TEST(BipPool, ConcurrentBuildsEqualSerialOnes) {
+  const cv::Mat a = BlurredNoise(160, 120, 8), b = BlurredNoise(150, 110, 9);
+  const HsvSimilarity policy(25.f);
+  BipPool serial_pool;
+  BipBuilder serial(BipOptions{}, &serial_pool);
+  const cv::Mat labels_a = Labels(serial.Build(PoolFeatures(a), policy));
+  const cv::Mat labels_b = Labels(serial.Build(PoolFeatures(b), policy));
+  BipPool pool;
+  for (int round = 0; round < 20; ++round) {
+    cv::Mat got_a, got_b;
+    std::thread other([&] {
+      BipBuilder builder(BipOptions{}, &pool);
+      got_b = Labels(builder.Build(PoolFeatures(b), policy));
+    });
+    BipBuilder builder(BipOptions{}, &pool);
+    got_a = Labels(builder.Build(PoolFeatures(a), policy));
+    other.join();
+    ASSERT_EQ(cv::countNonZero(got_a != labels_a), 0) << "round " << round;
+    ASSERT_EQ(cv::countNonZero(got_b != labels_b), 0) << "round " << round;
+  }
+  EXPECT_LE(pool.IdleScratches(), 2);
+}
+
+// Releasing gives the levels back; a builder can build again after it.
+TEST(BipPool, ReleaseThenBuildAgain) {
+  const cv::Mat a = BlurredNoise(60, 40, 10);
+  const HsvSimilarity policy(25.f);
+  BipPool pool;
+  BipBuilder builder(BipOptions{}, &pool);
+  const cv::Mat first = Labels(builder.Build(PoolFeatures(a), policy));
+  builder.Release();
+  builder.Release();  // twice is harmless
+  EXPECT_EQ(builder.bip().num_levels(), 0);
+  EXPECT_EQ(cv::countNonZero(Labels(builder.Build(PoolFeatures(a), policy)) != first), 0);
 }
 
 }  // namespace
