@@ -200,8 +200,10 @@ void Capture(const std::shared_ptr<CaptureState>& state) {
           if (!state->captures[i].retrieve(image) || image.empty()) {
             ended = i;
           } else {
-            // A buffer of its own: the backend may reuse the one it decoded into.
-            frame.views.push_back(image.u == nullptr ? image.clone() : image);
+            // A buffer of its own: a backend that kept a reference to the one it decoded into
+            // (or lent its own memory) may write the next frame there.
+            const bool own = image.u != nullptr && image.u->refcount == 1;
+            frame.views.push_back(own ? image : image.clone());
           }
         }
         if (ended == views) {
