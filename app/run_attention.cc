@@ -4,6 +4,7 @@
 
 #include "app/home.h"
 #include "pipeline/options_io.h"
+#include "util/error.h"
 #include "util/frame_range.h"
 
 namespace attend {
@@ -13,14 +14,29 @@ AttendOptions ResolveRunOptions(const AttentionRunRequest& request) {
   AttendOptions options = LoadOptions(config_path, request.sets);
   SequenceOptions& sequence = options.sequence;
   const RunSource& source = request.source;
-  if (!source.folder.empty() || !source.left_video.empty() ||
-      !source.side_by_side_video.empty() || !source.video.empty() || !source.images.empty()) {
+  if (!source.empty()) {
     sequence.folder = source.folder;
     sequence.left_video = source.left_video;
     sequence.right_video = source.right_video;
     sequence.side_by_side_video = source.side_by_side_video;
     sequence.video = source.video;
     sequence.images = source.images;
+    sequence.camera = source.camera;
+    sequence.camera_right = source.camera_right;
+    sequence.gst = source.gst;
+    sequence.gst_right = source.gst_right;
+    sequence.live.side_by_side = source.side_by_side_live;
+  }
+  // Alone, it applies to the configuration's live source.
+  if (source.side_by_side_live) sequence.live.side_by_side = true;
+  if (request.duration_s >= 0.0) {
+    if (!sequence.IsLive()) {
+      throw ConfigError("--duration bounds a live source (--camera, --gst, or the "
+                        "configuration's sequence.camera or sequence.gst); the source is " +
+                        (sequence.SourceCount() == 0 ? std::string("the bundled sequence")
+                                                     : sequence.Describe()));
+    }
+    sequence.live.duration_s = request.duration_s;
   }
   if (!request.frames.empty()) {
     const FrameRange range =
@@ -36,6 +52,24 @@ AttendOptions ResolveRunOptions(const AttentionRunRequest& request) {
   return options;
 }
 
+bool RunSource::empty() const {
+  return folder.empty() && left_video.empty() && right_video.empty() &&
+         side_by_side_video.empty() && video.empty() && images.empty() && camera < 0 &&
+         camera_right < 0 && gst.empty() && gst_right.empty();
+}
+
+bool ShippedFeatures(const AttentionRunRequest& request) {
+  if (!request.config.empty()) {
+    std::error_code error;
+    if (!std::filesystem::equivalent(request.config, DefaultConfigPath(), error)) return false;
+  }
+  for (const std::string& assignment : request.sets) {
+    const std::string key = assignment.substr(0, assignment.find('='));
+    if (key == "features" || key.rfind("features.", 0) == 0) return false;
+  }
+  return true;
+}
+
 RunSummary RunAttention(const AttentionRunRequest& request, const AttendOptions& options) {
   RunRequest run;
   run.options = options;
@@ -47,6 +81,8 @@ RunSummary RunAttention(const AttentionRunRequest& request, const AttendOptions&
   run.out_dir = !request.out.empty() ? request.out : run.options.output.dir;
   run.stop = request.stop;
   run.on_progress = request.on_progress;
+  run.stereo_features_optional = ShippedFeatures(request);
+  run.on_left_out = request.on_left_out;
   return RunSequence(run);
 }
 

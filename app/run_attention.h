@@ -15,8 +15,8 @@
 namespace attend {
 
 // A source given beside the configuration (SequenceOptions: folder, left and right videos,
-// side-by-side video, video, images): any of them but right_video alone replaces the
-// configuration's whole source.
+// side-by-side video, video, images, a live camera or pipeline and its right twin): any of
+// them but right_video alone replaces the configuration's whole source.
 struct RunSource {
   std::string folder;
   std::string left_video;
@@ -24,6 +24,14 @@ struct RunSource {
   std::string side_by_side_video;
   std::string video;
   std::string images;
+  int camera = -1;  // live (io/live_source.h); -1: none
+  int camera_right = -1;
+  std::string gst;
+  std::string gst_right;
+  bool side_by_side_live = false;  // live.side_by_side for the camera or gst given here
+
+  // Whether any source is given (then it replaces the configuration's).
+  bool empty() const;
 };
 
 struct AttentionRunRequest {
@@ -31,13 +39,24 @@ struct AttentionRunRequest {
   std::vector<std::string> sets;   // key=value overrides, as --set
   RunSource source;
   std::string frames;              // FIRST:LAST over the configuration's range; "": as it is
+  double duration_s = -1.0;        // live.duration_s (--duration); < 0: as the configuration says
   std::string out;                 // the run folder; "": output.dir, else one under runs/
   bool overwrite = false;
   bool quiet = false;              // no notice while the bundled sequence renders
   std::string command_line;        // recorded in the summary
   const std::atomic<bool>* stop = nullptr;              // finish the frame, then stop
   std::function<void(const RunProgress&)> on_progress;  // after every frame
+  // A feature left out because it needs stereo and the source is monocular (only with the
+  // shipped configuration, ShippedFeatures).
+  std::function<void(const std::string& feature)> on_left_out;
 };
+
+// Whether `request` runs the shipped list of features: no configuration of the user's own
+// (no --config, or --config naming the shipped configs/default.yaml itself) and no --set of
+// `features` or a key below it. On a monocular source such a run leaves the features that need
+// stereo out, with a note; a configuration of the user's own that asks for them is refused
+// (SPEC 3.1).
+bool ShippedFeatures(const AttentionRunRequest& request);
 
 // The configuration `request` makes: loaded with its overrides, its source and frame range
 // replaced as asked, the bundled sequence when there is no source, every source path absolute.

@@ -11,11 +11,14 @@ int main(int argc, char** argv) {
   // attend reports its own errors, naming the file; OpenCV's backend chatter (GStreamer,
   // image-sequence probing) would only bury them.
   // OpenCV reads its log level at start-up, so it is set here directly; a user who sets
-  // OPENCV_LOG_LEVEL keeps theirs. GStreamer is only probed after the FFmpeg backend fails.
+  // OPENCV_LOG_LEVEL keeps theirs.
   if (std::getenv("OPENCV_LOG_LEVEL") == nullptr) {
     cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   }
-  setenv("OPENCV_VIDEOIO_PRIORITY_GSTREAMER", "0", 0);
+  // GStreamer reads live pipelines (--gst, cv::CAP_GSTREAMER), but a video file is left to it
+  // only after every other backend refused it: 1 is the lowest priority (0 would turn the
+  // backend off, and --gst with it).
+  setenv("OPENCV_VIDEOIO_PRIORITY_GSTREAMER", "1", 0);
 
   CLI::App app{"attend: visual attention on stereo image sequences (Bounded Irregular Pyramid)"};
   app.set_version_flag("--version", std::string("attend ") + ATTEND_VERSION);

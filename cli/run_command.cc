@@ -38,6 +38,12 @@ struct RunArguments {
   std::string side_by_side;
   std::string video;
   std::string images;
+  int camera = -1;
+  int camera_right = -1;
+  std::string gst;
+  std::string gst_right;
+  bool side_by_side_live = false;
+  double duration = -1.0;
   std::string out;
   bool overwrite = false;
   std::vector<std::string> sets;
@@ -76,8 +82,17 @@ int Run(const RunArguments& args) {
   request.config = args.config;
   request.sets = args.sets;
   request.source = {args.sequence, args.left, args.right, args.side_by_side, args.video,
-                    args.images};
+                    args.images, args.camera, args.camera_right, args.gst, args.gst_right,
+                    args.side_by_side_live};
   request.frames = args.frames;
+  request.duration_s = args.duration;
+  if (!args.quiet) {
+    request.on_left_out = [](const std::string& name) {
+      std::cerr << "attend: note: feature '" << name
+                << "' needs stereo and is left out: the source is monocular (the shipped "
+                   "configuration; a configuration of your own must disable it)\n";
+    };
+  }
   request.out = args.out;
   request.overwrite = args.overwrite;
   request.quiet = args.quiet;
@@ -97,6 +112,12 @@ int Run(const RunArguments& args) {
     throw;
   }
   if (show_progress) std::cerr << "\n";
+  // A live source that stopped delivering ended the run: said even with --quiet, since the
+  // run is shorter than asked for.
+  if (summary.live.has_value() && summary.live->end == LiveEnd::kTimeout) {
+    std::cerr << "attend: warning: " << summary.live->why << "; the run ends with the "
+              << summary.frames << (summary.frames == 1 ? " frame" : " frames") << " it had\n";
+  }
   if (!args.quiet) std::cout << summary.BriefReport() << std::endl;
   // Stopped by a signal: the run is complete up to its last frame, but not done. Exit as the
   // shell does for a killed command (128 + signal), so scripts can tell.
@@ -110,8 +131,10 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
   auto args = std::make_shared<RunArguments>();
   CLI::App* run = app.add_subcommand(
       "run",
-      "Run the attention pipeline over a sequence and write a run folder (SPEC 3.3). "
-      "With no source it runs on the bundled sequence.");
+      "Run the attention pipeline over a sequence, a video or a live camera or GStreamer "
+      "pipeline and write a run folder (SPEC 3.3). With no source it runs on the bundled "
+      "sequence. On a monocular source the shipped configuration leaves its stereo features "
+      "(disparity) out with a note.");
   run->add_option("--config", args->config,
                   "Configuration YAML (default: configs/default.yaml of the attend home)");
   auto* seq = run->add_option("--sequence", args->sequence,
@@ -123,13 +146,42 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
   auto* images = run->add_option(
       "--images", args->images,
       "Monocular plain folder of frames (.png .jpg .jpeg .ppm .pgm, sorted by name)");
+  auto* camera = run->add_option("--camera", args->camera,
+                                 "Live V4L2 camera /dev/videoN (docs/LIVE.md)")
+                     ->type_name("N")
+                     ->check(CLI::Range(0, 4095));
+  auto* camera_right =
+      run->add_option("--camera-right", args->camera_right,
+                      "Right camera of a live stereo pair (with --camera or --gst)")
+          ->type_name("M")
+          ->check(CLI::Range(0, 4095));
+  auto* gst = run->add_option(
+      "--gst", args->gst,
+      "Live GStreamer pipeline, read through OpenCV; it should end in an appsink (' ! "
+      "videoconvert ! appsink' is appended when it names none): 'v4l2src ! videoconvert ! "
+      "appsink', 'videotestsrc is-live=true'");
+  gst->type_name("PIPELINE");
+  auto* gst_right = run->add_option("--gst-right", args->gst_right,
+                                    "Right pipeline of a live stereo pair (with --camera or --gst)")
+                        ->type_name("PIPELINE");
+  run->add_flag("--side-by-side-live", args->side_by_side_live,
+                "The live source's frames hold the left view in their left half and the right "
+                "view in their right half (live.side_by_side)");
+  run->add_option("--duration", args->duration,
+                  "Live sources: stop capturing S seconds after the first frame "
+                  "(live.duration_s); the frames queued are still processed")
+      ->type_name("S")
+      ->check(CLI::Range(0.0, 1e7));
   left->needs(right);
   right->needs(left);
-  seq->excludes(left, right, sbs, video, images);
-  left->excludes(sbs, video, images);
-  right->excludes(images);
-  sbs->excludes(video, images);
-  video->excludes(images);
+  seq->excludes(left, right, sbs, video, images, camera, camera_right, gst, gst_right);
+  left->excludes(sbs, video, images, camera, camera_right, gst, gst_right);
+  right->excludes(images, camera, camera_right, gst, gst_right);
+  sbs->excludes(video, images, camera, camera_right, gst, gst_right);
+  video->excludes(images, camera, camera_right, gst, gst_right);
+  images->excludes(camera, camera_right, gst, gst_right);
+  camera->excludes(gst);
+  camera_right->excludes(gst_right);
   run->add_option("--out", args->out,
                   "Run folder (default: runs/<date>-<time>-<config>-<sequence>)");
   run->add_flag("--overwrite", args->overwrite, "Replace a previous run in a non-empty --out");
@@ -139,8 +191,12 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
                "lists the keys");
   run->add_flag("--list-keys", args->list_keys,
                 "Print every configuration key with its type, range, default and a line of doc, and exit");
-  run->add_option("--frames", args->frames, "Frame range FIRST:LAST, inclusive (10:50, 10:, :99)");
-  run->add_flag("--quiet", args->quiet, "No progress line or report; errors only");
+  run->add_option("--frames", args->frames,
+                  "Frame range FIRST:LAST, inclusive (10:50, 10:, :99); for a live source the "
+                  "numbers count the frames read from it, so :99 ends after the 100th");
+  run->add_flag("--quiet", args->quiet,
+                "No progress line, report or notes; errors, and the warning that a live source "
+                "stopped, only");
   args->command_line = command_line;
   run->callback([args, action] { *action = [args] { return Run(*args); }; });
 }

@@ -88,6 +88,7 @@ std::string FrameRecordToJson(const FrameRecord& record) {
       {"frame", record.frame}, {"targets", targets}, {"new", record.new_ids}};
   if (record.inhibited_fraction >= 0.0) line["inhibited_fraction"] = record.inhibited_fraction;
   line["timings_ms"] = timings;
+  if (record.latency_ms >= 0.0) line["latency_ms"] = record.latency_ms;
   return JsonText(line);
 }
 
@@ -148,6 +149,7 @@ std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
       for (const auto& [stage, ms] : json.at("timings_ms").items()) {
         record.timings.Add(stage, ms.get<double>());
       }
+      if (json.contains("latency_ms")) record.latency_ms = json.at("latency_ms").get<double>();
       frames.push_back(std::move(record));
     } catch (const std::exception& e) {
       throw InputError(path + ":" + std::to_string(number) + ": not a frame record (" + e.what() +

@@ -37,6 +37,9 @@ struct FrameRecord {
   // Share of the image inhibited in this frame (the inhibition map's mean), 0..1; -1 unknown.
   double inhibited_fraction = -1.0;
   StageTimes timings;
+  // Live sources: from the frame's capture (it came out of the source's read) to this record
+  // being written, ms; -1 for files, whose records do not have it.
+  double latency_ms = -1.0;
 };
 
 // A box of the working frame in the pixels of the input frame, `input_size` being the input

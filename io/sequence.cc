@@ -14,6 +14,7 @@
 
 #include "config/param_block.h"
 #include "io/image_file.h"
+#include "io/live_source.h"
 #include "util/error.h"
 #include "util/opencv_extra.h"
 #include "util/strings.h"
@@ -171,24 +172,6 @@ class ImageFolderReader final : public NativeReader {
 // ---------------------------------------------------------------------------------------------
 // Videos: a pair, one side-by-side, or one monocular.
 
-// Video frames are normally 8-bit BGR already; other layouts are converted the way images are.
-cv::Mat ToBgr8(const cv::Mat& frame, int index, const std::string& path) {
-  if (frame.depth() != CV_8U) {
-    throw InputError(FrameWhere(index, path) + ": unsupported sample depth (expected 8 bits)");
-  }
-  if (frame.channels() == 3) return frame;
-  cv::Mat bgr;
-  if (frame.channels() == 1) {
-    cv::cvtColor(frame, bgr, cv::COLOR_GRAY2BGR);
-  } else if (frame.channels() == 4) {
-    cv::cvtColor(frame, bgr, cv::COLOR_BGRA2BGR);
-  } else {
-    throw InputError(FrameWhere(index, path) + ": unsupported number of channels " +
-                     std::to_string(frame.channels()));
-  }
-  return bgr;
-}
-
 class VideoReader final : public NativeReader {
  public:
   enum class Layout { kMono, kPair, kSideBySide };
@@ -236,7 +219,7 @@ class VideoReader final : public NativeReader {
     if (!Advance(/*decode=*/true, &images)) return false;
     const int read_index = position_ - 1;
     for (size_t i = 0; i < images.size(); ++i) {
-      images[i] = ToBgr8(images[i], read_index, FramePath(i, read_index));
+      images[i] = VideoFrameToBgr(images[i], read_index, FramePath(i, read_index));
     }
     frame->left_path = FramePath(0, read_index);
     if (layout_ == Layout::kMono) {
@@ -411,6 +394,24 @@ class Sequence final : public FrameSource {
 
 }  // namespace
 
+// Video frames are normally 8-bit BGR already; other layouts are converted the way images are.
+cv::Mat VideoFrameToBgr(const cv::Mat& frame, int index, const std::string& path) {
+  if (frame.depth() != CV_8U) {
+    throw InputError(FrameWhere(index, path) + ": unsupported sample depth (expected 8 bits)");
+  }
+  if (frame.channels() == 3) return frame;
+  cv::Mat bgr;
+  if (frame.channels() == 1) {
+    cv::cvtColor(frame, bgr, cv::COLOR_GRAY2BGR);
+  } else if (frame.channels() == 4) {
+    cv::cvtColor(frame, bgr, cv::COLOR_BGRA2BGR);
+  } else {
+    throw InputError(FrameWhere(index, path) + ": unsupported number of channels " +
+                     std::to_string(frame.channels()));
+  }
+  return bgr;
+}
+
 cv::Size WorkingSize(const SequenceOptions& options, cv::Size native) {
   if (options.resize == "native") return native;
   if (options.resize == "stretch") return {options.width, options.height};
@@ -485,7 +486,11 @@ const std::vector<std::string>& SequenceOptions::ResizeModes() {
 int SequenceOptions::SourceCount() const {
   const bool has_pair = !left_video.empty() || !right_video.empty();
   return (folder.empty() ? 0 : 1) + (has_pair ? 1 : 0) + (side_by_side_video.empty() ? 0 : 1) +
-         (video.empty() ? 0 : 1) + (images.empty() ? 0 : 1);
+         (video.empty() ? 0 : 1) + (images.empty() ? 0 : 1) + (IsLive() ? 1 : 0);
+}
+
+bool SequenceOptions::IsLive() const {
+  return camera >= 0 || camera_right >= 0 || !gst.empty() || !gst_right.empty();
 }
 
 const OptionFields<SequenceOptions>& SequenceOptions::Fields() {
@@ -497,6 +502,11 @@ const OptionFields<SequenceOptions>& SequenceOptions::Fields() {
       {"side_by_side_video", &O::side_by_side_video, "one video, the left view in its left half"},
       {"video", &O::video, "a monocular video"},
       {"images", &O::images, "a plain folder of frames, monocular, in sorted name order"},
+      {"camera", &O::camera, Range::Closed(-1, 4095), "a live V4L2 camera /dev/videoN; -1: none"},
+      {"camera_right", &O::camera_right, Range::Closed(-1, 4095),
+       "the right camera of a live stereo pair; -1: none"},
+      {"gst", &O::gst, "a live GStreamer pipeline (ending in an appsink)"},
+      {"gst_right", &O::gst_right, "the right pipeline of a live stereo pair"},
       {"first_frame", &O::first_frame, Range::Closed(0, 1e9), "first frame of the range"},
       {"last_frame", &O::last_frame, Range::Closed(-1, 1e9),
        "last frame of the range, inclusive; -1: to the end"},
@@ -514,7 +524,7 @@ std::string SequenceOptions::Check() const {
   // No source is valid here: `attend run` then takes the bundled sequence. Open() needs one.
   if (sources > 1) {
     return "at most one source may be set (folder, left_video + right_video, "
-           "side_by_side_video, video or images), got " +
+           "side_by_side_video, video, images, or a live camera or gst), got " +
            std::to_string(sources);
   }
   if (has_pair && (left_video.empty() || right_video.empty())) {
@@ -527,6 +537,8 @@ std::string SequenceOptions::Check() const {
   sized.height = SequenceOptions().height;
   const std::string error = CheckFieldRanges(sized, Fields());
   if (!error.empty()) return error;
+  const std::string live_error = CheckLiveSource(*this);
+  if (!live_error.empty()) return live_error;
   if (last_frame != -1 && last_frame < first_frame) {
     return "last_frame must be -1 (to the end) or >= first_frame (" + std::to_string(first_frame) +
            "), got " + std::to_string(last_frame);
@@ -551,6 +563,7 @@ std::string SequenceOptions::Describe() const {
   if (!side_by_side_video.empty()) return "side-by-side video " + side_by_side_video;
   if (!video.empty()) return "video " + video;
   if (!images.empty()) return "images " + images;
+  if (IsLive()) return DescribeLiveSource(*this);
   return "no source";
 }
 
@@ -558,10 +571,11 @@ std::unique_ptr<FrameSource> FrameSource::Open(const SequenceOptions& options) {
   if (options.SourceCount() == 0) {
     throw ConfigError(
         "no sequence source is set (folder, left_video + right_video, "
-        "side_by_side_video, video or images)");
+        "side_by_side_video, video, images, camera or gst)");
   }
   const std::string problem = options.Check();
   if (!problem.empty()) throw ConfigError("sequence options: " + problem);
+  if (options.IsLive()) return OpenLiveSource(options);
   SequenceInfo info;
   std::unique_ptr<NativeReader> reader;
   if (!options.folder.empty()) {

@@ -1,15 +1,20 @@
 // Reading stereo and monocular sequences (SPEC 3.1): a folder with left/ and right/ (or only
 // left/ for monocular), a pair of videos, one side-by-side video, a monocular video, or a plain
-// folder of images (monocular, for example an OTB sequence's img/).
+// folder of images (monocular, for example an OTB sequence's img/); or live, from a V4L2 camera
+// or a GStreamer pipeline (io/live_source.h, docs/LIVE.md).
 // Frames come out at the working size, as 8-bit BGR: grey images get three equal channels and
 // 16-bit images keep their high byte. docs/SEQUENCES.md describes the layouts and rules.
 #pragma once
 
+#include <atomic>
+#include <chrono>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "io/live_options.h"
 #include "util/option_fields.h"
 
 namespace attend {
@@ -24,6 +29,13 @@ struct SequenceOptions {
   std::string video;               // a monocular video
   std::string images;              // DIR: a monocular plain folder of frames, DIR/* matched by
                                    // sorted file name (ListFrameFiles)
+  // Live (io/live_source.h): a V4L2 camera /dev/videoN or a GStreamer pipeline; with
+  // camera_right or gst_right a stereo pair, with live.side_by_side one side-by-side source.
+  int camera = -1;  // N of /dev/videoN; -1: none
+  int camera_right = -1;
+  std::string gst;  // a pipeline ending in an appsink (one is appended when it has none)
+  std::string gst_right;
+  LiveOptions live;  // the live section: queue, timeout, duration, side by side
 
   // Frame range in source indices, inclusive; last_frame = -1 means to the end, and a last_frame
   // beyond the end stops at the end. A range that starts beyond the last frame is bad input.
@@ -43,8 +55,10 @@ struct SequenceOptions {
   // The fields (util/option_fields.h), which Check and the configuration apply; Check applies
   // the ranges of width and height only unless resize is native (the configuration always).
   static const OptionFields<SequenceOptions>& Fields();
-  // How many sources are set (a video pair counts once).
+  // How many sources are set (a video pair and a live source with its right view count once).
   int SourceCount() const;
+  // Whether a live source (camera, gst or their right twins) is set.
+  bool IsLive() const;
   // The values of `resize`.
   static const std::vector<std::string>& ResizeModes();
   // A short description of the source for messages: "folder SEQ", "videos A + B", ...
@@ -96,7 +110,14 @@ struct StereoFrame {
   cv::Mat right;           // CV_8UC3, BGR, working size; empty when monocular
   std::string left_path;   // the file, or "VIDEO#index" for videos
   std::string right_path;  // "" when monocular; the same video for side-by-side
+  // Live sources: when the frame came out of the source's read (the capture thread's clock);
+  // the epoch for files.
+  std::chrono::steady_clock::time_point captured{};
 };
+
+// A video frame as 8-bit BGR (grey and BGRA converted); InputError "frame INDEX (PATH): ..."
+// for other depths or channel counts.
+cv::Mat VideoFrameToBgr(const cv::Mat& frame, int index, const std::string& path);
 
 // Sets `info`'s native size to `native` and its working size and scales from `options`.
 void SizeSequence(const SequenceOptions& options, cv::Size native, SequenceInfo* info);
@@ -116,6 +137,12 @@ class FrameSource {
   // handed out before stay valid (they never share buffers with later frames), and a further
   // Next() goes on with the frame after the bad one.
   virtual bool Next(StereoFrame* frame) = 0;
+
+  // A source whose Next() may wait for frames (a live one) gives up waiting, and returns
+  // false, soon after `*stop` becomes true. Files never wait, and ignore it.
+  virtual void WatchStop(const std::atomic<bool>* stop) { (void)stop; }
+  // A live source's capture so far (frames captured, dropped, how it ended); nothing for files.
+  virtual std::optional<LiveStatus> live_status() const { return std::nullopt; }
 };
 
 }  // namespace attend

@@ -25,6 +25,21 @@ FeatureRegistry LoadFeatureRegistry(const std::vector<std::string>& plugins) {
   return registry;
 }
 
+std::vector<std::string> LeaveOutStereoFeatures(const FeatureRegistry& registry,
+                                                FeatureSetup setup,
+                                                std::vector<FeatureSpec>* features) {
+  setup.stereo = true;  // to ask each feature whether it needs stereo
+  std::vector<std::string> left_out;
+  for (FeatureSpec& spec : *features) {
+    if (!spec.enabled) continue;
+    if (registry.Create(spec, setup)->NeedsStereo()) {
+      spec.enabled = false;
+      left_out.push_back(spec.name);
+    }
+  }
+  return left_out;
+}
+
 namespace {
 
 // The skin model of the attention stage, found as the skin feature finds its model.

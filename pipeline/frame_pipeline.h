@@ -22,6 +22,15 @@ namespace attend {
 // files (ConfigError naming the plugin that cannot be used).
 FeatureRegistry LoadFeatureRegistry(const std::vector<std::string>& plugins);
 
+// Disables (enabled: false) every enabled feature of `features` that needs stereo
+// (FeatureMap::NeedsStereo) and returns their names, in list order: `attend saliency` on still
+// images, and `attend run` with the shipped configuration on a monocular source, leave them out
+// instead of refusing the configuration. `setup` serves to create each plugin to ask it
+// (ConfigError for a plugin that cannot be created).
+std::vector<std::string> LeaveOutStereoFeatures(const FeatureRegistry& registry,
+                                                FeatureSetup setup,
+                                                std::vector<FeatureSpec>* features);
+
 class FramePipeline {
  public:
   // Creates the feature plugins (ConfigError for unknown names or bad parameters).

@@ -26,6 +26,15 @@ void VisitSequence(AttendOptions* o, Visitor& v) {
   v.EndSection([o] { return o->sequence.Check(); });
 }
 
+// live: how a live source (sequence.camera, sequence.gst) is read. Its check is the
+// sequence's, which holds it, so that errors that join the two sections show here too.
+template <typename Visitor>
+void VisitLive(AttendOptions* o, Visitor& v) {
+  v.BeginSection("live");
+  v.Fields(&o->sequence.live, LiveOptions::Fields());
+  v.EndSection([o] { return o->sequence.Check(); });
+}
+
 // segmentation: the BIP colour segmentation.
 template <typename Visitor>
 void VisitSegmentation(AttendOptions* o, Visitor& v) {
@@ -140,6 +149,7 @@ void VisitTracker(AttendOptions* o, Visitor& v) {
 template <typename Visitor>
 void VisitOptions(AttendOptions* o, Visitor& v) {
   VisitSequence(o, v);
+  VisitLive(o, v);
   VisitSegmentation(o, v);
   VisitOutput(o, v);
   v.Features("features", &o->features);

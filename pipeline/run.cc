@@ -1,6 +1,7 @@
 #include "pipeline/run.h"
 
 #include <algorithm>
+#include <chrono>
 #include <ctime>
 #include <filesystem>
 #include <iomanip>
@@ -35,7 +36,7 @@ nlohmann::ordered_json SummaryJson(const RunSummary& summary, const SequenceInfo
                                    const RunRequest& request, const std::string& started) {
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
   for (const auto& [stage, ms] : summary.mean_ms.stages()) timings[stage] = ms;
-  return {{"frames", summary.frames},
+  nlohmann::ordered_json json = {{"frames", summary.frames},
           {"fps", summary.fps},
           {"wall_seconds", summary.wall_seconds},
           {"timings_ms", timings},
@@ -63,6 +64,21 @@ nlohmann::ordered_json SummaryJson(const RunSummary& summary, const SequenceInfo
           {"command", request.command_line},
           {"started", started},
           {"attend_version", ATTEND_VERSION}};
+  // Added only where they apply, so that a file run's summary keeps its fields.
+  if (!summary.left_out.empty()) json["features_left_out"] = summary.left_out;
+  if (summary.live.has_value()) {
+    const LiveStatus& live = *summary.live;
+    json["live"] = {{"source", live.source},
+                    {"queue", live.queue},
+                    {"frames_captured", live.captured},
+                    {"frames_dropped", live.dropped},
+                    {"frames_unprocessed", live.unprocessed},
+                    {"end", LiveEndName(live.end)},
+                    {"why", live.why},
+                    {"latency_ms",
+                     {{"mean", summary.mean_latency_ms}, {"max", summary.max_latency_ms}}}};
+  }
+  return json;
 }
 
 // The map dumps of SPEC 3.3 that output.dump asks for.
@@ -147,6 +163,11 @@ std::string RunSummary::BriefReport() const {
   for (const auto& [stage, ms] : mean_ms.stages()) {
     out << " " << stage << " " << std::setprecision(2) << ms << " ms";
   }
+  if (live.has_value()) {
+    out << "\nlive: " << live->captured << " frames captured, " << live->dropped
+        << " dropped (queue " << live->queue << "), latency " << std::setprecision(1)
+        << mean_latency_ms << " ms mean, " << max_latency_ms << " ms max; " << live->why;
+  }
   out << "\noutputs: " << dir;
   return out.str();
 }
@@ -165,11 +186,19 @@ std::string DefaultRunFolder(const std::string& parent, const std::string& confi
 
 namespace {
 
+// Latencies from capture to record of a live run's frames, ms.
+struct Latencies {
+  double sum = 0.0;
+  double max = 0.0;
+  int count = 0;
+};
+
 // The next frame of `source` through the pipeline and the observers, its record appended to
-// the run folder and the scanpath and its timings to `totals`; false at the end of the source.
+// the run folder and the scanpath, its timings to `totals` and its latency (live sources) to
+// `latencies`; false at the end of the source.
 bool RunFrame(FrameSource* source, FramePipeline* pipeline,
               const std::vector<RunObserver*>& observers, RunFolder* folder,
-              nlohmann::ordered_json* scanpath, StageTimes* totals) {
+              nlohmann::ordered_json* scanpath, StageTimes* totals, Latencies* latencies) {
   FrameRecord record;
   Stopwatch stage;
   StereoFrame frame;
@@ -185,7 +214,15 @@ bool RunFrame(FrameSource* source, FramePipeline* pipeline,
   // The pipeline and the overlay work at the working size; the record is written in the
   // pixels of the input frames (SPEC 3.3).
   const SequenceInfo& info = source->info();
-  const FrameRecord input = InputFromWorking(record, info.scale_x, info.scale_y, info.native_size);
+  FrameRecord input = InputFromWorking(record, info.scale_x, info.scale_y, info.native_size);
+  if (frame.captured != std::chrono::steady_clock::time_point{}) {
+    input.latency_ms = std::chrono::duration<double, std::milli>(
+                           std::chrono::steady_clock::now() - frame.captured)
+                           .count();
+    latencies->sum += input.latency_ms;
+    latencies->max = std::max(latencies->max, input.latency_ms);
+    ++latencies->count;
+  }
   folder->AppendFrame(input);
   AppendScanpath(input, scanpath);
   for (const auto& [name, ms] : record.timings.stages()) totals->Add(name, ms);
@@ -195,12 +232,22 @@ bool RunFrame(FrameSource* source, FramePipeline* pipeline,
 }  // namespace
 
 RunSummary RunSequence(const RunRequest& request) {
-  const AttendOptions& options = request.options;
+  AttendOptions options = request.options;
   std::unique_ptr<FrameSource> source = FrameSource::Open(options.sequence);
   const SequenceInfo& info = source->info();
   // Everything that can reject the configuration runs before the run folder exists.
   if (options.threads > 0) cv::setNumThreads(options.threads);
   const FeatureRegistry registry = LoadFeatureRegistry(options.plugins);
+  RunSummary summary;
+  if (!info.stereo && request.stereo_features_optional) {
+    // Disabled in the options, so that RUN/config.yaml repeats the run as it was made.
+    FeatureSetup probe;
+    probe.home = request.home;
+    summary.left_out = LeaveOutStereoFeatures(registry, probe, &options.features);
+    if (request.on_left_out) {
+      for (const std::string& name : summary.left_out) request.on_left_out(name);
+    }
+  }
   FeatureSetup setup;
   setup.stereo = info.stereo;
   setup.home = request.home;
@@ -220,9 +267,9 @@ RunSummary RunSequence(const RunRequest& request) {
   if (options.output.Dumps("overlay")) observers.push_back(&overlay_dump);
   observers.insert(observers.end(), request.observers.begin(), request.observers.end());
 
-  RunSummary summary;
   summary.dir = folder.dir();
   StageTimes totals;
+  Latencies latencies;
   nlohmann::ordered_json scanpath = nlohmann::ordered_json::array();
   const Stopwatch wall;
   auto finish = [&] {
@@ -231,18 +278,29 @@ RunSummary RunSequence(const RunRequest& request) {
     for (const auto& [stage, ms] : totals.stages()) {
       summary.mean_ms.Add(stage, summary.frames > 0 ? ms / summary.frames : 0.0);
     }
+    summary.live = source->live_status();
+    if (latencies.count > 0) {
+      summary.mean_latency_ms = latencies.sum / latencies.count;
+      summary.max_latency_ms = latencies.max;
+    }
     folder.WriteJson("scanpath.json", scanpath);
     folder.WriteSummary(SummaryJson(summary, info, request, started));
   };
 
   try {
     pipeline.BeginSequence({info.name, info.size, info.stereo, options.sequence.first_frame});
+    source->WatchStop(request.stop);
     while (true) {
       if (request.stop != nullptr && request.stop->load()) {
         summary.interrupted = true;
         break;
       }
-      if (!RunFrame(source.get(), &pipeline, observers, &folder, &scanpath, &totals)) break;
+      if (!RunFrame(source.get(), &pipeline, observers, &folder, &scanpath, &totals,
+                    &latencies)) {
+        // A live source stops waiting for its next frame when the run is asked to stop.
+        if (request.stop != nullptr && request.stop->load()) summary.interrupted = true;
+        break;
+      }
       ++summary.frames;
       summary.targets_attended = pipeline.targets_attended();
       if (request.on_progress) {

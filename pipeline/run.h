@@ -5,9 +5,11 @@
 
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "io/live_options.h"
 #include "pipeline/attend_options.h"
 #include "util/timer.h"
 
@@ -45,6 +47,11 @@ struct RunRequest {
   const std::atomic<bool>* stop = nullptr;              // finish the frame, then stop
   std::function<void(const RunProgress&)> on_progress;  // after every frame
   std::vector<RunObserver*> observers;  // after the dumps, every frame (not owned)
+  // The configuration is the shipped one (app/run_attention.h, ShippedFeatures): on a
+  // monocular source the features that need stereo are left out, each named to on_left_out,
+  // instead of refused (SPEC 3.1). Otherwise such a feature is a configuration error.
+  bool stereo_features_optional = false;
+  std::function<void(const std::string& feature)> on_left_out;
 };
 
 struct RunSummary {
@@ -56,6 +63,12 @@ struct RunSummary {
   int targets_attended = 0;
   bool interrupted = false;  // stopped before the end of the range
   std::string error;         // why it stopped early, when it did on an error
+  std::vector<std::string> left_out;  // features left out: they need stereo, the source is mono
+  // A live source: its capture (frames captured, dropped, unprocessed, how it ended) and the
+  // latency from capture to record, ms.
+  std::optional<LiveStatus> live;
+  double mean_latency_ms = 0.0;
+  double max_latency_ms = 0.0;
 
   // Two lines for the terminal: frames, fps, the slowest stages, where the outputs are.
   std::string BriefReport() const;
@@ -63,7 +76,9 @@ struct RunSummary {
 
 // Runs the loop. Problems found before the first frame (options, sequence) throw without
 // creating the run folder. A bad frame later writes summary.json with the error and
-// `interrupted: true`, then throws the InputError (exit status 3).
+// `interrupted: true`, then throws the InputError (exit status 3). A live source that stops
+// delivering (live.timeout_s) ends the run as the end of a file does; summary.json's `live`
+// says how it ended.
 RunSummary RunSequence(const RunRequest& request);
 
 // runs/<YYYYmmdd-HHMMSS>-<config stem>-<sequence name> below `parent`, made unique.

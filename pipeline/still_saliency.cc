@@ -25,15 +25,10 @@ StillSaliency::StillSaliency(const AttendOptions& options, const std::string& ho
                              std::vector<std::string>* dropped)
     : options_(options), home_(home), registry_(LoadFeatureRegistry(options_.plugins)) {
   FeatureSetup setup;
-  setup.stereo = true;  // to ask each feature whether it needs stereo
   setup.home = home_;
-  for (FeatureSpec& spec : options_.features) {
-    if (!spec.enabled) continue;
-    if (registry_.Create(spec, setup)->NeedsStereo()) {
-      spec.enabled = false;
-      if (dropped != nullptr) dropped->push_back(spec.name);
-    }
-  }
+  const std::vector<std::string> left_out =
+      LeaveOutStereoFeatures(registry_, setup, &options_.features);
+  if (dropped != nullptr) dropped->insert(dropped->end(), left_out.begin(), left_out.end());
   // Every other problem of the configuration shows here, before any image is read.
   setup.stereo = false;
   FramePipeline check(options_, registry_, setup);

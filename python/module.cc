@@ -275,7 +275,7 @@ py::tuple ReferenceLoop(const AttendOptions& options, const py::list& frames) {
 // stops it after the current frame, as in the command line.
 py::dict Run(const py::dict& source, const std::string& config,
              const std::vector<std::string>& overrides, const std::string& frames,
-             const std::string& out, bool overwrite) {
+             const std::string& out, bool overwrite, double duration) {
   AttentionRunRequest request;
   request.config = config;
   request.sets = overrides;
@@ -283,9 +283,16 @@ py::dict Run(const py::dict& source, const std::string& config,
     return source.contains(key) && !source[key].is_none() ? py::str(source[key]).cast<std::string>()
                                                           : std::string();
   };
+  auto number = [&](const char* key) {
+    return source.contains(key) && !source[key].is_none() ? source[key].cast<int>() : -1;
+  };
   request.source = {text("sequence"),           text("left_video"), text("right_video"),
-                    text("side_by_side_video"), text("video"),      text("images")};
+                    text("side_by_side_video"), text("video"),      text("images"),
+                    number("camera"),           number("camera_right"), text("gst"),
+                    text("gst_right"),
+                    source.contains("side_by_side_live") && source["side_by_side_live"].cast<bool>()};
   request.frames = frames;
+  request.duration_s = duration;
   request.out = out;
   request.overwrite = overwrite;
   request.quiet = true;
@@ -605,8 +612,8 @@ PYBIND11_MODULE(_attend, m) {
 
   m.def("run", [](const std::string& config, const std::vector<std::string>& overrides,
                   const py::dict& source, const std::string& frames, const std::string& out,
-                  bool overwrite) {
-    return Run(source, config, overrides, frames, out, overwrite);
+                  bool overwrite, double duration) {
+    return Run(source, config, overrides, frames, out, overwrite, duration);
   });
   m.def("saliency", [](const py::array& image, const Configuration& c, bool features) {
     return Saliency(image, c.options, features);

@@ -21,7 +21,7 @@
 namespace attend::cvextra {
 
 // Bumped whenever a class below changes; the module refuses another version.
-inline constexpr int kAbiVersion = 1;
+inline constexpr int kAbiVersion = 2;
 
 // A video file, a camera or a GStreamer pipeline (cv::VideoCapture).
 class Capture {
@@ -31,6 +31,8 @@ class Capture {
   virtual bool Grab() = 0;
   // Grabs and decodes the next frame into `image`; false at the end.
   virtual bool Read(cv::Mat* image) = 0;
+  // Decodes the frame of the last Grab() into `image` (live pairs grab both views first).
+  virtual bool Retrieve(cv::Mat* image) = 0;
   virtual double Get(int property) const = 0;
   virtual bool Set(int property, double value) = 0;
 };
@@ -104,6 +106,8 @@ class Module {
   // backend preference (cv::CAP_ANY = 0); the result may be closed (IsOpened()).
   virtual std::unique_ptr<Capture> OpenCapture(const std::string& source, int api) = 0;
   virtual std::unique_ptr<Capture> OpenCamera(int index, int api) = 0;
+  // Whether this OpenCV has the videoio backend `api` (cv::videoio_registry::hasBackend).
+  virtual bool HasBackend(int api) = 0;
   virtual std::unique_ptr<Writer> OpenWriter(const std::string& path, int fourcc, double fps,
                                              cv::Size size) = 0;
   // tracking and video.

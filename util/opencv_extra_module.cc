@@ -7,6 +7,7 @@
 #include <opencv2/tracking.hpp>
 #include <opencv2/video/tracking.hpp>
 #include <opencv2/videoio.hpp>
+#include <opencv2/videoio/registry.hpp>
 
 #include "util/opencv_extra.h"
 
@@ -19,6 +20,7 @@ class CaptureImpl final : public Capture {
   bool IsOpened() const override { return capture_.isOpened(); }
   bool Grab() override { return capture_.grab(); }
   bool Read(cv::Mat* image) override { return capture_.read(*image); }
+  bool Retrieve(cv::Mat* image) override { return capture_.retrieve(*image); }
   double Get(int property) const override { return capture_.get(property); }
   bool Set(int property, double value) override { return capture_.set(property, value); }
   cv::VideoCapture& capture() { return capture_; }
@@ -126,6 +128,9 @@ class ModuleImpl final : public Module {
     auto capture = std::make_unique<CaptureImpl>();
     capture->capture().open(index, api);
     return capture;
+  }
+  bool HasBackend(int api) override {
+    return cv::videoio_registry::hasBackend(static_cast<cv::VideoCaptureAPIs>(api));
   }
   std::unique_ptr<Writer> OpenWriter(const std::string& path, int fourcc, double fps,
                                      cv::Size size) override {

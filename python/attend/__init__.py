@@ -193,12 +193,17 @@ class Tracker:
 
 
 def run(sequence=None, *, config=None, set=(), video=None, left_video=None, right_video=None,
-        side_by_side_video=None, images=None, frames="", out="", overwrite=False):
+        side_by_side_video=None, images=None, camera=None, camera_right=None, gst=None,
+        gst_right=None, side_by_side_live=False, duration=None, frames="", out="",
+        overwrite=False):
     """`attend run`: the pipeline over a source into a run folder; returns the folder's Run.
 
-    The sources are those of `attend run` (a sequence folder, videos, an image folder); none
-    runs the configuration's own source. KeyboardInterrupt stops it after the current frame,
-    with the run folder closed as interrupted, and is raised again.
+    The sources are those of `attend run` (a sequence folder, videos, an image folder, a live
+    V4L2 camera or GStreamer pipeline and its right twin, docs/LIVE.md); none runs the
+    configuration's own source. `duration` (seconds) bounds a live run as --duration does.
+    With no `config`, a monocular source leaves the stereo features out, as the command does.
+    KeyboardInterrupt stops it after the current frame, with the run folder closed as
+    interrupted, and is raised again.
     """
     if isinstance(set, str):
         set = [set]
@@ -214,8 +219,12 @@ def run(sequence=None, *, config=None, set=(), video=None, left_video=None, righ
               "right_video": right_video, "side_by_side_video": side_by_side_video,
               "images": images}
     source = {k: _os.fspath(v) for k, v in source.items() if v is not None}
+    live = {"camera": camera, "camera_right": camera_right, "gst": gst, "gst_right": gst_right}
+    source.update({k: v for k, v in live.items() if v is not None})
+    source["side_by_side_live"] = bool(side_by_side_live)
     try:
-        summary = _attend.run(config_path, list(set), source, frames, _os.fspath(out), overwrite)
+        summary = _attend.run(config_path, list(set), source, frames, _os.fspath(out), overwrite,
+                              -1.0 if duration is None else float(duration))
     finally:
         if isinstance(config, dict):
             _os.unlink(config_path)

@@ -232,3 +232,27 @@ def test_eval_fixations_scores_a_perfect_map_above_its_opposite(tmp_path):
     with open(tmp_path / "cli" / "fixations.json", encoding="utf-8") as file:
         cli = json.load(file)
     assert cli["methods"] == methods
+
+
+def test_run_reads_a_live_gstreamer_pipeline(tmp_path):
+    """attend.run(gst=...) as `attend run --gst`: the records carry their latency, the summary
+    the live counts, and the shipped configuration leaves disparity out of a monocular source."""
+    import shutil
+    import subprocess
+    if shutil.which("gst-inspect-1.0") is None:
+        pytest.skip("no gst-inspect-1.0 (gstreamer1.0-tools) to tell whether videotestsrc is here")
+    if subprocess.run(["gst-inspect-1.0", "videotestsrc"], capture_output=True).returncode != 0:
+        pytest.skip("GStreamer's videotestsrc (gstreamer1.0-plugins-base) is not installed")
+    pipeline = ("videotestsrc is-live=true num-buffers=8 ! video/x-raw,width=160,height=120,"
+                "framerate=30/1 ! videoconvert ! appsink")
+    run = attend.run(gst=pipeline, out=tmp_path / "run", set=["live.queue=10"])
+    lines = records(tmp_path / "run" / "frames.jsonl")
+    assert [line["frame"] for line in lines] == list(range(8))
+    assert all(line["latency_ms"] > 0 for line in lines)
+    with open(tmp_path / "run" / "summary.json") as handle:
+        summary = json.load(handle)
+    assert summary["live"]["frames_captured"] == 8
+    assert summary["live"]["end"] == "end of stream"
+    assert summary["features_left_out"] == ["disparity"]
+    with pytest.raises(attend.ConfigError, match="--duration bounds a live source"):
+        attend.run(run.dir, duration=1.0)

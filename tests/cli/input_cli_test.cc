@@ -159,10 +159,17 @@ TEST(InputCli, ImagesRunsOnAPlainFolderOfFrames) {
     fs::copy_file(dir.File(from), dir.File(to));
   }
   dir.Write("img/groundtruth_rect.txt", "1,2,3,4\n");
-  r = Attend(dir, {"run", "--images", "img", "--out", "run", "--quiet"});
-  EXPECT_EQ(r.status, 2) << r.err;  // the disparity feature needs stereo
+  // The disparity feature needs stereo: the shipped configuration leaves it out (with a note),
+  // an override of the features that keeps it is refused.
+  r = Attend(dir, {"run", "--images", "img", "--out", "run", "--set",
+                   "features.skin.weight=0.5"});
+  EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_TRUE(Contains(r.err, "features.disparity.enabled=false")) << r.err;
   EXPECT_FALSE(fs::exists(dir.File("run")));
+  r = Attend(dir, {"run", "--images", "img", "--out", "shipped"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(Contains(r.err, "feature 'disparity' needs stereo and is left out")) << r.err;
+  EXPECT_EQ(Frames(dir, "shipped").size(), 4u);
 
   r = Attend(dir, {"run", "--images", "img", "--out", "run", "--quiet", "--set",
                    "features.disparity.enabled=false"});

@@ -80,6 +80,8 @@ void ExpectRangesAppliedBothWays(const std::string& prefix, const OptionFields<O
 TEST(OptionRanges, EveryRangedKeyIsRefusedOutsideItsRangeByTheFileAndByCheck) {
   ExpectRangesAppliedBothWays<SequenceOptions, SequenceOptions>(
       "sequence.", SequenceOptions::Fields(), [](SequenceOptions* o) { return o; });
+  ExpectRangesAppliedBothWays<LiveOptions, SequenceOptions>(
+      "live.", LiveOptions::Fields(), [](SequenceOptions* o) { return &o->live; });
   ExpectRangesAppliedBothWays<SegmentationOptions, SegmentationOptions>(
       "segmentation.", SegmentationOptions::Fields(), [](SegmentationOptions* o) { return o; });
   ExpectRangesAppliedBothWays<SaliencyOptions, SaliencyOptions>(
@@ -141,9 +143,9 @@ TEST(OptionRanges, EveryNumericKeyOfTheConfigurationHasARange) {
       check("", name);
     }
   }
-  // sequence 5, segmentation 2, saliency 2, select 24, drop 4, inhibition 1, attention 5,
-  // tracker 21, threads: so that a writer change that hid the numbers fails here.
-  EXPECT_EQ(numeric, 65);
+  // sequence 7, live 3, segmentation 2, saliency 2, select 24, drop 4, inhibition 1,
+  // attention 5, tracker 21, threads: so that a writer change that hid the numbers fails here.
+  EXPECT_EQ(numeric, 70);
 }
 
 }  // namespace
