@@ -27,7 +27,7 @@ GtObject Object(int frame, int id, const cv::Rect2d& box, double visible_fractio
   return object;
 }
 
-TargetRecord Target(int id, const cv::Rect& box, TargetState state = TargetState::kTracked) {
+TargetRecord MotTarget(int id, const cv::Rect& box, TargetState state = TargetState::kTracked) {
   TargetRecord target;
   target.id = id;
   target.bbox = box;
@@ -73,7 +73,7 @@ TEST(EvaluateMot, APerfectTrackerScoresOne) {
   for (FrameRecord& record : frames) {
     truth.push_back(Object(record.frame, 1, kPersonA));
     truth.push_back(Object(record.frame, 2, kPersonB));
-    record.targets = {Target(7, kPersonA), Target(8, kPersonB)};
+    record.targets = {MotTarget(7, kPersonA), MotTarget(8, kPersonB)};
   }
   frames[0].targets[0].state = frames[0].targets[1].state = TargetState::kNew;
   const MotScores scores = EvaluateMot(frames, truth);
@@ -113,7 +113,7 @@ TEST(EvaluateMot, OneIdSwitchInTheMiddle) {
   for (FrameRecord& record : frames) {
     truth.push_back(Object(record.frame, 1, kPersonA));
     truth.push_back(Object(record.frame, 2, kPersonB));
-    record.targets = {Target(record.frame < 4 ? 1 : 2, kPersonA), Target(3, kPersonB)};
+    record.targets = {MotTarget(record.frame < 4 ? 1 : 2, kPersonA), MotTarget(3, kPersonB)};
   }
   const MotScores scores = EvaluateMot(frames, truth);
   EXPECT_EQ(scores.gt, 20);
@@ -136,7 +136,7 @@ TEST(EvaluateMot, OneIdSwitchInTheMiddle) {
 TEST(EvaluateMot, APartOfAPersonMatchesAtPointThreeNotAtPointFive) {
   // The upper 80 of the person's 200 rows: IoU 0.4.
   std::vector<FrameRecord> frames = Frames(1);
-  frames[0].targets = {Target(1, cv::Rect(10, 10, 100, 80), TargetState::kNew)};
+  frames[0].targets = {MotTarget(1, cv::Rect(10, 10, 100, 80), TargetState::kNew)};
   const std::vector<GtObject> truth = {Object(0, 1, kPersonA)};
 
   const MotScores strict = EvaluateMot(frames, truth, AtIou(0.5));
@@ -162,7 +162,7 @@ TEST(EvaluateMot, APartOfAPersonMatchesAtPointThreeNotAtPointFive) {
 TEST(EvaluateMot, ExactlyTheThresholdMatches) {
   // The upper half of the person: IoU exactly 0.5, which MOTChallenge counts as a match.
   std::vector<FrameRecord> frames = Frames(1);
-  frames[0].targets = {Target(1, cv::Rect(10, 10, 100, 100))};
+  frames[0].targets = {MotTarget(1, cv::Rect(10, 10, 100, 100))};
   const MotScores scores = EvaluateMot(frames, {Object(0, 1, kPersonA)});
   EXPECT_EQ(scores.matches, 1);
   EXPECT_DOUBLE_EQ(scores.motp, 0.5);
@@ -176,11 +176,11 @@ TEST(EvaluateMot, TwoTargetsOnOnePersonOneAfterTheOther) {
   std::vector<GtObject> truth;
   for (FrameRecord& record : frames) {
     truth.push_back(Object(record.frame, 1, kPersonA));
-    if (record.frame < 2) record.targets = {Target(1, kPersonA)};
+    if (record.frame < 2) record.targets = {MotTarget(1, kPersonA)};
     if (record.frame == 2 || record.frame == 3) {
-      record.targets = {Target(1, kPersonA, TargetState::kOccluded)};
+      record.targets = {MotTarget(1, kPersonA, TargetState::kOccluded)};
     }
-    if (record.frame >= 4) record.targets = {Target(2, kPersonA)};
+    if (record.frame >= 4) record.targets = {MotTarget(2, kPersonA)};
   }
   const MotScores scores = EvaluateMot(frames, truth);
   EXPECT_EQ(scores.objects_attended_whole, 1);
@@ -206,7 +206,7 @@ TEST(EvaluateMot, ATargetThatMovesFromOnePersonToAnother) {
   for (FrameRecord& record : frames) {
     truth.push_back(Object(record.frame, 1, kPersonA));
     truth.push_back(Object(record.frame, 2, kPersonB));
-    record.targets = {Target(1, record.frame < 3 ? kPersonA : kPersonB)};
+    record.targets = {MotTarget(1, record.frame < 3 ? kPersonA : kPersonB)};
   }
   const MotScores scores = EvaluateMot(frames, truth);
   EXPECT_NEAR(scores.purity, 0.6, kTolerance);
@@ -233,13 +233,13 @@ TEST(EvaluateMot, FalsePositivesAndNegativesOnAConstructedRun) {
   std::vector<GtObject> truth;
   for (int f = 0; f < 3; ++f) truth.push_back(Object(f, 1, kPersonA));
   for (int f = 0; f < 2; ++f) truth.push_back(Object(f, 2, kPersonB));
-  frames[0].targets = {Target(1, kPersonA, TargetState::kNew), Target(2, wall, TargetState::kNew),
-                       Target(3, kPersonB, TargetState::kNew)};
-  frames[1].targets = {Target(1, kPersonA), Target(2, wall),
-                       Target(3, kPersonB, TargetState::kLost),
-                       Target(9, kPersonB, TargetState::kOccluded)};
-  frames[2].targets = {Target(1, kPersonA), Target(2, wall)};
-  frames[3].targets = {Target(1, kPersonA)};
+  frames[0].targets = {MotTarget(1, kPersonA, TargetState::kNew), MotTarget(2, wall, TargetState::kNew),
+                       MotTarget(3, kPersonB, TargetState::kNew)};
+  frames[1].targets = {MotTarget(1, kPersonA), MotTarget(2, wall),
+                       MotTarget(3, kPersonB, TargetState::kLost),
+                       MotTarget(9, kPersonB, TargetState::kOccluded)};
+  frames[2].targets = {MotTarget(1, kPersonA), MotTarget(2, wall)};
+  frames[3].targets = {MotTarget(1, kPersonA)};
   const MotScores scores = EvaluateMot(frames, truth);
   EXPECT_EQ(scores.frames, 4);
   EXPECT_EQ(scores.gt, 5);
@@ -264,7 +264,7 @@ TEST(EvaluateMot, TheAssignmentMatchesMorePairsThanTheGreedyChoice) {
   // target 2, A's left 80 columns, overlaps A with IoU 0.8 and B with 5/13 < 0.5. Greedy by
   // IoU pairs 1 with A and leaves B and 2 alone; the assignment pairs 1 with B, 2 with A.
   std::vector<FrameRecord> frames = Frames(1);
-  frames[0].targets = {Target(1, cv::Rect(0, 0, 100, 100)), Target(2, cv::Rect(0, 0, 80, 100))};
+  frames[0].targets = {MotTarget(1, cv::Rect(0, 0, 100, 100)), MotTarget(2, cv::Rect(0, 0, 80, 100))};
   const std::vector<GtObject> truth = {Object(0, 1, {0, 0, 100, 100}),
                                        Object(0, 2, {30, 0, 100, 100})};
   const MotScores scores = EvaluateMot(frames, truth);
@@ -280,9 +280,9 @@ TEST(EvaluateMot, LastFramesPairIsKeptWhileItReachesTheThreshold) {
   // no switch; frame 2: target 1 drops to IoU 0.4, and A goes to 2 (one switch).
   const cv::Rect upper(10, 10, 100, 120), upper_part(10, 10, 100, 80);
   std::vector<FrameRecord> frames = Frames(3);
-  frames[0].targets = {Target(1, upper)};
-  frames[1].targets = {Target(1, upper), Target(2, kPersonA)};
-  frames[2].targets = {Target(1, upper_part), Target(2, kPersonA)};
+  frames[0].targets = {MotTarget(1, upper)};
+  frames[1].targets = {MotTarget(1, upper), MotTarget(2, kPersonA)};
+  frames[2].targets = {MotTarget(1, upper_part), MotTarget(2, kPersonA)};
   std::vector<GtObject> truth;
   for (int f = 0; f < 3; ++f) truth.push_back(Object(f, 1, kPersonA));
   const MotScores scores = EvaluateMot(frames, truth);
@@ -297,8 +297,8 @@ TEST(EvaluateMot, ATargetOnAnObjectThatDoesNotCountIsIgnored) {
   // them are neither false positives nor part of the identity measures. Target 3 on the wall is
   // a false positive.
   std::vector<FrameRecord> frames = Frames(1);
-  frames[0].targets = {Target(1, kPersonA), Target(2, cv::Rect(300, 10, 7, 7)),
-                       Target(3, cv::Rect(500, 300, 40, 40))};
+  frames[0].targets = {MotTarget(1, kPersonA), MotTarget(2, cv::Rect(300, 10, 7, 7)),
+                       MotTarget(3, cv::Rect(500, 300, 40, 40))};
   const std::vector<GtObject> truth = {Object(0, 1, kPersonA, 0.1), Object(0, 2, {300, 10, 7, 7})};
   const MotScores scores = EvaluateMot(frames, truth);
   EXPECT_EQ(scores.objects, 0);
