@@ -42,6 +42,7 @@
 
 #include "bench/bench_common.h"
 #include "bench/bench_scenes.h"
+#include "bench/sgbm_peer.h"
 #include "eval/disparity_scores.h"
 #include "stereo/disparity.h"
 #include "stereo/disparity_internal.h"
@@ -59,12 +60,13 @@ constexpr int kBmBlockSize = 9;
 constexpr int kBmPreFilterCap = 31;
 constexpr int kBmTextureThreshold = 10;
 constexpr int kBmUniquenessRatio = 15;
-constexpr int kSgbmBlockSize = 5;
-constexpr int kSgbmPreFilterCap = 63;
-constexpr int kSgbmUniquenessRatio = 10;
-constexpr int kSpeckleWindowSize = 100;
-constexpr int kSpeckleRange = 32;
-constexpr int kDisp12MaxDiff = 1;
+using attend::bench::kDisp12MaxDiff;
+using attend::bench::kSgbmBlockSize;
+using attend::bench::kSgbmPreFilterCap;
+using attend::bench::kSgbmUniquenessRatio;
+using attend::bench::kSpeckleRange;
+using attend::bench::kSpeckleWindowSize;
+using attend::bench::OpenCvDisparities;
 
 // The synthetic scenes' frames and range: the nearest object of lab.yaml is at 22.5 px, of
 // occlusions.yaml at 18 px; at 640x480 the lab scene's disparities double.
@@ -89,8 +91,6 @@ struct Pair {
   int max_disparity = 0;
 };
 
-// numDisparities for OpenCV: the same range rounded up to a multiple of 16, as OpenCV needs.
-int OpenCvDisparities(int max_disparity) { return (max_disparity + 15) / 16 * 16; }
 
 // Adds a Middlebury pair when its three files are readable; says why it is skipped otherwise.
 void AddMiddlebury(const fs::path& root, const std::string& name, const std::string& left_file,
@@ -292,11 +292,7 @@ std::vector<Method> MakeMethods(const Pair& pair) {
                      {}});
 
   for (const int channels : {1, 3}) {
-    const int area = kSgbmBlockSize * kSgbmBlockSize;
-    cv::Ptr<cv::StereoSGBM> sgbm = cv::StereoSGBM::create(
-        0, disparities, kSgbmBlockSize, 8 * channels * area, 32 * channels * area, kDisp12MaxDiff,
-        kSgbmPreFilterCap, kSgbmUniquenessRatio, kSpeckleWindowSize, kSpeckleRange,
-        cv::StereoSGBM::MODE_SGBM);
+    cv::Ptr<cv::StereoSGBM> sgbm = attend::bench::MakeStereoSgbm(pair.max_disparity, channels);
     auto sgbm_grey = std::make_shared<std::pair<cv::Mat, cv::Mat>>();
     auto output = std::make_shared<cv::Mat>();
     methods.push_back({channels == 1 ? "OpenCV StereoSGBM" : "OpenCV StereoSGBM on BGR",

@@ -39,6 +39,7 @@
 
 #include "bench/bench_common.h"
 #include "bench/bench_scenes.h"
+#include "bench/sgbm_peer.h"
 #include "synth/render_sequence.h"
 #include "synth/scene.h"
 #include "util/subprocess.h"
@@ -50,12 +51,6 @@ namespace fs = std::filesystem;
 using attend::bench::Fixed;
 using attend::bench::Median;
 
-constexpr int kSgbmBlockSize = 5;
-constexpr int kSgbmPreFilterCap = 63;
-constexpr int kSgbmUniquenessRatio = 10;
-constexpr int kSpeckleWindowSize = 100;
-constexpr int kSpeckleRange = 32;
-constexpr int kDisp12MaxDiff = 1;
 constexpr int kSgbmFrames[] = {0, 40, 80, 110};
 
 // One size's sequence and its SGBM yardstick.
@@ -80,11 +75,7 @@ struct Run {
 };
 
 double SgbmCallMs(const Size& size) {
-  const int area = kSgbmBlockSize * kSgbmBlockSize;
-  const int disparities = (size.max_disparity + 15) / 16 * 16;
-  cv::Ptr<cv::StereoSGBM> sgbm = cv::StereoSGBM::create(
-      0, disparities, kSgbmBlockSize, 8 * area, 32 * area, kDisp12MaxDiff, kSgbmPreFilterCap,
-      kSgbmUniquenessRatio, kSpeckleWindowSize, kSpeckleRange, cv::StereoSGBM::MODE_SGBM);
+  cv::Ptr<cv::StereoSGBM> sgbm = attend::bench::MakeStereoSgbm(size.max_disparity, 1);
   std::vector<double> times;
   cv::Mat left, right, disparity;
   for (const auto& [left_bgr, right_bgr] : size.pairs) {

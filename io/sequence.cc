@@ -26,10 +26,6 @@ namespace fs = std::filesystem;
 namespace {
 
 
-std::string SizeText(cv::Size size) {
-  return std::to_string(size.width) + "x" + std::to_string(size.height);
-}
-
 std::string FrameWhere(int index, const std::string& path) {
   return "frame " + std::to_string(index) + " (" + path + ")";
 }
@@ -393,6 +389,10 @@ class Sequence final : public FrameSource {
 };
 
 }  // namespace
+
+std::string SizeText(cv::Size size) {
+  return std::to_string(size.width) + "x" + std::to_string(size.height);
+}
 
 // Video frames are normally 8-bit BGR already; other layouts are converted the way images are.
 cv::Mat VideoFrameToBgr(const cv::Mat& frame, int index, const std::string& path) {

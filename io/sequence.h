@@ -79,6 +79,9 @@ const std::vector<std::string>& FrameFileExtensions();
 // read or decoded.
 cv::Mat ReadFrameFile(int index, const std::string& path);
 
+// "WxH", for messages about frame sizes.
+std::string SizeText(cv::Size size);
+
 // The working size of frames of size `native` under `options` (width, height, resize).
 cv::Size WorkingSize(const SequenceOptions& options, cv::Size native);
 
