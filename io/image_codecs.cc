@@ -205,6 +205,12 @@ bool EncodePng(const cv::Mat& image, int level, std::vector<uchar>* bytes) {
   if (ctx == nullptr) return false;
   spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1);
   spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_LEVEL, level);
+  // As OpenCV's PNG writer does by default: every row with the Sub filter and zlib's run-length
+  // strategy. libspng's own defaults (the best of five filters a row, the default strategy)
+  // made the overlay dumps of the attention loop twice as slow to write (8.5 against 4 ms a
+  // frame at 320x240) for files a little smaller.
+  spng_set_option(ctx.get(), SPNG_FILTER_CHOICE, SPNG_FILTER_CHOICE_SUB);
+  spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_STRATEGY, 3);  // Z_RLE
   spng_ihdr ihdr = {};
   ihdr.width = static_cast<uint32_t>(image.cols);
   ihdr.height = static_cast<uint32_t>(image.rows);
