@@ -407,16 +407,8 @@ class LiveSource final : public FrameSource {
     } else if (captured.views.size() == 2) {
       right = VideoFrameToBgr(captured.views[1], index, paths[1]);
     }
-    if (left.size() != info_.native_size) {
-      throw InputError("frame " + std::to_string(index) + " (" + paths[0] + "): size " +
-                       SizeText(left.size()) + " differs from the first frame's " +
-                       SizeText(info_.native_size));
-    }
-    if (!right.empty() && right.size() != left.size()) {
-      throw InputError("frame " + std::to_string(index) + " (" + paths[1] + "): size " +
-                       SizeText(right.size()) + " differs from the left image's " +
-                       SizeText(left.size()));
-    }
+    CheckFrameSizes(index, left, paths[0], right, right.empty() ? std::string() : paths[1],
+                    info_.native_size);
     frame->index = index;
     // ToWorkingSize copies a view that is not continuous (a half of a side-by-side frame).
     frame->left = ToWorkingSize(left, info_.size);

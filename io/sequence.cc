@@ -25,6 +25,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+std::string SizeText(cv::Size size) {
+  return std::to_string(size.width) + "x" + std::to_string(size.height);
+}
 
 std::string FrameWhere(int index, const std::string& path) {
   return "frame " + std::to_string(index) + " (" + path + ")";
@@ -367,16 +370,8 @@ class Sequence final : public FrameSource {
 
  private:
   void CheckSizes(int index, const NativeFrame& frame) const {
-    if (frame.left.size() != info_.native_size) {
-      throw InputError(FrameWhere(index, frame.left_path) + ": size " +
-                       SizeText(frame.left.size()) + " differs from the first frame's " +
-                       SizeText(info_.native_size));
-    }
-    if (!frame.right.empty() && frame.right.size() != frame.left.size()) {
-      throw InputError(FrameWhere(index, frame.right_path) + ": size " +
-                       SizeText(frame.right.size()) + " differs from the left image's " +
-                       SizeText(frame.left.size()));
-    }
+    CheckFrameSizes(index, frame.left, frame.left_path, frame.right, frame.right_path,
+                    info_.native_size);
   }
 
   std::unique_ptr<NativeReader> reader_;
@@ -390,8 +385,16 @@ class Sequence final : public FrameSource {
 
 }  // namespace
 
-std::string SizeText(cv::Size size) {
-  return std::to_string(size.width) + "x" + std::to_string(size.height);
+void CheckFrameSizes(int index, const cv::Mat& left, const std::string& left_path,
+                     const cv::Mat& right, const std::string& right_path, cv::Size first) {
+  if (left.size() != first) {
+    throw InputError(FrameWhere(index, left_path) + ": size " + SizeText(left.size()) +
+                     " differs from the first frame's " + SizeText(first));
+  }
+  if (!right.empty() && right.size() != left.size()) {
+    throw InputError(FrameWhere(index, right_path) + ": size " + SizeText(right.size()) +
+                     " differs from the left image's " + SizeText(left.size()));
+  }
 }
 
 // Video frames are normally 8-bit BGR already; other layouts are converted the way images are.

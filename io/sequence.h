@@ -79,8 +79,11 @@ const std::vector<std::string>& FrameFileExtensions();
 // read or decoded.
 cv::Mat ReadFrameFile(int index, const std::string& path);
 
-// "WxH", for messages about frame sizes.
-std::string SizeText(cv::Size size);
+// The checks every frame of a source passes: InputError "frame INDEX (PATH): size WxH differs
+// from the first frame's ..." when `left` is not of size `first`, or "... differs from the left
+// image's ..." when `right` (empty when monocular) is not of the left image's size.
+void CheckFrameSizes(int index, const cv::Mat& left, const std::string& left_path,
+                     const cv::Mat& right, const std::string& right_path, cv::Size first);
 
 // The working size of frames of size `native` under `options` (width, height, resize).
 cv::Size WorkingSize(const SequenceOptions& options, cv::Size native);
