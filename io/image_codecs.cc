@@ -11,6 +11,8 @@
 // jpeglib.h needs size_t and FILE declared first.
 #include <jpeglib.h>
 
+#include "io/png_fast.h"
+
 namespace attend {
 
 namespace {
@@ -95,6 +97,8 @@ bool DecodeJpegInto(const std::vector<uchar>& bytes, cv::Mat* out, int* orientat
 }  // namespace
 
 cv::Mat DecodePngColour(const std::vector<uchar>& bytes) {
+  cv::Mat fast;
+  if (DecodeCommonPng(bytes, &fast)) return fast;
   std::unique_ptr<spng_ctx, SpngFree> ctx(spng_ctx_new(0));
   if (ctx == nullptr || spng_set_png_buffer(ctx.get(), bytes.data(), bytes.size()) != 0) {
     return cv::Mat();

@@ -4,7 +4,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <opencv2/imgcodecs.hpp>  // the IMREAD_ and IMWRITE_ constants only
 
 #include "io/image_codecs.h"
@@ -82,8 +81,19 @@ cv::Mat DecodeImage(const std::vector<uchar>& bytes, int flags, const std::strin
 cv::Mat ReadImageFile(const std::string& path, int flags, const std::string& where) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(where + ": cannot be read (missing or not readable)");
-  std::vector<uchar> bytes((std::istreambuf_iterator<char>(file)),
-                           std::istreambuf_iterator<char>());
+  // In one block of the file's size and a byte (which meets the end), or in blocks of 64 kB
+  // where the size is unknown; a byte at a time (istreambuf_iterator) took 0.12 ms for a
+  // 120 kB frame.
+  std::vector<uchar> bytes;
+  std::error_code size_error;
+  const auto size = std::filesystem::file_size(path, size_error);
+  const size_t block = size_error ? size_t{1} << 16 : static_cast<size_t>(size) + 1;
+  while (file) {
+    const size_t had = bytes.size();
+    bytes.resize(had + block);
+    file.read(reinterpret_cast<char*>(bytes.data() + had), static_cast<std::streamsize>(block));
+    bytes.resize(had + static_cast<size_t>(file.gcount()));
+  }
   if (file.bad()) throw InputError(where + ": cannot be read");
   if (bytes.empty()) throw InputError(where + ": the file is empty");
   const std::string incomplete = IncompleteImage(bytes);

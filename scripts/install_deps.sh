@@ -11,6 +11,7 @@ packages=(
   chromium        # renders the report in its test (tests/cli/compare_cli_test.cc)
   opencv-data     # the cascade models of the faces channel (features/detectors.h)
   libspng-dev libjpeg62-turbo-dev  # PNG and JPEG without OpenCV's imgcodecs (io/image_codecs.h)
+  libdeflate-dev  # the image data of common PNG frames, twice as fast as zlib (io/png_fast.h)
   # the Python module attend (python/, docs/PYTHON.md), its tests and its example
   pybind11-dev python3-dev python3-numpy python3-pytest python3-pandas python3-matplotlib
   # attend sweep --slurm and the one-node cluster its tests start (scripts/slurm_local.sh)

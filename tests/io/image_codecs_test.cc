@@ -14,11 +14,13 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
+#include <zlib.h>
 
 // jpeglib.h needs size_t and FILE declared first.
 #include <jpeglib.h>
 
 #include "io/image_file.h"
+#include "io/png_fast.h"
 #include "tests/support/temp_dir.h"
 #include "util/error.h"
 
@@ -184,6 +186,124 @@ TEST(ImageCodecs, OurPngEncodingDecodesToTheSamePixels) {
             0.0);
   std::vector<uchar> none;
   EXPECT_FALSE(EncodePng(cv::Mat(4, 4, CV_32FC1), 1, &none));
+}
+
+// A PNG of `image` (8-bit grey, BGR or BGRA) with every row filtered with `filter` (one of
+// libspng's SPNG_FILTER_CHOICE_ values).
+std::vector<uchar> PngWithFilter(const cv::Mat& image, int filter) {
+  cv::Mat rows;
+  if (image.channels() == 3) {
+    cv::cvtColor(image, rows, cv::COLOR_BGR2RGB);
+  } else if (image.channels() == 4) {
+    cv::cvtColor(image, rows, cv::COLOR_BGRA2RGBA);
+  } else {
+    rows = image.clone();
+  }
+  spng_ctx* ctx = spng_ctx_new(SPNG_CTX_ENCODER);
+  spng_set_option(ctx, SPNG_ENCODE_TO_BUFFER, 1);
+  spng_set_option(ctx, SPNG_FILTER_CHOICE, filter);
+  spng_ihdr ihdr = {};
+  ihdr.width = static_cast<uint32_t>(image.cols);
+  ihdr.height = static_cast<uint32_t>(image.rows);
+  ihdr.bit_depth = 8;
+  ihdr.color_type = static_cast<uint8_t>(image.channels() == 1 ? 0 : image.channels() == 3 ? 2 : 6);
+  EXPECT_EQ(spng_set_ihdr(ctx, &ihdr), 0);
+  EXPECT_EQ(spng_encode_image(ctx, rows.data, rows.total() * rows.elemSize(), SPNG_FMT_PNG,
+                              SPNG_ENCODE_FINALIZE),
+            0);
+  size_t length = 0;
+  int error = 0;
+  auto* png = static_cast<uchar*>(spng_get_png_buffer(ctx, &length, &error));
+  EXPECT_EQ(error, 0);
+  std::vector<uchar> bytes(png, png + length);
+  free(png);
+  spng_ctx_free(ctx);
+  return bytes;
+}
+
+TEST(ImageCodecs, FastPngPathUndoesEveryFilterAsOpenCv) {
+  // Noise with flat areas and edges, so that each of Paeth's three choices is taken.
+  const cv::Mat bgr = RandomBgr(67, 31, 5);
+  cv::Mat grey, bgra;
+  cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(bgr, bgra, cv::COLOR_BGR2BGRA);
+  bgra.forEach<cv::Vec4b>([](cv::Vec4b& p, const int* at) { p[3] = static_cast<uchar>(7 * at[1]); });
+  const std::vector<std::pair<int, std::string>> filters = {
+      {SPNG_FILTER_CHOICE_NONE, "None"},   {SPNG_FILTER_CHOICE_SUB, "Sub"},
+      {SPNG_FILTER_CHOICE_UP, "Up"},       {SPNG_FILTER_CHOICE_AVG, "Average"},
+      {SPNG_FILTER_CHOICE_PAETH, "Paeth"}, {SPNG_FILTER_CHOICE_ALL, "adaptive"}};
+  int checked = 0;
+  for (const cv::Mat& image : {grey, bgr, bgra}) {
+    for (const auto& [filter, name] : filters) {
+      const std::vector<uchar> png = PngWithFilter(image, filter);
+      const std::string what = std::to_string(image.channels()) + " channels, " + name;
+      const cv::Mat opencv = cv::imdecode(png, cv::IMREAD_COLOR);
+      for (bool portable : {false, true}) {
+        UsePortablePngFilters(portable);
+        cv::Mat fast;
+        const bool taken = DecodeCommonPng(png, &fast);
+        UsePortablePngFilters(false);
+        ASSERT_TRUE(taken) << what << ": the fast path declined a common PNG";
+        ExpectSame(fast, opencv, what + (portable ? ", portable filters" : ""));
+        ++checked;
+      }
+      ExpectSame(DecodePngColour(png), opencv, what + ", DecodePngColour");
+    }
+  }
+  EXPECT_EQ(checked, 36);
+}
+
+// A PNG of 8-bit RGB `rows` (each a filter byte and the filtered pixels), built chunk by chunk.
+std::vector<uchar> PngOfRows(int width, int height, const std::vector<uchar>& rows) {
+  std::vector<uchar> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  auto put32 = [&png](uint32_t v) {
+    for (int k = 0; k < 4; ++k) png.push_back(static_cast<uchar>(v >> (24 - 8 * k)));
+  };
+  auto chunk = [&](const char* type, const std::vector<uchar>& body) {
+    put32(static_cast<uint32_t>(body.size()));
+    const size_t start = png.size();
+    png.insert(png.end(), type, type + 4);
+    png.insert(png.end(), body.begin(), body.end());
+    put32(static_cast<uint32_t>(crc32(0L, png.data() + start, static_cast<uInt>(png.size() - start))));
+  };
+  std::vector<uchar> header = {0, 0, 0, static_cast<uchar>(width), 0, 0, 0,
+                               static_cast<uchar>(height), 8, 2, 0, 0, 0};
+  chunk("IHDR", header);
+  uLongf size = compressBound(rows.size());
+  std::vector<uchar> data(size);
+  EXPECT_EQ(compress(data.data(), &size, rows.data(), rows.size()), Z_OK);
+  data.resize(size);
+  chunk("IDAT", data);
+  chunk("IEND", {});
+  return png;
+}
+
+TEST(ImageCodecs, FastPngPathLeavesOtherKindsAndDamageToTheCompleteDecoder) {
+  cv::Mat out;
+  // 16 bits, a palette, grey with alpha, interlacing: declined, yet decoded by DecodePngColour.
+  for (const std::vector<uchar>& png :
+       {MakePng(9, 7, 2, 16, false, false), MakePng(9, 7, 3, 8, false, false),
+        MakePng(9, 7, 4, 8, false, false), MakePng(9, 7, 2, 8, true, false)}) {
+    EXPECT_FALSE(DecodeCommonPng(png, &out));
+    ExpectSame(DecodePngColour(png), cv::imdecode(png, cv::IMREAD_COLOR), "a declined kind");
+  }
+  const std::vector<uchar> good = PngWithFilter(RandomBgr(20, 10, 9), SPNG_FILTER_CHOICE_ALL);
+  ASSERT_TRUE(DecodeCommonPng(good, &out));
+  // A flipped bit in the image data: its chunk's CRC no longer matches.
+  std::vector<uchar> damaged = good;
+  damaged[damaged.size() - 30] ^= 0x10;
+  EXPECT_FALSE(DecodeCommonPng(damaged, &out));
+  // Cut short: no IEND.
+  EXPECT_FALSE(DecodeCommonPng(std::vector<uchar>(good.begin(), good.end() - 12), &out));
+  // Well-formed chunks and zlib stream, but a row's filter type out of range (9).
+  std::vector<uchar> rows(3 * (1 + 4 * 3), 50);
+  rows[0] = 0;
+  rows[13] = 9;
+  rows[26] = 1;
+  EXPECT_FALSE(DecodeCommonPng(PngOfRows(4, 3, rows), &out));
+  rows[13] = 4;
+  ASSERT_TRUE(DecodeCommonPng(PngOfRows(4, 3, rows), &out));
+  EXPECT_EQ(out.at<cv::Vec3b>(2, 3), cv::Vec3b(200, 200, 200));  // Sub: 4 x 50
 }
 
 // A JPEG with an EXIF block of orientation `orientation` right after its start marker.
