@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core/utility.hpp>
 #include <sstream>
+#include <thread>
 
 #include "io/sequence.h"
 #include "pipeline/frame_pipeline.h"
@@ -237,6 +238,14 @@ RunSummary RunSequence(const RunRequest& request) {
   const SequenceInfo& info = source->info();
   // Everything that can reject the configuration runs before the run folder exists.
   if (options.threads > 0) cv::setNumThreads(options.threads);
+  // With a second core the next frame is read and decoded while this one is worked on (1.3 of
+  // the 13 ms a frame of the bundled scene at 320x240 on one core; docs/PERFORMANCE.md).
+  const int threads = options.threads > 0
+                          ? options.threads
+                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (threads >= 2 && !options.sequence.IsLive()) {
+    source = ReadAhead(std::move(source));
+  }
   const FeatureRegistry registry = LoadFeatureRegistry(options.plugins);
   RunSummary summary;
   if (!info.stereo && request.stereo_features_optional) {

@@ -2,11 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "tests/support/error_message.h"
@@ -665,6 +668,77 @@ TEST(Sequence, CorruptFrameInTheMiddleComesAfterTheGoodOnes) {
   ASSERT_TRUE(source->Next(&frame));
   EXPECT_EQ(frame.index, 3);
   ExpectColour(frame.left, Colour(3, 0));
+}
+
+TEST(Sequence, ReadAheadGivesTheSameFramesAndErrorsInOrder) {
+  testing::TempDir dir;
+  const std::string folder = WriteFolder(dir, 5, {8, 6}, /*stereo=*/true);
+  const std::string bad = FramePath(dir, "left", 2);
+  { std::ofstream(bad, std::ios::trunc) << "this is not a PNG file"; }
+  auto source = ReadAhead(FrameSource::Open(FolderOptions(folder)));
+  EXPECT_EQ(source->info().frame_count, 5);
+  EXPECT_TRUE(source->info().stereo);
+  StereoFrame frame;
+  for (int i = 0; i < 5; ++i) {
+    if (i == 2) {
+      try {
+        source->Next(&frame);
+        ADD_FAILURE() << "the corrupt frame was not reported";
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("frame 2 (" + bad + "): cannot be read or decoded"),
+                  std::string::npos)
+            << e.what();
+      }
+      continue;
+    }
+    ASSERT_TRUE(source->Next(&frame)) << i;
+    EXPECT_EQ(frame.index, i);
+    ExpectColour(frame.left, Colour(i, 0));
+    ExpectColour(frame.right, Colour(i, 1));
+  }
+  EXPECT_FALSE(source->Next(&frame));
+  EXPECT_FALSE(source->Next(&frame));
+}
+
+// Counts the frames asked of it; frame i is a 4x4 image of value i.
+class CountingSource final : public FrameSource {
+ public:
+  const SequenceInfo& info() const override { return info_; }
+  bool Next(StereoFrame* frame) override {
+    const int index = calls_.fetch_add(1);
+    if (index >= 3) return false;
+    frame->index = index;
+    frame->left = cv::Mat(4, 4, CV_8UC3, cv::Scalar::all(index));
+    return true;
+  }
+  std::atomic<int>* calls() { return &calls_; }
+
+ private:
+  SequenceInfo info_;
+  std::atomic<int> calls_{0};
+};
+
+TEST(Sequence, ReadAheadReadsTheNextFrameWhileTheCallerWorks) {
+  auto counting = std::make_unique<CountingSource>();
+  std::atomic<int>* calls = counting->calls();
+  auto source = ReadAhead(std::move(counting));
+  StereoFrame frame;
+  ASSERT_TRUE(source->Next(&frame));
+  EXPECT_EQ(frame.index, 0);
+  // Frame 1 is read without a further Next(): within seconds, however loaded the machine.
+  for (int waited = 0; calls->load() < 2 && waited < 10000; ++waited) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_EQ(calls->load(), 2);
+  // One frame ahead, no more.
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_EQ(calls->load(), 2);
+  ASSERT_TRUE(source->Next(&frame));
+  EXPECT_EQ(frame.index, 1);
+  EXPECT_EQ(frame.left.at<cv::Vec3b>(0, 0), cv::Vec3b(1, 1, 1));
+  ASSERT_TRUE(source->Next(&frame));
+  EXPECT_EQ(frame.index, 2);
+  EXPECT_FALSE(source->Next(&frame));
 }
 
 TEST(Sequence, CorruptFirstFrameIsReportedByOpen) {
