@@ -17,10 +17,6 @@ namespace attend {
 
 namespace {
 
-// OpenCV refuses images of more pixels than this (CV_IO_MAX_IMAGE_PIXELS); larger ones are
-// left to it, so that they are refused as before.
-constexpr uint64_t kMaxPixels = uint64_t{1} << 30;
-
 struct SpngFree {
   void operator()(spng_ctx* ctx) const { spng_ctx_free(ctx); }
 };
@@ -70,7 +66,7 @@ bool DecodeJpegInto(const std::vector<uchar>& bytes, cv::Mat* out, int* orientat
     jpeg_destroy_decompress(&info);
     return false;
   }
-  if (static_cast<uint64_t>(info.image_width) * info.image_height > kMaxPixels) {
+  if (static_cast<uint64_t>(info.image_width) * info.image_height > kMaxDecodedPixels) {
     jpeg_destroy_decompress(&info);
     return false;
   }
@@ -105,7 +101,7 @@ cv::Mat DecodePngColour(const std::vector<uchar>& bytes) {
   }
   spng_ihdr ihdr;
   if (spng_get_ihdr(ctx.get(), &ihdr) != 0) return cv::Mat();
-  if (static_cast<uint64_t>(ihdr.width) * ihdr.height > kMaxPixels) return cv::Mat();
+  if (static_cast<uint64_t>(ihdr.width) * ihdr.height > kMaxDecodedPixels) return cv::Mat();
   size_t size = 0;
   if (spng_decoded_image_size(ctx.get(), SPNG_FMT_RGB8, &size) != 0) return cv::Mat();
   cv::Mat image(static_cast<int>(ihdr.height), static_cast<int>(ihdr.width), CV_8UC3);

@@ -15,9 +15,6 @@ namespace attend {
 
 namespace {
 
-// As DecodePngColour: larger images are left to the complete decoders.
-constexpr uint64_t kMaxPixels = uint64_t{1} << 30;
-
 // Scratch kept between calls up to this size (the inflated rows of a 1280x720 RGBA frame);
 // larger images get their own and give it back.
 constexpr size_t kKeptScratch = size_t{4} << 20;
@@ -175,7 +172,7 @@ bool ReadChunks(const std::vector<uchar>& bytes, PngParts* parts) {
       parts->colour_type = body[9];
       if (parts->width == 0 || parts->height == 0 || parts->width > 0x7FFFFFFFu ||
           parts->height > 0x7FFFFFFFu ||
-          uint64_t{parts->width} * parts->height > kMaxPixels) {
+          uint64_t{parts->width} * parts->height > kMaxDecodedPixels) {
         return false;
       }
       if (depth != 8 || (parts->colour_type != 0 && parts->colour_type != 2 &&

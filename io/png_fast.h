@@ -6,10 +6,15 @@
 // (docs/PERFORMANCE.md, "Decoding").
 #pragma once
 
+#include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>
 
 namespace attend {
+
+// OpenCV refuses images of more pixels than this (CV_IO_MAX_IMAGE_PIXELS); attend's decoders
+// leave larger ones to it, so that they are refused as before.
+constexpr uint64_t kMaxDecodedPixels = uint64_t{1} << 30;
 
 // Decodes `bytes` into `bgr` (8-bit BGR, as cv::imdecode with IMREAD_COLOR gives it) when it
 // is a well-formed PNG of 8-bit grey, RGB or RGBA without interlacing; false for anything else
