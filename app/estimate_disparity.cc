@@ -59,7 +59,12 @@ nlohmann::json EstimateDisparity(const DisparityRequest& request) {
                              {"left_right_check", options.left_right_check},
                              {"lr_tolerance", options.lr_tolerance},
                              {"smoothness", DisparitySmoothnessName(options.smoothness)},
-                             {"jump_penalty", options.jump_penalty}}}};
+                             {"jump_penalty", options.jump_penalty},
+                             {"sgm_p1", options.sgm_p1},
+                             {"sgm_p2", options.sgm_p2},
+                             {"sgm_paths", options.sgm_paths},
+                             {"median", options.median},
+                             {"max_width", options.max_width}}}};
   if (!ground_truth.empty()) {
     const BadPixelRates rates = EvaluateDisparity(disparity, ground_truth);
     report["gt"] = request.gt;

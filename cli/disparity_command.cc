@@ -127,8 +127,9 @@ void AddDisparityCommand(CLI::App& app, const std::string&, CommandAction* actio
   auto args = std::make_shared<DisparityArguments>();
   CLI::App* command = app.add_subcommand(
       "disparity",
-      "Dense disparity of a rectified stereo pair by box-filtered ZNCC and Sun's two-stage "
-      "dynamic programming (docs/DISPARITY.md). LEFT and RIGHT are read as 8-bit images (grey "
+      "Dense disparity of a rectified stereo pair by box-filtered ZNCC and semi-global "
+      "matching along five paths (the default), or Sun's two-stage dynamic programming of the "
+      "thesis (--set disparity.smoothness=hard; docs/DISPARITY.md). LEFT and RIGHT are read as 8-bit images (grey "
       "stays grey, colour is converted to grey by the estimator, 16-bit images are scaled to 8 "
       "bits); a left pixel (x, y) matches the right pixel (x - d, y). Writes the left view's "
       "map to OUT as PFM in pixels and prints one JSON object: the estimator's milliseconds, "

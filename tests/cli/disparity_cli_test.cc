@@ -141,7 +141,9 @@ TEST(DisparityCommand, WritesTheMapAndReportsItsAccuracy) {
   EXPECT_EQ(report["options"]["subpixel"], false);
   EXPECT_EQ(report["options"]["left_right_check"], DisparityOptions{}.left_right_check);
   EXPECT_EQ(report["options"]["lr_tolerance"], 1);
-  EXPECT_EQ(report["options"]["smoothness"], "hard");
+  EXPECT_EQ(report["options"]["smoothness"], "sgm");
+  EXPECT_EQ(report["options"]["sgm_paths"], DisparityOptions{}.sgm_paths);
+  EXPECT_EQ(report["options"]["median"], DisparityOptions{}.median);
   EXPECT_EQ(report["gt"], "truth.pfm");
   EXPECT_EQ(report["gt_scale"], 1.0);
 

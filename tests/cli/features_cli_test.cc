@@ -113,7 +113,7 @@ TEST(FeaturesCli, DisabledFeatureLeavesNoTraceAndThreadsDoNotChangeResults) {
   ASSERT_EQ(r.status, 0) << r.err;
   r = Attend(dir, {"run", "--sequence", "seq", "--out", "b", "--quiet", "--set", kAllDumps, "--set",
                    "features=[{name: colour_contrast}, {name: intensity_contrast}, "
-                   "{name: disparity}]",
+                   "{name: disparity, smoothness: hard, window: 7, median: 0}]",
                    "--set", "threads=2"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_FALSE(fs::exists(dir.File("a/features/skin")));

@@ -121,12 +121,12 @@ TEST(LiveCli, ALoopSlowerThanItsSourceDropsTheOldestFramesAndSaysHowMany) {
   EXPECT_GT(dropped, 0) << summary;
   EXPECT_EQ(summary["live"]["frames_captured"], 150);
   EXPECT_EQ(summary["live"]["end"], "end of stream");
-  // The frame numbers are the source's: the dropped frames are the gaps, and the newest frame
-  // (the last) is never dropped.
+  // The frame numbers are the source's: the dropped frames are the gaps (frame 0 among them
+  // when the queue filled before the loop took its first frame, as under the sanitizers), and
+  // the newest frame (the last) is never dropped.
   ASSERT_FALSE(frames.empty());
-  EXPECT_EQ(frames.front()["frame"], 0);
   EXPECT_EQ(frames.back()["frame"], 149);
-  int gaps = 0;
+  int gaps = frames.front()["frame"].get<int>();
   for (size_t i = 1; i < frames.size(); ++i) {
     const int step = frames[i]["frame"].get<int>() - frames[i - 1]["frame"].get<int>();
     EXPECT_GE(step, 1);

@@ -486,7 +486,9 @@ TEST(ImageCodecs, WriteImageWritesWhatOpenCvReadsBack) {
     ASSERT_TRUE(WriteImage(path, bgr));
     const cv::Mat back = cv::imread(path, cv::IMREAD_COLOR);
     ASSERT_FALSE(back.empty()) << extension;
-    if (extension != ".jpg") EXPECT_EQ(cv::norm(back, bgr, cv::NORM_INF), 0.0) << extension;
+    if (extension != ".jpg") {
+      EXPECT_EQ(cv::norm(back, bgr, cv::NORM_INF), 0.0) << extension;
+    }
   }
   std::vector<uchar> png;
   ASSERT_TRUE(EncodeImage(".png", bgr, &png));
