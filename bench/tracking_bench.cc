@@ -332,7 +332,7 @@ attend::TargetTrackerOptions KindOptions(attend::TrackerKind kind,
   options.kind = kind;
   options.bip.mode = mode;
   // Longer than any sequence: a failing OpenCV tracker keeps its last box (the OTB rule).
-  options.opencv.lost_frames = 1 << 30;
+  options.opencv.lost_frames = 1000000;  // the largest allowed, above any sequence's length
   // As before the interface: KCF never reports a weak response as a failure.
   options.opencv.kcf_detect_thresh = 0.f;
   return options;

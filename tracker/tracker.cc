@@ -164,6 +164,12 @@ const OptionFields<TrackerOptions>& TrackerOptions::Fields() {
        "bounded: a target not found is searched for within this many box sides"},
       {"redetect_ratio", &O::redetect_ratio, Range::Closed(0.01, 1),
        "bounded: ... and moves where it matches by this share of its typical correlation"},
+      {"occlusion_gate", &O::occlusion_gate, Range::Closed(0, 1),
+       "bounded: a match under this share of the typical correlation teaches nothing; 0: off"},
+      {"occlusion_ratio", &O::occlusion_ratio, Range::Closed(0, 1),
+       "bounded: a match under this share of the typical correlation is an occlusion; 0: off"},
+      {"occlusion_alpha", &O::occlusion_alpha, Range::Closed(0.001, 1),
+       "bounded: the template's forgetting constant while a target with appearance is missed"},
       CodeOnly<O>({"pyramid_parts", &O::pyramid_parts,
                    "the ROIs' pyramid built in parts (true) or whole; the same results"})};
   return fields;
@@ -628,8 +634,19 @@ TrackResult MultiTracker::Impl::TrackTarget(size_t i, const cv::Mat& frame, int 
   std::vector<uint8_t> in_target(h.regions, 0);
   const Match match = group_of[i] < 0 ? Match() : Localise(target, h, &in_target);
   result.overlap = match.overlap;
-  if (match.found) {
+  // Bounded mode with an appearance model: a match whose correlation falls well under the
+  // target's typical one is an occluder or the background taking the target's place.
+  const double typical = target.typical_correlation;
+  const bool judged = options.mode == TrackerMode::kBounded && match.found && correlated_ &&
+                      typical > 0.0;
+  const bool occluded = judged && best_correlation_ < options.occlusion_ratio * typical;
+  if (occluded) {
+    Missed(frame, &target, &result);
+  } else if (match.found) {
+    // Under occlusion_gate the box moves, but the target learns nothing of the place.
+    frozen_ = judged && best_correlation_ < options.occlusion_gate * typical;
     Found(h, match, frame, pyramid_levels, &in_target, &target, &result);
+    frozen_ = false;
   } else {
     Missed(frame, &target, &result);
   }
@@ -674,7 +691,7 @@ void MultiTracker::Impl::Found(const Hierarchy& h, const Match& match, const cv:
   }
   target.motion = shift;
   target.border = options.EpsilonPixels(frame.cols);
-  if (options.mode == TrackerMode::kBounded) {
+  if (options.mode == TrackerMode::kBounded && !frozen_) {
     LearnDistinct(h, &target);
     LearnAppearance(&target);
     if (correlated_) {
@@ -701,8 +718,14 @@ void MultiTracker::Impl::Missed(const cv::Mat& frame, Target* target_pointer, Tr
   target.mask.release();
   // A weight left at a rounding error of 0 (1 - k alpha in float) is 0, as in
   // MakeTemplate: the target is lost after 1 / alpha frames, not one more.
+  // A bounded target with an appearance model forgets at occlusion_alpha: it outlasts an
+  // occlusion longer, and its model can find it again when it comes out (Redetect).
+  const float alpha =
+      options.mode == TrackerMode::kBounded && !target.appearance.empty() && options.appearance
+          ? options.occlusion_alpha
+          : options.alpha;
   for (TemplateLevel& level : target.levels) {
-    for (float& w : level.weight) w = w - options.alpha > 1e-6f ? w - options.alpha : 0.f;
+    for (float& w : level.weight) w = w - alpha > 1e-6f ? w - alpha : 0.f;
   }
   while (!target.levels.empty() && target.levels.back().Empty()) target.levels.pop_back();
   target.border = std::min(target.border + 1, epsilon_max);

@@ -233,6 +233,7 @@ struct MultiTracker::Impl {
   cv::Mat correlation_;
   cv::Point box_to_roi_;
   bool correlated_ = false;
+  bool frozen_ = false;
   double best_correlation_ = 0.0;  // at the last accepted displacement
   mutable cv::Mat model_, patch_;
   mutable std::vector<int> region_inside_, region_all_;  // BoundTarget's counts

@@ -144,8 +144,8 @@ TEST(OptionRanges, EveryNumericKeyOfTheConfigurationHasARange) {
     }
   }
   // sequence 7, live 3, segmentation 2, saliency 2, select 24, drop 4, inhibition 1,
-  // attention 5, tracker 21, threads: so that a writer change that hid the numbers fails here.
-  EXPECT_EQ(numeric, 70);
+  // attention 5, tracker 24, threads: so that a writer change that hid the numbers fails here.
+  EXPECT_EQ(numeric, 73);
 }
 
 }  // namespace
