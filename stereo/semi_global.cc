@@ -269,6 +269,24 @@ uint8_t* SemiGlobalAggregator::cost_row(int y) {
 
 namespace {
 
+Geometry MakeGeometry(const SemiGlobalAggregator::Setup& setup, int stride, size_t slot) {
+  return {setup.width, stride, setup.depth, slot, static_cast<int16_t>(setup.p1),
+          static_cast<int16_t>(setup.p2), Shorts{} + static_cast<int16_t>(setup.depth)};
+}
+
+// Points `row` at row y's outputs: the left map's row and, with a right view, the right view's
+// candidates, cleared.
+void OutputRow(cv::Mat* left, cv::Mat* right, std::vector<int16_t>* best,
+               std::vector<int16_t>* best_d, int y, PassRow* row) {
+  row->left = left->ptr<float>(y);
+  row->right_best = right != nullptr ? best->data() : nullptr;
+  row->right_best_d = right != nullptr ? best_d->data() : nullptr;
+  if (right != nullptr) {
+    std::fill(best->begin(), best->end(), kLargest);
+    std::fill(best_d->begin(), best_d->end(), int16_t{0});
+  }
+}
+
 // The pointers of a pass's row `step_y` (y in the image): `cost` and `sum` set by the caller.
 void PointPaths(int16_t* paths, int16_t* minima, int width, size_t slot, int step_y,
                 PassRow* row) {
@@ -293,34 +311,27 @@ void PointPaths(int16_t* paths, int16_t* minima, int width, size_t slot, int ste
 
 void SemiGlobalAggregator::EndRow(int y) {
   if (setup_.paths != 5) return;
-  const Geometry g{setup_.width, stride_, setup_.depth, slot_, static_cast<int16_t>(setup_.p1),
-                   static_cast<int16_t>(setup_.p2),
-                   Shorts{} + static_cast<int16_t>(setup_.depth)};
+  const Geometry g = MakeGeometry(setup_, stride_, slot_);
   PassRow row;
   PointPaths(paths_.data(), minima_.data(), setup_.width, slot_, y, &row);
   row.cost = cost_.data();
   row.sum = sum_.data();
   ForwardRow(row, g);
-  row.left = left_->ptr<float>(y);
-  row.right_best = right_ != nullptr ? right_best_.data() : nullptr;
-  row.right_best_d = right_ != nullptr ? right_best_d_.data() : nullptr;
-  if (right_ != nullptr) {
-    std::fill(right_best_.begin(), right_best_.end(), kLargest);
-    std::fill(right_best_d_.begin(), right_best_d_.end(), int16_t{0});
-  }
+  OutputRow(left_, right_, &right_best_, &right_best_d_, y, &row);
   FromTheRightRow(row, g, setup_.subpixel);
-  if (right_ != nullptr) {
-    float* out = right_->ptr<float>(y);
-    for (int xr = 0; xr < setup_.width; ++xr) out[xr] = right_best_d_[setup_.width - 1 - xr];
-  }
+  TakeRightRow(y);
+}
+
+void SemiGlobalAggregator::TakeRightRow(int y) {
+  if (right_ == nullptr) return;
+  float* out = right_->ptr<float>(y);
+  for (int xr = 0; xr < setup_.width; ++xr) out[xr] = right_best_d_[setup_.width - 1 - xr];
 }
 
 void SemiGlobalAggregator::Finish() {
   if (setup_.paths != 8) return;
   const int width = setup_.width, height = setup_.height;
-  const Geometry g{width, stride_, setup_.depth, slot_, static_cast<int16_t>(setup_.p1),
-                   static_cast<int16_t>(setup_.p2),
-                   Shorts{} + static_cast<int16_t>(setup_.depth)};
+  const Geometry g = MakeGeometry(setup_, stride_, slot_);
   PassRow row;
   for (int step_y = 0; step_y < height; ++step_y) {
     PointPaths(paths_.data(), minima_.data(), width, slot_, step_y, &row);
@@ -335,18 +346,9 @@ void SemiGlobalAggregator::Finish() {
     const size_t at = static_cast<size_t>(y) * width * stride_;
     row.cost = cost_.data() + at;
     row.sum = sum_.data() + at;
-    row.left = left_->ptr<float>(y);
-    row.right_best = right_ != nullptr ? right_best_.data() : nullptr;
-    row.right_best_d = right_ != nullptr ? right_best_d_.data() : nullptr;
-    if (right_ != nullptr) {
-      std::fill(right_best_.begin(), right_best_.end(), kLargest);
-      std::fill(right_best_d_.begin(), right_best_d_.end(), int16_t{0});
-    }
+    OutputRow(left_, right_, &right_best_, &right_best_d_, y, &row);
     BackwardRow(row, g, setup_.subpixel);
-    if (right_ != nullptr) {
-      float* out = right_->ptr<float>(y);
-      for (int xr = 0; xr < width; ++xr) out[xr] = right_best_d_[width - 1 - xr];
-    }
+    TakeRightRow(y);
   }
 }
 

@@ -65,6 +65,9 @@ class SemiGlobalAggregator {
   }
 
  private:
+  // Writes row y of the right view from its candidates (after the row's pass).
+  void TakeRightRow(int y);
+
   Setup setup_;
   int stride_ = 0;
   size_t slot_ = 0;  // one path's costs of one pixel, padded

@@ -45,6 +45,18 @@ std::vector<uint8_t> PackedRows(int width, int height, int samples_per_pixel, in
   return rows;
 }
 
+// The PNG that libspng's encoder `ctx` made; frees `ctx`.
+std::vector<uchar> TakePng(spng_ctx* ctx) {
+  size_t length = 0;
+  int error = 0;
+  auto* png = static_cast<uchar*>(spng_get_png_buffer(ctx, &length, &error));
+  EXPECT_EQ(error, 0);
+  std::vector<uchar> bytes(png, png + length);
+  free(png);
+  spng_ctx_free(ctx);
+  return bytes;
+}
+
 // A PNG of the given colour type and depth (libspng's encoder), with a palette of 2^bits
 // entries for type 3 and, with `transparency`, a tRNS chunk.
 std::vector<uchar> MakePng(int width, int height, int colour_type, int bits, bool interlaced,
@@ -91,14 +103,7 @@ std::vector<uchar> MakePng(int width, int height, int colour_type, int bits, boo
   }
   EXPECT_EQ(spng_encode_image(ctx, rows.data(), rows.size(), SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE),
             0);
-  size_t length = 0;
-  int error = 0;
-  auto* png = static_cast<uchar*>(spng_get_png_buffer(ctx, &length, &error));
-  EXPECT_EQ(error, 0);
-  std::vector<uchar> bytes(png, png + length);
-  free(png);
-  spng_ctx_free(ctx);
-  return bytes;
+  return TakePng(ctx);
 }
 
 cv::Mat RandomBgr(int width, int height, uint32_t seed) {
@@ -211,14 +216,7 @@ std::vector<uchar> PngWithFilter(const cv::Mat& image, int filter) {
   EXPECT_EQ(spng_encode_image(ctx, rows.data, rows.total() * rows.elemSize(), SPNG_FMT_PNG,
                               SPNG_ENCODE_FINALIZE),
             0);
-  size_t length = 0;
-  int error = 0;
-  auto* png = static_cast<uchar*>(spng_get_png_buffer(ctx, &length, &error));
-  EXPECT_EQ(error, 0);
-  std::vector<uchar> bytes(png, png + length);
-  free(png);
-  spng_ctx_free(ctx);
-  return bytes;
+  return TakePng(ctx);
 }
 
 TEST(ImageCodecs, FastPngPathUndoesEveryFilterAsOpenCv) {
