@@ -322,8 +322,8 @@ class CamShiftMethod final : public Method {
 };
 
 const char* const kMethodNames[] = {"BIP thesis (ours)", "BIP bounded (ours)", "CSRT", "KCF",
-                                    "CamShift"};
-constexpr int kMethods = 5;
+                                    "CamShift", "BIP bounded + occlusion (ours)"};
+constexpr int kMethods = 6;
 constexpr int kBipThesis = 0, kCsrt = 2;
 
 attend::TargetTrackerOptions KindOptions(attend::TrackerKind kind,
@@ -347,6 +347,11 @@ std::vector<std::unique_ptr<Method>> MakeMethods() {
   methods.push_back(std::make_unique<InterfaceMethod>(KindOptions(TrackerKind::kCsrt)));
   methods.push_back(std::make_unique<InterfaceMethod>(KindOptions(TrackerKind::kKcf)));
   methods.push_back(std::make_unique<CamShiftMethod>());
+  // The bounded mode with its occlusion rules (tracker.occlusion; docs/TRACKING.md, "Modes" 12).
+  attend::TargetTrackerOptions occlusion =
+      KindOptions(TrackerKind::kBip, attend::TrackerMode::kBounded);
+  occlusion.bip.occlusion = true;
+  methods.push_back(std::make_unique<InterfaceMethod>(occlusion));
   return methods;
 }
 

@@ -164,6 +164,8 @@ const OptionFields<TrackerOptions>& TrackerOptions::Fields() {
        "bounded: a target not found is searched for within this many box sides"},
       {"redetect_ratio", &O::redetect_ratio, Range::Closed(0.01, 1),
        "bounded: ... and moves where it matches by this share of its typical correlation"},
+      {"occlusion", &O::occlusion,
+       "bounded: the occlusion rules (occlusion_gate, occlusion_ratio, occlusion_alpha)"},
       {"occlusion_gate", &O::occlusion_gate, Range::Closed(0, 1),
        "bounded: a match under this share of the typical correlation teaches nothing; 0: off"},
       {"occlusion_ratio", &O::occlusion_ratio, Range::Closed(0, 1),
@@ -637,8 +639,8 @@ TrackResult MultiTracker::Impl::TrackTarget(size_t i, const cv::Mat& frame, int 
   // Bounded mode with an appearance model: a match whose correlation falls well under the
   // target's typical one is an occluder or the background taking the target's place.
   const double typical = target.typical_correlation;
-  const bool judged = options.mode == TrackerMode::kBounded && match.found && correlated_ &&
-                      typical > 0.0;
+  const bool judged = options.mode == TrackerMode::kBounded && options.occlusion &&
+                      match.found && correlated_ && typical > 0.0;
   const bool occluded = judged && best_correlation_ < options.occlusion_ratio * typical;
   if (occluded) {
     Missed(frame, &target, &result);
@@ -720,10 +722,10 @@ void MultiTracker::Impl::Missed(const cv::Mat& frame, Target* target_pointer, Tr
   // MakeTemplate: the target is lost after 1 / alpha frames, not one more.
   // A bounded target with an appearance model forgets at occlusion_alpha: it outlasts an
   // occlusion longer, and its model can find it again when it comes out (Redetect).
-  const float alpha =
-      options.mode == TrackerMode::kBounded && !target.appearance.empty() && options.appearance
-          ? options.occlusion_alpha
-          : options.alpha;
+  const float alpha = options.mode == TrackerMode::kBounded && options.occlusion &&
+                              options.appearance && !target.appearance.empty()
+                          ? options.occlusion_alpha
+                          : options.alpha;
   for (TemplateLevel& level : target.levels) {
     for (float& w : level.weight) w = w - alpha > 1e-6f ? w - alpha : 0.f;
   }

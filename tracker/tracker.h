@@ -82,13 +82,15 @@ struct TrackerOptions {
   float min_score = 0.3f;
   float redetect_range = 1.5f;
   float redetect_ratio = 0.8f;
-  // Bounded mode with appearance, occlusion (docs/TRACKING.md, "Modes" 12): a match whose ZNCC
-  // is under `occlusion_gate` of the target's typical correlation moves the box but updates
-  // neither the models nor the typical correlation; under `occlusion_ratio` the target is not
-  // found in that frame (an occluder or the background took its place), and is searched for by
-  // its model as any target not found. While not found, such a target's template forgets at
-  // `occlusion_alpha` instead of `alpha`: it survives 1 / occlusion_alpha frames. 0 turns the
-  // gate and the ratio off; the thesis mode has neither.
+  // Bounded mode with appearance, with `occlusion` (docs/TRACKING.md, "Modes" 12): a match
+  // whose ZNCC is under `occlusion_gate` of the target's typical correlation moves the box but
+  // updates neither the models nor the typical correlation; under `occlusion_ratio` the target
+  // is not found in that frame (an occluder or the background took its place), and is searched
+  // for by its model as any target not found. While not found, such a target's template
+  // forgets at `occlusion_alpha` instead of `alpha`: it survives 1 / occlusion_alpha frames.
+  // Off by default: it lifts the OTB mean success AUC from 0.569 to 0.718 (above CSRT's 0.659)
+  // but lowers IDF1 in the attention loop on three of the four still-camera MOT sequences.
+  bool occlusion = false;
   float occlusion_gate = 0.7f;
   float occlusion_ratio = 0.55f;
   float occlusion_alpha = 0.05f;

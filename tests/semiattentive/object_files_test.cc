@@ -198,14 +198,6 @@ TEST(ObjectFilesInTheStage, TwoPeopleWhoCrossKeepTheirIdsAndNoThirdTargetStarts)
   options.memory.memory_frames = 40;
   options.select.seed = SeedKind::kObject;
   options.select.max_new = 1;
-  // The bounded tracker's occlusion rules off (docs/TRACKING.md, "Modes" 12). With them on
-  // (the defaults), the person behind is declared occluded while the one in front passes, its
-  // box stays behind while it comes out, and a third target starts on its uncovered coat for
-  // two frames before the duplicate rule releases it: the ids stay right, but this test's
-  // "no third target" does not hold (a known limit, docs/ATTENTION.md).
-  options.tracker.bip.occlusion_gate = 0.f;
-  options.tracker.bip.occlusion_ratio = 0.f;
-  options.tracker.bip.occlusion_alpha = options.tracker.bip.alpha;
   Stage stage(options);
   const cv::Scalar trousers_a(90, 50, 50), trousers_b(40, 110, 110);
   std::set<int> ids;

@@ -720,11 +720,9 @@ std::vector<double> FollowPassingBehind(const TrackerOptions& options) {
 TEST(BoundedTracker, AnOccluderOfTheSameColoursIsNotLearntAndTheTargetIsFoundAfterIt) {
   TrackerOptions options;
   options.mode = TrackerMode::kBounded;
-  const std::vector<double> with = FollowPassingBehind(options);
-  options.occlusion_gate = 0.f;
-  options.occlusion_ratio = 0.f;
-  options.occlusion_alpha = options.alpha;
   const std::vector<double> without = FollowPassingBehind(options);
+  options.occlusion = true;
+  const std::vector<double> with = FollowPassingBehind(options);
   for (int frame = 1; frame <= 12; ++frame) EXPECT_GT(with[frame - 1], 0.95) << "frame " << frame;
   // Behind the panel the target is not found rather than followed onto the panel.
   for (int frame = 20; frame <= 26; ++frame) EXPECT_EQ(with[frame - 1], 0.0) << "frame " << frame;
