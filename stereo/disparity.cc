@@ -819,7 +819,7 @@ void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right
 
 namespace {
 
-// Costs of one pixel for the semi-global aggregation: 1 - ZNCC (0..2) in units of
+// Costs of one row for the semi-global aggregation, [x][stride]: 1 - ZNCC (0..2) in units of
 // 1 / kSgmScale, rounded.
 // Where the right window would start left of the image (d > x) there is nothing to match: a
 // low cost (0.25 in ZNCC units) instead of the worst lets the paths carry the disparities of
@@ -827,13 +827,17 @@ namespace {
 // (docs/DISPARITY.md): the worst cost there, 254, gave a mean bad1 1.9 points higher.
 constexpr uint8_t kSgmOutsideCost = 32;
 
-ATTEND_VECTOR_CLONES void SemiGlobalCosts(const float* __restrict zncc, int depth, int x,
-                                          uint8_t* __restrict cost) {
-  const int inside = std::min(depth, x + 1);
-  for (int d = 0; d < inside; ++d) {
-    cost[d] = static_cast<uint8_t>(static_cast<int>((1.f - zncc[d]) * kSgmScale + 0.5f));
+ATTEND_VECTOR_CLONES void SemiGlobalCosts(const float* __restrict zncc, int width, int depth,
+                                          int stride, uint8_t* __restrict costs) {
+  for (int x = 0; x < width; ++x) {
+    const float* z = zncc + static_cast<size_t>(x) * depth;
+    uint8_t* cost = costs + static_cast<size_t>(x) * stride;
+    const int inside = std::min(depth, x + 1);
+    for (int d = 0; d < inside; ++d) {
+      cost[d] = static_cast<uint8_t>(static_cast<int>((1.f - z[d]) * kSgmScale + 0.5f));
+    }
+    for (int d = inside; d < depth; ++d) cost[d] = kSgmOutsideCost;
   }
-  for (int d = inside; d < depth; ++d) cost[d] = kSgmOutsideCost;
 }
 
 }  // namespace
@@ -859,11 +863,7 @@ void DisparityEstimator::EstimateSemiGlobal(const cv::Mat& left_grey, const cv::
   const int stride = aggregator.stride();
   CostRows rows(left_grey, right_grey, depth, options_.window);
   rows.ForEachRow(&b.costs, [&](int y, const float* c) {
-    uint8_t* out = aggregator.cost_row(y);
-    for (int x = 0; x < width; ++x) {
-      SemiGlobalCosts(c + static_cast<size_t>(x) * depth, depth, x,
-                      out + static_cast<size_t>(x) * stride);
-    }
+    SemiGlobalCosts(c, width, depth, stride, aggregator.cost_row(y));
     aggregator.EndRow(y);
   });
   aggregator.Finish();
