@@ -646,9 +646,8 @@ TrackResult MultiTracker::Impl::TrackTarget(size_t i, const cv::Mat& frame, int 
     Missed(frame, &target, &result);
   } else if (match.found) {
     // Under occlusion_gate the box moves, but the target learns nothing of the place.
-    frozen_ = judged && best_correlation_ < options.occlusion_gate * typical;
-    Found(h, match, frame, pyramid_levels, &in_target, &target, &result);
-    frozen_ = false;
+    const bool learn = !(judged && best_correlation_ < options.occlusion_gate * typical);
+    Found(h, match, frame, pyramid_levels, learn, &in_target, &target, &result);
   } else {
     Missed(frame, &target, &result);
   }
@@ -658,7 +657,8 @@ TrackResult MultiTracker::Impl::TrackTarget(size_t i, const cv::Mat& frame, int 
 }
 
 void MultiTracker::Impl::Found(const Hierarchy& h, const Match& match, const cv::Mat& frame,
-                               int pyramid_levels, std::vector<uint8_t>* in_target_pointer,
+                               int pyramid_levels, bool learn,
+                               std::vector<uint8_t>* in_target_pointer,
                                Target* target_pointer, TrackResult* result) {
   Target& target = *target_pointer;
   std::vector<uint8_t>& in_target = *in_target_pointer;
@@ -693,7 +693,7 @@ void MultiTracker::Impl::Found(const Hierarchy& h, const Match& match, const cv:
   }
   target.motion = shift;
   target.border = options.EpsilonPixels(frame.cols);
-  if (options.mode == TrackerMode::kBounded && !frozen_) {
+  if (options.mode == TrackerMode::kBounded && learn) {
     LearnDistinct(h, &target);
     LearnAppearance(&target);
     if (correlated_) {

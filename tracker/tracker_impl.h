@@ -233,7 +233,6 @@ struct MultiTracker::Impl {
   cv::Mat correlation_;
   cv::Point box_to_roi_;
   bool correlated_ = false;
-  bool frozen_ = false;
   double best_correlation_ = 0.0;  // at the last accepted displacement
   mutable cv::Mat model_, patch_;
   mutable std::vector<int> region_inside_, region_all_;  // BoundTarget's counts
@@ -352,10 +351,12 @@ struct MultiTracker::Impl {
   TrackResult TrackTarget(size_t i, const cv::Mat& frame, int pyramid_levels);
 
   // A target found at `match`: its mask, box and template (4.2.4-4.2.6; bounded: its box
-  // first, then its pixels inside it).
+  // first, then its pixels inside it). Without `learn` (bounded, a match under
+  // occlusion_gate) its distinctive colours, appearance and typical correlation stay as they
+  // were.
   void Found(const tracker_internal::Hierarchy& h, const Match& match, const cv::Mat& frame,
-             int pyramid_levels, std::vector<uint8_t>* in_target_pointer, Target* target_pointer,
-             TrackResult* result);
+             int pyramid_levels, bool learn, std::vector<uint8_t>* in_target_pointer,
+             Target* target_pointer, TrackResult* result);
 
   // A target not found (4.2.7).
   void Missed(const cv::Mat& frame, Target* target_pointer, TrackResult* result);
