@@ -435,10 +435,8 @@ GridBest SgbmGrid(const Pair& pair) {
   for (const int block : {3, 5, 7, 9}) {
     for (const auto& [a, b] : penalties) {
       const int area = block * block;
-      cv::Ptr<cv::StereoSGBM> sgbm = cv::StereoSGBM::create(
-          0, OpenCvDisparities(pair.max_disparity), block, a * area, b * area, kDisp12MaxDiff,
-          kSgbmPreFilterCap, kSgbmUniquenessRatio, kSpeckleWindowSize, kSpeckleRange,
-          cv::StereoSGBM::MODE_SGBM);
+      cv::Ptr<cv::StereoSGBM> sgbm =
+          attend::bench::MakeStereoSgbm(pair.max_disparity, block, a * area, b * area);
       sgbm->compute(left, right, fixed);
       const double bad1 = attend::EvaluateDisparity(FillFromRow(FromFixedPoint(fixed)),
                                                     pair.ground_truth)

@@ -614,13 +614,17 @@ TEST(BoundedTracker, CoarseMatchMeasuresTheMotionAtLevelZero) {
 // A textured patch (fixed random 4x4-pixel blocks of reds and greys) on a noisy grey
 // background: hidden behind a flat panel in frames 5..7, it comes back in frame 8 at 28 px
 // from where it was hidden, past the ROI border (at most 15 px at this width).
+// A texture of `size` made of blocks of random colours (channels in 20..235), `blocks` across
+// and down, from `seed`.
+cv::Mat Blocks(cv::Size size, cv::Size blocks, uint64_t seed) {
+  cv::Mat coarse(blocks, CV_8UC3), texture;
+  cv::RNG(seed).fill(coarse, cv::RNG::UNIFORM, 20, 235);
+  cv::resize(coarse, texture, size, 0, 0, cv::INTER_NEAREST);
+  return texture;
+}
+
 struct JumpingPatch {
-  cv::Mat texture;
-  JumpingPatch() : texture(24, 24, CV_8UC3) {
-    cv::Mat blocks(6, 6, CV_8UC3);
-    cv::RNG(7).fill(blocks, cv::RNG::UNIFORM, 20, 235);
-    cv::resize(blocks, texture, texture.size(), 0, 0, cv::INTER_NEAREST);
-  }
+  cv::Mat texture = Blocks({24, 24}, {6, 6}, 7);
   static cv::Rect Box(int frame) {
     const int x = frame < 8 ? 30 + 2 * frame : 50 + 2 * frame;
     return {x, 40, 24, 24};
@@ -639,22 +643,29 @@ struct JumpingPatch {
   }
 };
 
+// The IoU of the box with the scene's patch (Scene::Box) in each frame 1..frames, and
+// `not_found` where the target was not found, tracked from the patch's box in frame 0.
+template <typename Scene>
+std::vector<double> FollowPatch(const Scene& scene, const TrackerOptions& options, int frames,
+                                double not_found) {
+  MultiTracker tracker(options);
+  EXPECT_EQ(tracker.StartFromBox(scene.Draw(0), Scene::Box(0)), 1);
+  std::vector<double> ious;
+  for (int frame = 1; frame <= frames; ++frame) {
+    std::vector<TrackResult> results;
+    tracker.Track(scene.Draw(frame), &results);
+    const bool found = results.size() == 1 && results[0].state == TrackState::kFound;
+    ious.push_back(found ? Iou(results[0].box, Scene::Box(frame)) : not_found);
+  }
+  return ious;
+}
+
 // The IoU of the box with the patch in each frame 1..14; -1 where it was not found.
 std::vector<double> FollowJumpingPatch(bool appearance) {
   TrackerOptions options;
   options.mode = TrackerMode::kBounded;
   options.appearance = appearance;
-  MultiTracker tracker(options);
-  const JumpingPatch patch;
-  EXPECT_EQ(tracker.StartFromBox(patch.Draw(0), JumpingPatch::Box(0)), 1);
-  std::vector<double> ious;
-  for (int frame = 1; frame <= 14; ++frame) {
-    std::vector<TrackResult> results;
-    tracker.Track(patch.Draw(frame), &results);
-    const bool found = results.size() == 1 && results[0].state == TrackState::kFound;
-    ious.push_back(found ? Iou(results[0].box, JumpingPatch::Box(frame)) : -1.0);
-  }
-  return ious;
+  return FollowPatch(JumpingPatch(), options, 14, -1.0);
 }
 
 TEST(BoundedTracker, AppearanceFindsATargetAgainPastItsRoiAfterAnOcclusion) {
@@ -684,14 +695,8 @@ TEST(BoundedTracker, WithoutAppearanceTheJumpedTargetIsNotFoundAgain) {
 // from frame 13 (the panel covers two thirds of it in frames 18..21) and comes out of by frame
 // 30.
 struct PassingBehind {
-  cv::Mat patch, panel;
-  PassingBehind() : patch(24, 24, CV_8UC3), panel(40, 16, CV_8UC3) {
-    cv::Mat blocks(6, 6, CV_8UC3), panel_blocks(10, 4, CV_8UC3);
-    cv::RNG(7).fill(blocks, cv::RNG::UNIFORM, 20, 235);
-    cv::RNG(8).fill(panel_blocks, cv::RNG::UNIFORM, 20, 235);
-    cv::resize(blocks, patch, patch.size(), 0, 0, cv::INTER_NEAREST);
-    cv::resize(panel_blocks, panel, panel.size(), 0, 0, cv::INTER_NEAREST);
-  }
+  cv::Mat patch = Blocks({24, 24}, {6, 6}, 7);
+  cv::Mat panel = Blocks({16, 40}, {4, 10}, 8);
   static cv::Rect Box(int frame) { return {10 + 2 * frame, 40, 24, 24}; }
   static cv::Rect Panel() { return {60, 32, 16, 40}; }
   cv::Mat Draw(int frame) const {
@@ -704,17 +709,7 @@ struct PassingBehind {
 
 // The box's IoU with the patch at frames 1..40 (0 where it is not found).
 std::vector<double> FollowPassingBehind(const TrackerOptions& options) {
-  MultiTracker tracker(options);
-  const PassingBehind scene;
-  EXPECT_EQ(tracker.StartFromBox(scene.Draw(0), PassingBehind::Box(0)), 1);
-  std::vector<double> ious;
-  for (int frame = 1; frame <= 40; ++frame) {
-    std::vector<TrackResult> results;
-    tracker.Track(scene.Draw(frame), &results);
-    const bool found = results.size() == 1 && results[0].state == TrackState::kFound;
-    ious.push_back(found ? Iou(results[0].box, PassingBehind::Box(frame)) : 0.0);
-  }
-  return ious;
+  return FollowPatch(PassingBehind(), options, 40, 0.0);
 }
 
 TEST(BoundedTracker, AnOccluderOfTheSameColoursIsNotLearntAndTheTargetIsFoundAfterIt) {
