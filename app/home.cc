@@ -38,6 +38,10 @@ std::string DefaultConfigPath() {
   return (fs::path(AttendHome()) / "configs" / "default.yaml").string();
 }
 
+std::string SegmentConfigPath() {
+  return (fs::path(AttendHome()) / "configs" / "segment.yaml").string();
+}
+
 std::string EnsureBundledSequence(bool quiet) {
   const fs::path scene_path = fs::path(AttendHome()) / "sequences" / "lab.yaml";
   const std::string scene_text = ReadText(scene_path);

@@ -121,6 +121,7 @@ void SegmentImages(const SegmentRequest& request,
                                  {"options",
                                   {{"t_max", request.options.t_max},
                                    {"min_region_area", request.options.min_region_area},
+                                   {"merge_spread", request.options.merge_spread},
                                    {"link_across_kinds", request.options.bip.link_across_kinds}}}};
   const fs::path report_path = out / "segment.json";
   std::ofstream file(report_path);

@@ -7,7 +7,8 @@
 // What is timed, as the median of N repetitions after one warm-up (the methods take turns, one
 // call each per round, so that load from other processes falls on all of them alike):
 //   BIP: BgrToCylinder plus Segmenter::SegmentCylinder (pyramid, root labels, region statistics
-//        and region adjacency graph, small-region merging); the "core" column is
+//        and region adjacency graph, small-region merging, and for the spread-merge variant the
+//        merge by spread of configs/segment.yaml); the "core" column is
 //        Segmentation::milliseconds of the same calls, the Segmenter's own timing.
 //   Felzenszwalb: GraphSegmentation::processImage on the same 8-bit BGR image.
 // Regions are counted as distinct labels and as 8-connected regions; Q and F are computed on
@@ -21,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -28,6 +30,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc/segmentation.hpp>
+#include <yaml-cpp/yaml.h>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -44,6 +47,25 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr float kTmaxValues[] = {20.f, 30.f, 40.f, 50.f};
+
+// The settings of `attend segment`, from configs/segment.yaml: the spread-merge variant runs
+// with its merge_spread, and is compared with Felzenszwalb at its t_max.
+struct SegmentDefaults {
+  float t_max = 0.f;
+  float merge_spread = 0.f;
+};
+
+const SegmentDefaults& SegmentYaml() {
+  static const SegmentDefaults defaults = [] {
+    const std::string path = std::string(ATTEND_SOURCE_ROOT) + "/configs/segment.yaml";
+    const YAML::Node block = YAML::LoadFile(path)["segmentation"];
+    SegmentDefaults d;
+    d.t_max = block["t_max"].as<float>();
+    d.merge_spread = block["merge_spread"].as<float>();
+    return d;
+  }();
+  return defaults;
+}
 constexpr float kFelzenszwalbK[] = {25.f, 50.f, 100.f, 300.f, 500.f, 1000.f};
 constexpr double kFelzenszwalbSigma = 0.5;
 constexpr int kFelzenszwalbMinSize = 20;
@@ -64,7 +86,11 @@ struct BenchSize {
   cv::Size size;
 };
 
-enum class Method { kBip, kBipLinked, kFelzenszwalb };
+// kBip and kBipLinked are the thesis's regions (merge_spread 0), with the faithful rules and
+// with bip.link_across_kinds; kBipSpread is the default, the faithful rules followed by the
+// merge by spread (SegmentationOptions::merge_spread).
+enum class Method { kBip, kBipLinked, kBipSpread, kFelzenszwalb };
+constexpr Method kBipMethods[] = {Method::kBip, Method::kBipLinked, Method::kBipSpread};
 
 const char* MethodName(Method method) {
   switch (method) {
@@ -72,6 +98,8 @@ const char* MethodName(Method method) {
       return "BIP";
     case Method::kBipLinked:
       return "BIP linked";
+    case Method::kBipSpread:
+      return "BIP spread merge";
     case Method::kFelzenszwalb:
       return "Felzenszwalb";
   }
@@ -276,8 +304,8 @@ class Contender {
 
 class BipContender : public Contender {
  public:
-  BipContender(const cv::Mat& bgr, bool linked, float t_max)
-      : bgr_(bgr), linked_(linked), t_max_(t_max), segmenter_(MakeOptions(linked, t_max)) {}
+  BipContender(const cv::Mat& bgr, Method method, float t_max)
+      : bgr_(bgr), method_(method), t_max_(t_max), segmenter_(MakeOptions(method, t_max)) {}
 
   void Run() override {
     attend::BgrToCylinder(bgr_, &cylinder_);
@@ -286,7 +314,7 @@ class BipContender : public Contender {
   }
 
   void Finish(Result* result) override {
-    result->method = linked_ ? Method::kBipLinked : Method::kBip;
+    result->method = method_;
     result->parameter = t_max_;
     // The first call was the warm-up.
     result->core_ms = Median(std::vector<double>(core_ms_.begin() + 1, core_ms_.end()));
@@ -296,15 +324,16 @@ class BipContender : public Contender {
   }
 
  private:
-  static attend::SegmentationOptions MakeOptions(bool linked, float t_max) {
+  static attend::SegmentationOptions MakeOptions(Method method, float t_max) {
     attend::SegmentationOptions options;
     options.t_max = t_max;
-    options.bip.link_across_kinds = linked;
+    options.bip.link_across_kinds = method == Method::kBipLinked;
+    options.merge_spread = method == Method::kBipSpread ? SegmentYaml().merge_spread : 0.f;
     return options;
   }
 
   const cv::Mat& bgr_;
-  bool linked_;
+  Method method_;
   float t_max_;
   attend::Segmenter segmenter_;
   cv::Mat cylinder_;
@@ -339,9 +368,9 @@ class FelzenszwalbContender : public Contender {
 // each is called once, so that a change in the machine's load affects all of them alike.
 std::vector<Result> RunAll(const cv::Mat& bgr, int repeat) {
   std::vector<std::unique_ptr<Contender>> contenders;
-  for (const bool linked : {false, true}) {
+  for (const Method method : kBipMethods) {
     for (const float t_max : kTmaxValues) {
-      contenders.push_back(std::make_unique<BipContender>(bgr, linked, t_max));
+      contenders.push_back(std::make_unique<BipContender>(bgr, method, t_max));
     }
   }
   for (const float k : kFelzenszwalbK) {
@@ -415,7 +444,11 @@ const Result* ClosestFelzenszwalb(const std::vector<Result>& results, const Resu
 void WriteReport(const Options& options, const std::vector<SourceImage>& images,
                  const std::vector<BenchSize>& sizes, const std::vector<Result>& results,
                  std::ostream& out) {
-  const float default_t_max = attend::SegmentationOptions{}.t_max;
+  // The thesis's variants at SegmentationOptions' t_max (the attention loop's), the spread
+  // merge at configs/segment.yaml's.
+  const auto default_t_max = [](Method method) {
+    return method == Method::kBipSpread ? SegmentYaml().t_max : attend::SegmentationOptions{}.t_max;
+  };
   out << "Date: " << UtcNow() << "; CPU: " << CpuModel()
       << "; nproc: " << std::thread::hardware_concurrency() << "; OpenCV " << CV_VERSION
       << "; cv::getNumThreads() = " << cv::getNumThreads() << "; repetitions: " << options.repeat
@@ -428,8 +461,12 @@ void WriteReport(const Options& options, const std::vector<SourceImage>& images,
   out << "; each resized to";
   for (const BenchSize& size : sizes) out << " " << size.name;
   out << ".\n\n";
-  out << "BIP ms: BgrToCylinder + Segmenter::SegmentCylinder (pyramid, labels, region statistics "
-         "and adjacency graph, small-region merging); core ms: Segmentation::milliseconds, the "
+  out << "BIP: the thesis's rules; BIP linked: bip.link_across_kinds; BIP spread merge: the "
+         "thesis's rules followed by the merge by spread (merge_spread "
+      << Fixed(SegmentYaml().merge_spread, 2)
+      << ", configs/segment.yaml, the default of attend segment). "
+         "BIP ms: BgrToCylinder + Segmenter::SegmentCylinder (pyramid, labels, region statistics "
+         "and adjacency graph, small-region merging, merge by spread); core ms: Segmentation::milliseconds, the "
          "Segmenter's own timing of the same calls. "
          "Felzenszwalb ms: GraphSegmentation::processImage. Q and F (smaller is better) over the "
          "8-connected regions. FH/BIP time uses BIP ms; FH/BIP core uses core ms.\n\n";
@@ -448,7 +485,9 @@ void WriteReport(const Options& options, const std::vector<SourceImage>& images,
   }
 
   out << "\n### Felzenszwalb / BIP at comparable region counts (BIP t_max "
-      << Fixed(default_t_max, 0) << "; Felzenszwalb k whose connected region count is closest)\n\n";
+      << Fixed(default_t_max(Method::kBip), 0) << ", spread merge t_max "
+      << Fixed(default_t_max(Method::kBipSpread), 0)
+      << "; Felzenszwalb k whose connected region count is closest)\n\n";
   out << "| image | size | BIP variant | BIP regions | BIP ms | BIP Q | FH k | FH regions | FH ms "
          "| "
          "FH Q | FH/BIP time | FH/BIP core | BIP Q no worse |\n";
@@ -457,19 +496,24 @@ void WriteReport(const Options& options, const std::vector<SourceImage>& images,
     double ratio;
     bool q_ok;
     double bip_ms;
+    bool photograph;  // a real image, not one of the synthetic ones
+    bool connected;   // every label one 8-connected region
   };
   std::map<std::pair<std::string, Method>, std::vector<Pairing>> pairings;
   for (const BenchSize& size : sizes) {
-    for (const Method method : {Method::kBip, Method::kBipLinked}) {
+    for (const Method method : kBipMethods) {
       for (const Result& bip : results) {
-        if (bip.method != method || bip.size != size.name || bip.parameter != default_t_max) {
+        if (bip.method != method || bip.size != size.name ||
+            bip.parameter != default_t_max(method)) {
           continue;
         }
         const Result* fh = ClosestFelzenszwalb(results, bip);
         if (fh == nullptr) continue;
         const double ratio = fh->median_ms / bip.median_ms;
         const bool q_ok = bip.quality.q <= fh->quality.q;
-        pairings[{size.name, method}].push_back({ratio, q_ok, bip.median_ms});
+        pairings[{size.name, method}].push_back({ratio, q_ok, bip.median_ms,
+                                                 bip.image.rfind("synth-", 0) != 0,
+                                                 bip.labels == bip.connected});
         out << "| " << bip.image << " | " << size.name << " | " << MethodName(method) << " | "
             << bip.connected << " | " << Fixed(bip.median_ms, 2) << " | "
             << Significant(bip.quality.q, 4) << " | " << Fixed(fh->parameter, 0) << " | "
@@ -486,7 +530,7 @@ void WriteReport(const Options& options, const std::vector<SourceImage>& images,
          "images >= 10x | images with Q no worse | BIP ms max | met |\n";
   out << "|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
   for (const BenchSize& size : sizes) {
-    for (const Method method : {Method::kBip, Method::kBipLinked}) {
+    for (const Method method : kBipMethods) {
       const auto found = pairings.find({size.name, method});
       if (found == pairings.end()) continue;
       const std::vector<Pairing>& list = found->second;
@@ -511,15 +555,45 @@ void WriteReport(const Options& options, const std::vector<SourceImage>& images,
     }
   }
 
+  out << "\n### Issue 29 per size, photographs only (target: on every photograph Q no worse "
+         "than Felzenszwalb's at the closest region count, Felzenszwalb/BIP >= 10x, no "
+         "disconnected region)\n\n";
+  out << "| size | BIP variant | photographs | Q no worse | >= 10x | FH/BIP min | "
+         "disconnected regions | met |\n";
+  out << "|---|---|---:|---:|---:|---:|---:|---|\n";
+  for (const BenchSize& size : sizes) {
+    for (const Method method : kBipMethods) {
+      const auto found = pairings.find({size.name, method});
+      if (found == pairings.end()) continue;
+      int n = 0, q_ok = 0, fast = 0, split = 0;
+      double min_ratio = std::numeric_limits<double>::infinity();
+      for (const Pairing& p : found->second) {
+        if (!p.photograph) continue;
+        ++n;
+        q_ok += p.q_ok;
+        fast += p.ratio >= 10.0;
+        split += !p.connected;
+        min_ratio = std::min(min_ratio, p.ratio);
+      }
+      if (n == 0) continue;
+      out << "| " << size.name << " | " << MethodName(method) << " | " << n << " | " << q_ok
+          << "/" << n << " | " << fast << "/" << n << " | " << Fixed(min_ratio, 1) << "x | "
+          << split << " | " << (q_ok == n && fast == n && split == 0 ? "yes" : "no") << " |\n";
+    }
+  }
+
   out << "\n### Table 3.1 style summary (min / avg / max over images; BIP t_max "
-      << Fixed(default_t_max, 0) << ", Felzenszwalb at the closest k)\n\n";
+      << Fixed(default_t_max(Method::kBip), 0) << ", spread merge t_max "
+      << Fixed(default_t_max(Method::kBipSpread), 0) << ", Felzenszwalb at the closest k)\n\n";
   out << "| size | method | time ms | hierarchy height | connected regions |\n";
   out << "|---|---|---|---|---|\n";
   for (const BenchSize& size : sizes) {
-    for (const Method method : {Method::kBip, Method::kBipLinked}) {
+    for (const Method method : kBipMethods) {
       std::vector<double> times, heights, regions, fh_times, fh_regions;
       for (const Result& r : results) {
-        if (r.method != method || r.size != size.name || r.parameter != default_t_max) continue;
+        if (r.method != method || r.size != size.name || r.parameter != default_t_max(method)) {
+          continue;
+        }
         times.push_back(r.median_ms);
         heights.push_back(r.levels);
         regions.push_back(r.connected);

@@ -28,7 +28,7 @@ struct SegmentArguments {
 };
 
 int Segment(const SegmentArguments& args) {
-  const std::string config_path = args.config.empty() ? DefaultConfigPath() : args.config;
+  const std::string config_path = args.config.empty() ? SegmentConfigPath() : args.config;
   SegmentRequest request;
   request.options = LoadOptions(config_path, args.sets).segmentation;
   request.stems = OutputStems(args.images, "outputs STEM.*.png");
@@ -67,7 +67,8 @@ void AddSegmentCommand(CLI::App& app, const std::string&, CommandAction* action)
   segment->add_option("--out", args->out, "Output folder, created if missing")->required();
   segment->add_option("--config", args->config,
                       "Configuration YAML; its segmentation block is used (default: "
-                      "configs/default.yaml of the attend home)");
+                      "configs/segment.yaml of the attend home, the merge by spread; "
+                      "configs/default.yaml holds the attention loop's thesis regions)");
   AddSetOption(segment, &args->sets,
                "Override a configuration key, the value parsed as YAML: "
                "--set segmentation.t_max=30 (repeatable)");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <limits>
 #include <opencv2/core/hal/hal.hpp>
 
@@ -17,7 +18,10 @@ const OptionFields<SegmentationOptions>& SegmentationOptions::Fields() {
       {"t_max", &O::t_max, Range::Closed(0.001, 1000),
        "T_max of the threshold schedule, HSV cylinder units"},
       {"min_region_area", &O::min_region_area, Range::Closed(0, 1e6),
-       "smaller regions merge into their closest neighbour, px; 0: keep the roots"}};
+       "smaller regions merge into their closest neighbour, px; 0: keep the roots"},
+      {"merge_spread", &O::merge_spread, Range::Closed(0, 100),
+       "adjacent regions merge when their colours differ by at most this many times their "
+       "spread; 0: off (the thesis)"}};
   return fields;
 }
 
@@ -66,7 +70,15 @@ ATTEND_VECTOR_CLONES void RelabelRow(const int* __restrict relabel, int count,
 struct Segmenter::Workspace {
   void AccumulateRegions(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
                          std::vector<RegionStats>* regions);
-  int MergeFlat(int min_area, cv::Mat* labels, std::vector<RegionStats>* regions);
+  // The two merges work on one union-find state of the regions, with their sums: StartMerge
+  // sets it up, MergeFlat and MergeSimilar join sets (each returns whether it joined any), and
+  // ApplyMerge writes the result into the labels, statistics and edges.
+  void StartMerge(const std::vector<RegionStats>& regions);
+  bool MergeFlat(int min_area);
+  bool MergeSimilar(float spread);
+  int Find(int r);
+  void Join(int absorbed, int into);
+  int ApplyMerge(cv::Mat* labels, std::vector<RegionStats>* regions);
   void BuildAdjacency(int num_regions, RegionAdjacency* adjacency);
   void CombinePairs(int num_regions, const std::vector<RegionEdge>& pairs,
                     std::vector<RegionEdge>* combined);
@@ -80,6 +92,8 @@ struct Segmenter::Workspace {
   std::vector<cv::Point> high;
   std::vector<RegionEdge> runs;
   std::vector<float> row_saturation;
+  // Per region: the sum over its pixels of |c|^2 (sx^2 + sy^2 + v^2), for its colour spread.
+  std::vector<double> squares;
   // CombinePairs.
   std::vector<int> pair_offsets;
   std::vector<int> pair_cursor;
@@ -92,8 +106,12 @@ struct Segmenter::Workspace {
   std::vector<int> area;
   std::vector<int> next_member;
   std::vector<int> last_member;
-  std::vector<std::array<double, 4>> merge_sums;  // sx, sy, v, saturation times area
-  std::vector<std::pair<int, int>> heap;          // (area, region)
+  // sx, sy, v and saturation times area, and the sum of |c|^2.
+  std::vector<std::array<double, 5>> merge_sums;
+  std::vector<std::pair<int, int>> heap;  // (area, region)
+  // MergeSimilar's edges in order: the bits of the float distance (non-negative, so they
+  // order as the numbers do) above the edge's index.
+  std::vector<uint64_t> order;
   std::vector<int> renumber;
   std::vector<int> relabel;
   std::vector<RegionStats> merged;
@@ -154,6 +172,7 @@ void Segmenter::Workspace::AccumulateRegions(const cv::Mat& labels, int num_regi
   regions->assign(num_regions, RegionStats{});
   // Sums in double: a 640x480 region of V = 255 reaches 8e7, beyond float's exact integers.
   sums.assign(4 * static_cast<size_t>(num_regions), 0.0);
+  squares.assign(num_regions, 0.0);
   low.assign(num_regions, cv::Point(labels.cols, labels.rows));
   high.assign(num_regions, cv::Point(-1, -1));
   // Consecutive boundary pixels mostly separate the same pair of regions: store runs.
@@ -183,13 +202,14 @@ void Segmenter::Workspace::AccumulateRegions(const cv::Mat& labels, int num_regi
         continue;
       }
       const int start = col;
-      float s0 = 0.f, s1 = 0.f, s2 = 0.f, s3 = 0.f;
+      float s0 = 0.f, s1 = 0.f, s2 = 0.f, s3 = 0.f, s4 = 0.f;
       for (; col < labels.cols && label[col] == r; ++col) {
         const float* c = colour + 3 * col;
         s0 += c[0];
         s1 += c[1];
         s2 += c[2];
         s3 += saturation[col];
+        s4 += c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
         if (below != nullptr && below[col] >= 0 && below[col] != r) boundary(r, below[col]);
       }
       RegionStats& region = (*regions)[r];
@@ -199,6 +219,7 @@ void Segmenter::Workspace::AccumulateRegions(const cv::Mat& labels, int num_regi
       sum[1] += s1;
       sum[2] += s2;
       sum[3] += s3;
+      squares[r] += s4;
       low[r].x = std::min(low[r].x, start);
       low[r].y = std::min(low[r].y, row);
       high[r].x = std::max(high[r].x, col - 1);
@@ -240,16 +261,44 @@ void Segmenter::Workspace::BuildAdjacency(int num_regions, RegionAdjacency* adja
   }
 }
 
+// The union-find state of both merges: every region its own set, with its sums.
+void Segmenter::Workspace::StartMerge(const std::vector<RegionStats>& regions) {
+  const int count = static_cast<int>(regions.size());
+  parent.resize(count);
+  area.resize(count);
+  next_member.assign(count, -1);
+  last_member.resize(count);
+  merge_sums.resize(count);
+  for (int r = 0; r < count; ++r) {
+    const RegionStats& region = regions[r];
+    parent[r] = r;
+    last_member[r] = r;
+    area[r] = region.area;
+    const double a = region.area;
+    merge_sums[r] = {region.colour.sx * a, region.colour.sy * a, region.colour.v * a,
+                     region.saturation * a, squares[r]};
+  }
+}
+
+int Segmenter::Workspace::Find(int r) {
+  while (parent[r] != r) r = parent[r] = parent[parent[r]];
+  return r;
+}
+
+// Joins the set of root `absorbed` into that of root `into`: sums add, member lists chain.
+void Segmenter::Workspace::Join(int absorbed, int into) {
+  parent[absorbed] = into;
+  area[into] += area[absorbed];
+  for (int c = 0; c < 5; ++c) merge_sums[into][c] += merge_sums[absorbed][c];
+  next_member[last_member[into]] = absorbed;
+  last_member[into] = last_member[absorbed];
+}
+
 // Merges every region smaller than `min_area` pixels into its adjacent region of closest mean
-// colour, smallest first, until none is left that has a neighbour. Relabels `labels` (regions
-// numbered by first appearance) and updates `regions` and edges exactly, without another
-// pass over the pixels. Merged regions stay connected. Returns the new number of regions.
-// Longer than most on purpose: one merge updates the queue, the labels, the region statistics
-// and the edge lists together, in one pass; split, the parts would pass the same dozen
-// buffers to each other.
-int Segmenter::Workspace::MergeFlat(int min_area, cv::Mat* labels,
-                                    std::vector<RegionStats>* regions) {
-  const int count = static_cast<int>(regions->size());
+// colour, smallest first, until none is left that has a neighbour. Merged regions stay
+// connected.
+bool Segmenter::Workspace::MergeFlat(int min_area) {
+  const int count = static_cast<int>(parent.size());
   // Adjacency of the original regions (CSR); a merged region's neighbours are those of its
   // members, which a linked list per region keeps.
   offsets.assign(count + 1, 0);
@@ -267,25 +316,7 @@ int Segmenter::Workspace::MergeFlat(int min_area, cv::Mat* labels,
       adjacent[cursor[edge.b]++] = edge.a;
     }
   }
-  parent.resize(count);
-  area.resize(count);
-  next_member.assign(count, -1);
-  last_member.resize(count);
-  std::vector<std::array<double, 4>>& sum = merge_sums;
-  sum.resize(count);
-  for (int r = 0; r < count; ++r) {
-    const RegionStats& region = (*regions)[r];
-    parent[r] = r;
-    last_member[r] = r;
-    area[r] = region.area;
-    const double a = region.area;
-    sum[r] = {region.colour.sx * a, region.colour.sy * a, region.colour.v * a,
-              region.saturation * a};
-  }
-  auto find = [&](int r) {
-    while (parent[r] != r) r = parent[r] = parent[parent[r]];
-    return r;
-  };
+  const std::vector<std::array<double, 5>>& sum = merge_sums;
   // Smallest first (a min-heap); an entry whose area is stale was merged since it was queued.
   using Entry = std::pair<int, int>;  // (area, region)
   heap.clear();
@@ -299,12 +330,12 @@ int Segmenter::Workspace::MergeFlat(int min_area, cv::Mat* labels,
     std::pop_heap(heap.begin(), heap.end(), later);
     const auto [queued_area, r] = heap.back();
     heap.pop_back();
-    if (find(r) != r || area[r] != queued_area) continue;
+    if (Find(r) != r || area[r] != queued_area) continue;
     int best = -1;
     double best_distance = std::numeric_limits<double>::infinity();
     for (int member = r; member >= 0; member = next_member[member]) {
       for (int k = offsets[member]; k < offsets[member + 1]; ++k) {
-        const int m = find(adjacent[k]);
+        const int m = Find(adjacent[k]);
         if (m == r) continue;
         double distance = 0.0;
         for (int c = 0; c < 3; ++c) {
@@ -319,18 +350,74 @@ int Segmenter::Workspace::MergeFlat(int min_area, cv::Mat* labels,
     }
     if (best < 0) continue;  // an isolated region (inside a mask) stays
     merged_any = true;
-    parent[r] = best;
-    area[best] += area[r];
-    for (int c = 0; c < 4; ++c) sum[best][c] += sum[r][c];
-    next_member[last_member[best]] = r;
-    last_member[best] = last_member[r];
+    Join(r, best);
     if (area[best] < min_area) {
       heap.push_back({area[best], best});
       std::push_heap(heap.begin(), heap.end(), later);
     }
   }
-  if (!merged_any) return count;
+  return merged_any;
+}
 
+// Merges adjacent regions whose mean colours are no further apart than `spread` times the
+// root mean square of their two colour spreads (the standard deviations of their pixels'
+// cylinder colours about their means): |m_a - m_b|^2 <= spread^2 (s_a^2 + s_b^2) / 2. The
+// adjacent pairs are taken in order of increasing distance between their means at the start,
+// each tested with the statistics of the regions as merged so far (docs/PYRAMID.md,
+// "Merging by spread"). A textured region, whose pixels spread widely, absorbs neighbours of
+// a similar mean; flat regions of different colours stay apart. It starts from the sets as
+// MergeFlat left them: an edge of the regions before the merges is one of the sets it joins.
+bool Segmenter::Workspace::MergeSimilar(float spread) {
+  const std::vector<std::array<double, 5>>& sum = merge_sums;
+  auto squared_distance = [&sum, this](int a, int b) {
+    double distance = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double d = sum[a][c] / area[a] - sum[b][c] / area[b];
+      distance += d * d;
+    }
+    return distance;
+  };
+  // The mean of |c - m|^2 over a region's pixels; rounding may leave a tiny negative value.
+  auto variance = [&sum, this](int r) {
+    double mean_square = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double m = sum[r][c] / area[r];
+      mean_square += m * m;
+    }
+    return std::max(0.0, sum[r][4] / area[r] - mean_square);
+  };
+  order.clear();
+  for (size_t e = 0; e < edges.size(); ++e) {
+    const int a = Find(edges[e].a);
+    const int b = Find(edges[e].b);
+    if (a == b) continue;
+    const float distance = static_cast<float>(squared_distance(a, b));
+    uint32_t bits = 0;
+    std::memcpy(&bits, &distance, sizeof(bits));
+    order.push_back(static_cast<uint64_t>(bits) << 32 | static_cast<uint32_t>(e));
+  }
+  std::sort(order.begin(), order.end());
+  const double factor = 0.5 * static_cast<double>(spread) * spread;
+  bool merged_any = false;
+  for (const uint64_t key : order) {
+    const uint32_t e = static_cast<uint32_t>(key);
+    int a = Find(edges[e].a);
+    int b = Find(edges[e].b);
+    if (a == b) continue;
+    if (squared_distance(a, b) > factor * (variance(a) + variance(b))) continue;
+    if (area[a] < area[b]) std::swap(a, b);
+    Join(b, a);
+    merged_any = true;
+  }
+  return merged_any;
+}
+
+// Relabels `labels` after a merge (regions numbered by first appearance) and updates
+// `regions`, their |c|^2 sums and the edges exactly, without another pass over the pixels.
+// Returns the new number of regions.
+int Segmenter::Workspace::ApplyMerge(cv::Mat* labels, std::vector<RegionStats>* regions) {
+  const int count = static_cast<int>(regions->size());
+  const std::vector<std::array<double, 5>>& sum = merge_sums;
   // Number the surviving regions by first appearance. The regions are numbered so already, so
   // a merged region first appears where its lowest-numbered member does: numbering the roots
   // in order of their lowest member gives the numbers a scan of the pixels would.
@@ -338,7 +425,7 @@ int Segmenter::Workspace::MergeFlat(int min_area, cv::Mat* labels,
   relabel.resize(count);       // per original region
   int next = 0;
   for (int r = 0; r < count; ++r) {
-    const int root = find(r);
+    const int root = Find(r);
     if (renumber[root] < 0) renumber[root] = next++;
     relabel[r] = renumber[root];
   }
@@ -354,14 +441,16 @@ int Segmenter::Workspace::MergeFlat(int min_area, cv::Mat* labels,
     region.bbox = region.area == 0 ? source.bbox : (region.bbox | source.bbox);
     region.area += source.area;
   }
+  squares.resize(next);
   for (int r = 0; r < count; ++r) {
-    if (find(r) != r) continue;
+    if (Find(r) != r) continue;
     RegionStats& region = merged[renumber[r]];
     region.colour = {static_cast<float>(sum[r][0] / area[r]),
                      static_cast<float>(sum[r][1] / area[r]),
                      static_cast<float>(sum[r][2] / area[r])};
     region.intensity = region.colour.v;
     region.saturation = static_cast<float>(sum[r][3] / area[r]);
+    squares[renumber[r]] = sum[r][4];
   }
   pairs.clear();
   for (const RegionEdge& edge : edges) {
@@ -383,8 +472,12 @@ void Segmenter::SegmentCylinder(const cv::Mat& cylinder, Segmentation* out, cons
   int regions = bip.LabelRoots(&out->labels);
   out->pyramid_levels = bip.num_levels();
   workspace_->AccumulateRegions(out->labels, regions, cylinder, &out->regions);
-  if (options_.min_region_area > 1) {
-    regions = workspace_->MergeFlat(options_.min_region_area, &out->labels, &out->regions);
+  if (options_.min_region_area > 1 || options_.merge_spread > 0.f) {
+    Workspace& merge = *workspace_;
+    merge.StartMerge(out->regions);
+    bool merged = options_.min_region_area > 1 && merge.MergeFlat(options_.min_region_area);
+    if (options_.merge_spread > 0.f) merged = merge.MergeSimilar(options_.merge_spread) || merged;
+    if (merged) regions = merge.ApplyMerge(&out->labels, &out->regions);
   }
   workspace_->BuildAdjacency(regions, &out->adjacency);
   out->milliseconds = watch.ElapsedMs();

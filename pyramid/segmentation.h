@@ -21,6 +21,13 @@ struct SegmentationOptions {
   // (smallest first), as in the thesis's comparison of segmentations (3.3.2: 20 pixels for
   // every method). 0 keeps the pyramid's roots as they are.
   int min_region_area = 20;
+  // Not in the thesis: after the small-region merge, adjacent regions merge when their mean
+  // colours differ by at most merge_spread times the root mean square of their colour spreads
+  // (closest pairs first; docs/PYRAMID.md, "Merging by spread"). It joins the pieces into
+  // which the colour threshold cuts a textured surface. 0 keeps the thesis's regions, which
+  // the attention loop uses; `attend segment` defaults to 1 with t_max 50
+  // (configs/segment.yaml), its best measured setting.
+  float merge_spread = 0.f;
   BipOptions bip;
 
   // "" when valid; otherwise names the field and the broken constraint.

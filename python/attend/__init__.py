@@ -292,8 +292,11 @@ def saliency(image, config=None, set=(), features=False):
 
 def segment(image, **options):
     """BIP colour segmentation of an image (`attend segment`); options are the configuration's
-    segmentation keys (t_max, min_region_area, ...). Returns labels, regions, boundaries."""
-    return _attend.segment(image, _configuration({"segmentation": options}, defaults="keys"))
+    segmentation keys (t_max, min_region_area, merge_spread, ...), each replacing the value of
+    configs/segment.yaml, as `--set` does for the command. Returns labels, regions,
+    boundaries."""
+    overrides = _overrides({"segmentation": options}) if options else []
+    return _attend.segment(image, _attend.Configuration(_attend.segment_config_path(), overrides))
 
 
 def disparity(left, right, **options):

@@ -37,6 +37,19 @@ def test_segment_finds_the_four_quadrants():
     assert sorted(segmentation["boundaries"][:, 2].tolist()) == [32, 32, 40, 40]
 
 
+def test_segment_defaults_to_the_merge_by_spread_of_configs_segment_yaml():
+    # A grey texture (128 + uniform noise in [-40, 40]), which the thesis's threshold cuts into
+    # dozens of pieces and the merge by spread (configs/segment.yaml) joins.
+    rng = np.random.default_rng(7)
+    grey = (128 + rng.integers(-40, 41, size=(96, 96))).astype(np.uint8)
+    texture = np.repeat(grey[:, :, None], 3, axis=2)
+    merged = attend.segment(texture)
+    thesis = attend.segment(texture, merge_spread=0, t_max=40)
+    assert len(thesis["regions"]["area"]) > 20
+    assert len(merged["regions"]["area"]) * 5 < len(thesis["regions"]["area"])
+    assert merged["regions"]["area"].max() >= 0.9 * 96 * 96
+
+
 def test_segment_options_are_the_configuration_keys():
     noisy = quadrants()
     noisy[::2, ::2] //= 2

@@ -140,7 +140,9 @@ TEST(SegmentCommand, WritesLabelsFalseColourMeanAndReport) {
   EXPECT_EQ(second["height"], 48);
   EXPECT_EQ(second["regions"], 2);
   EXPECT_TRUE(second["milliseconds"].is_number());
-  EXPECT_EQ(report["options"]["t_max"], 40.0);
+  // configs/segment.yaml's values, with the --set of link_across_kinds.
+  EXPECT_EQ(report["options"]["t_max"], 50.0);
+  EXPECT_EQ(report["options"]["merge_spread"], 1.0);
   EXPECT_EQ(report["options"]["link_across_kinds"], true);
 }
 

@@ -134,6 +134,8 @@ TEST(Segmentation, EqualColoursThatDoNotTouchAreTwoRegions) {
   }
 }
 
+void ExpectAdjacencyMatchesLabels(const Segmentation& s);
+
 // Invariants that hold on any image.
 class SegmentationInvariants : public ::testing::TestWithParam<int> {};
 
@@ -178,8 +180,15 @@ TEST_P(SegmentationInvariants, HoldOnRandomImages) {
     EXPECT_NEAR(s.regions[r].colour.v, mean[2], 1e-2);
   }
 
-  // The graph's boundary lengths add up to the 4-neighbour pixel edges between regions, and
-  // each region's perimeter to the lengths of its edges.
+  ExpectAdjacencyMatchesLabels(s);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, SegmentationInvariants, ::testing::Range(0, 8));
+
+// The graph's boundary lengths add up to the 4-neighbour pixel edges between regions, and each
+// region's perimeter to the lengths of its edges.
+void ExpectAdjacencyMatchesLabels(const Segmentation& s) {
+  const int regions = static_cast<int>(s.regions.size());
   long boundary_edges = 0;
   std::vector<long> perimeter(regions, 0);
   for (int row = 0; row < s.labels.rows; ++row) {
@@ -207,7 +216,145 @@ TEST_P(SegmentationInvariants, HoldOnRandomImages) {
   for (int r = 0; r < regions; ++r) EXPECT_EQ(perimeter[r], s.regions[r].perimeter);
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeds, SegmentationInvariants, ::testing::Range(0, 8));
+// Grey texture: every pixel V = 128 + uniform noise in [-40, 40] (the same on all channels,
+// so no hue), seeded. Its pixels spread by 80 / sqrt(12) = 23 about the mean.
+cv::Mat GreyTexture(cv::Size size, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> noise(-40, 40);
+  cv::Mat image(size, CV_8UC3);
+  for (int row = 0; row < size.height; ++row) {
+    for (int col = 0; col < size.width; ++col) {
+      const uchar v = static_cast<uchar>(128 + noise(random));
+      image.at<cv::Vec3b>(row, col) = cv::Vec3b(v, v, v);
+    }
+  }
+  return image;
+}
+
+TEST(Segmentation, MergeBySpreadJoinsATextureAndKeepsFlatColoursApart) {
+  // Left: the grey texture, which the colour threshold cuts into pieces. Right: a red and a
+  // blue block, each flat (no spread), whose means are far from the texture's and from each
+  // other. The merge joins the texture and leaves the blocks alone.
+  cv::Mat image(96, 128, CV_8UC3);
+  GreyTexture(cv::Size(64, 96), 7).copyTo(image(cv::Rect(0, 0, 64, 96)));
+  image(cv::Rect(64, 0, 64, 48)).setTo(cv::Scalar(40, 40, 200));
+  image(cv::Rect(64, 48, 64, 48)).setTo(cv::Scalar(200, 60, 40));
+  SegmentationOptions thesis;
+  const Segmentation cut = SegmentImage(image, thesis);
+  // The thesis's regions: the texture in several pieces (so the merge has work to do).
+  EXPECT_GT(cut.regions.size(), 4u);
+
+  const cv::Rect texture(0, 0, 64, 96);
+  const cv::Rect red(64, 0, 64, 48);
+  const cv::Rect blue(64, 48, 64, 48);
+  // Each block one region of exactly its pixels, and no region across the texture's edge.
+  auto expect_blocks_whole = [&](const Segmentation& s) {
+    for (const cv::Rect& block : {red, blue}) {
+      const int label = s.labels.at<int>(block.y, block.x);
+      EXPECT_EQ(s.regions[label].area, block.area());
+      EXPECT_EQ(cv::countNonZero(s.labels(block) != label), 0);
+    }
+    for (size_t r = 0; r < s.regions.size(); ++r) {
+      const cv::Mat inside = s.labels(texture) == static_cast<int>(r);
+      const int count = cv::countNonZero(inside);
+      EXPECT_TRUE(count == 0 || count == s.regions[r].area) << "region " << r;
+    }
+  };
+  SegmentationOptions merged = thesis;
+  merged.merge_spread = 1.f;
+  const Segmentation s = SegmentImage(image, merged);
+  expect_blocks_whole(s);
+  ExpectAdjacencyMatchesLabels(s);
+  // Within one spread, the texture becomes one region but for a few clumps of the noise whose
+  // means lie beyond it (the seeded image leaves 4 of 20 to 49 pixels, each darker or lighter
+  // than 128 by more than 23): at least 97 % of its pixels in one region.
+  const RegionStats& main = s.regions[s.labels.at<int>(48, 32)];
+  EXPECT_GE(main.area, 0.97 * texture.area());
+  EXPECT_NEAR(main.colour.v, 128.f, 2.f);
+  EXPECT_LT(s.regions.size(), cut.regions.size() / 5);
+  EXPECT_EQ(Components(s.labels == s.labels.at<int>(48, 32)), 1);
+
+  // Within two spreads, all of it.
+  merged.merge_spread = 2.f;
+  const Segmentation wide = SegmentImage(image, merged);
+  ASSERT_EQ(wide.regions.size(), 3u);
+  expect_blocks_whole(wide);
+  EXPECT_EQ(wide.regions[wide.labels.at<int>(0, 0)].area, texture.area());
+  ASSERT_EQ(wide.adjacency.boundaries.size(), 3u);
+
+  // A factor too small to bridge the pieces' differences leaves most of them.
+  merged.merge_spread = 0.05f;
+  EXPECT_GT(SegmentImage(image, merged).regions.size(), cut.regions.size() / 2);
+}
+
+TEST(Segmentation, MergeBySpreadNeverJoinsTwoFlatColours) {
+  // Four flat rectangles whose colours differ by one grey level: no spread, so no merge
+  // whatever the factor (the thesis's threshold already joins them into one region at
+  // T_max 40, so the threshold is set below their difference).
+  cv::Mat image(64, 64, CV_8UC3);
+  const int greys[4] = {100, 101, 102, 103};
+  for (int i = 0; i < 4; ++i) {
+    image(cv::Rect(32 * (i % 2), 32 * (i / 2), 32, 32)).setTo(cv::Scalar::all(greys[i]));
+  }
+  SegmentationOptions options;
+  options.t_max = 0.5f;
+  options.merge_spread = 100.f;
+  EXPECT_EQ(SegmentImage(image, options).regions.size(), 4u);
+}
+
+// Invariants of the merge by spread on random images: every region one 8-connected piece of at
+// least the minimum area, its statistics those of its pixels, and the graph that of the labels.
+class MergeBySpreadInvariants : public ::testing::TestWithParam<int> {};
+
+TEST_P(MergeBySpreadInvariants, HoldOnRandomImages) {
+  cv::Mat image(70 + GetParam() * 9, 90 + GetParam() * 3, CV_8UC3);
+  cv::theRNG().state = 1000 + GetParam();
+  cv::randu(image, 0, 256);
+  cv::GaussianBlur(image, image, cv::Size(0, 0), 0.8 + 0.2 * GetParam());
+  cv::Mat cylinder;
+  BgrToCylinder(image, &cylinder);
+  SegmentationOptions options;
+  options.t_max = 20.f;  // many regions before the merge, so that it has work to do
+  options.merge_spread = 0.5f + 0.25f * GetParam();
+  options.bip.link_across_kinds = GetParam() % 2 == 1;
+  Segmenter segmenter(options);
+  Segmentation s;
+  segmenter.SegmentCylinder(cylinder, &s);
+  const int regions = static_cast<int>(s.regions.size());
+  double minimum, maximum;
+  cv::minMaxLoc(s.labels, &minimum, &maximum);
+  EXPECT_EQ(minimum, 0);
+  EXPECT_EQ(maximum, regions - 1);
+  for (int r = 0; r < regions; ++r) {
+    const cv::Mat mask = s.labels == r;
+    EXPECT_EQ(Components(mask), 1) << "region " << r;
+    EXPECT_EQ(s.regions[r].area, cv::countNonZero(mask)) << "region " << r;
+    EXPECT_GE(s.regions[r].area, options.min_region_area) << "region " << r;
+    EXPECT_EQ(s.regions[r].bbox, cv::boundingRect(mask)) << "region " << r;
+    const cv::Scalar mean = cv::mean(cylinder, mask);
+    EXPECT_NEAR(s.regions[r].colour.sx, mean[0], 1e-2) << "region " << r;
+    EXPECT_NEAR(s.regions[r].colour.sy, mean[1], 1e-2) << "region " << r;
+    EXPECT_NEAR(s.regions[r].colour.v, mean[2], 1e-2) << "region " << r;
+  }
+  ExpectAdjacencyMatchesLabels(s);
+  // Regions are numbered by first appearance in raster order.
+  int next = 0;
+  for (int row = 0; row < s.labels.rows; ++row) {
+    for (int col = 0; col < s.labels.cols; ++col) {
+      const int label = s.labels.at<int>(row, col);
+      EXPECT_LE(label, next);
+      if (label == next) ++next;
+    }
+  }
+  // Fewer regions than without the merge.
+  options.merge_spread = 0.f;
+  Segmenter thesis(options);
+  Segmentation unmerged;
+  thesis.SegmentCylinder(cylinder, &unmerged);
+  EXPECT_LT(regions, static_cast<int>(unmerged.regions.size()));
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, MergeBySpreadInvariants, ::testing::Range(0, 6));
 
 TEST(Segmentation, MaskedSegmentationLeavesOutsidePixelsUnlabelled) {
   cv::Mat image(50, 50, CV_8UC3);
@@ -292,6 +439,9 @@ TEST(SegmentationOptions, DefaultsAreValidAndCheckNamesTheField) {
   options = SegmentationOptions();
   options.min_region_area = -1;
   EXPECT_NE(options.Check().find("min_region_area"), std::string::npos);
+  options = SegmentationOptions();
+  options.merge_spread = -1.f;
+  EXPECT_NE(options.Check().find("merge_spread"), std::string::npos);
   options = SegmentationOptions();
   options.bip.max_levels = 0;
   EXPECT_NE(options.Check().find("max_levels"), std::string::npos);
