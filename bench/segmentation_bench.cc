@@ -66,7 +66,7 @@ const SegmentDefaults& SegmentYaml() {
   }();
   return defaults;
 }
-constexpr float kFelzenszwalbK[] = {25.f, 50.f, 100.f, 300.f, 500.f, 1000.f};
+constexpr float kFelzenszwalbK[] = {25.f, 50.f, 100.f, 300.f, 500.f, 1000.f, 2000.f, 4000.f};
 constexpr double kFelzenszwalbSigma = 0.5;
 constexpr int kFelzenszwalbMinSize = 20;
 

@@ -68,8 +68,9 @@ ATTEND_VECTOR_CLONES void RelabelRow(const int* __restrict relabel, int count,
 // Every buffer of the region statistics and of the merge, kept between frames so that a
 // Segmenter allocates nothing for them after the first frame of a size.
 struct Segmenter::Workspace {
+  // With `spread`, also each region's sum of |c|^2 (into squares); without, squares are 0.
   void AccumulateRegions(const cv::Mat& labels, int num_regions, const cv::Mat& cylinder,
-                         std::vector<RegionStats>* regions);
+                         bool spread, std::vector<RegionStats>* regions);
   // The two merges work on one union-find state of the regions, with their sums: StartMerge
   // sets it up, MergeFlat and MergeSimilar join sets (each returns whether it joined any), and
   // ApplyMerge writes the result into the labels, statistics and edges.
@@ -164,7 +165,7 @@ void Segmenter::Workspace::CombinePairs(int num_regions, const std::vector<Regio
 // One pass over the pixels: areas, sums, boxes, perimeters and the adjacent pairs (into
 // edges).
 void Segmenter::Workspace::AccumulateRegions(const cv::Mat& labels, int num_regions,
-                                             const cv::Mat& cylinder,
+                                             const cv::Mat& cylinder, bool spread,
                                              std::vector<RegionStats>* regions) {
   ATTEND_CHECK(labels.type() == CV_32SC1 && cylinder.type() == CV_32FC3 &&
                labels.size() == cylinder.size())
@@ -209,7 +210,7 @@ void Segmenter::Workspace::AccumulateRegions(const cv::Mat& labels, int num_regi
         s1 += c[1];
         s2 += c[2];
         s3 += saturation[col];
-        s4 += c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+        if (spread) s4 += c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
         if (below != nullptr && below[col] >= 0 && below[col] != r) boundary(r, below[col]);
       }
       RegionStats& region = (*regions)[r];
@@ -471,7 +472,8 @@ void Segmenter::SegmentCylinder(const cv::Mat& cylinder, Segmentation* out, cons
   const Bip& bip = builder_.Build(cylinder, policy_, mask);
   int regions = bip.LabelRoots(&out->labels);
   out->pyramid_levels = bip.num_levels();
-  workspace_->AccumulateRegions(out->labels, regions, cylinder, &out->regions);
+  workspace_->AccumulateRegions(out->labels, regions, cylinder, options_.merge_spread > 0.f,
+                                &out->regions);
   if (options_.min_region_area > 1 || options_.merge_spread > 0.f) {
     Workspace& merge = *workspace_;
     merge.StartMerge(out->regions);
