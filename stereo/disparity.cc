@@ -415,15 +415,51 @@ __attribute__((target("avx2"))) void RightViewRowAvx2(const float* costs, int wi
 // all d and slid down the image (add the entering row, subtract the leaving one), then slid
 // along the row; every sum is of integers below 2^24 for windows up to 15, so float holds it
 // exactly and the result equals box filtering the product image. Borders are replicated.
+// What CostRows computes before the rows: kept by the estimator between pairs, so that a
+// stream of frames of one size allocates (and faults in) its pages once.
+struct CostRowsStorage {
+  cv::Mat left, right, left_mean, left_sigma, right_mean, right_sigma, scratch;
+  std::vector<float> reversed_right;
+  std::vector<float> column_sums;
+  std::vector<float> window_sum;
+  std::vector<float> right_mean_row, right_inverse_sigma_row;
+
+  size_t bytes() const {
+    size_t total = (reversed_right.capacity() + column_sums.capacity() + window_sum.capacity() +
+                    right_mean_row.capacity() + right_inverse_sigma_row.capacity()) *
+                   sizeof(float);
+    for (const cv::Mat* m :
+         {&left, &right, &left_mean, &left_sigma, &right_mean, &right_sigma, &scratch}) {
+      total += m->total() * m->elemSize();
+    }
+    return total;
+  }
+};
+
 class CostRows {
  public:
-  CostRows(const cv::Mat& left, const cv::Mat& right, int depth, int window)
-      : width_(left.cols), height_(left.rows), depth_(depth), half_(window / 2) {
+  // `storage` holds the buffers (the estimator's, or a local one); it must outlive the rows.
+  CostRows(const cv::Mat& left, const cv::Mat& right, int depth, int window,
+           CostRowsStorage* storage)
+      : width_(left.cols),
+        height_(left.rows),
+        depth_(depth),
+        half_(window / 2),
+        left_(storage->left),
+        right_(storage->right),
+        left_mean_(storage->left_mean),
+        left_sigma_(storage->left_sigma),
+        right_mean_(storage->right_mean),
+        right_sigma_(storage->right_sigma),
+        reversed_right_(storage->reversed_right),
+        column_sums_(storage->column_sums),
+        window_sum_(storage->window_sum),
+        right_mean_row_(storage->right_mean_row),
+        right_inverse_sigma_row_(storage->right_inverse_sigma_row) {
     left.convertTo(left_, CV_32F);
     right.convertTo(right_, CV_32F);
-    cv::Mat scratch;
-    WindowStatistics(left_, window, &left_mean_, &left_sigma_, &scratch);
-    WindowStatistics(right_, window, &right_mean_, &right_sigma_, &scratch);
+    WindowStatistics(left_, window, &left_mean_, &left_sigma_, &storage->scratch);
+    WindowStatistics(right_, window, &right_mean_, &right_sigma_, &storage->scratch);
     inverse_count_ = 1.f / static_cast<float>(window * window);
     reversed_right_.resize(static_cast<size_t>(height_) * (width_ + depth_));
     for (int y = 0; y < height_; ++y) {
@@ -479,11 +515,12 @@ class CostRows {
 
   int width_, height_, depth_, half_;
   float inverse_count_ = 1.f;
-  cv::Mat left_, right_, left_mean_, left_sigma_, right_mean_, right_sigma_;
-  std::vector<float> reversed_right_;
-  std::vector<float> column_sums_;
-  std::vector<float> window_sum_;
-  std::vector<float> right_mean_row_, right_inverse_sigma_row_;
+  cv::Mat &left_, &right_, &left_mean_, &left_sigma_, &right_mean_, &right_sigma_;
+  std::vector<float>& reversed_right_;
+  std::vector<float>& column_sums_;
+  std::vector<float>& window_sum_;
+  std::vector<float>& right_mean_row_;
+  std::vector<float>& right_inverse_sigma_row_;
 };
 
 }  // namespace
@@ -572,6 +609,7 @@ struct DisparityEstimator::Buffers {
   cv::Mat left_small, right_small;       // the pair shrunk to max_width, when wider
   cv::Mat small_map;                     // and its disparity map
   SemiGlobalAggregator semi_global;      // smoothness sgm: the volume and the paths
+  CostRowsStorage cost_rows;             // the correlation's images and window statistics
 };
 
 DisparityEstimator::DisparityEstimator(DisparityOptions options)
@@ -589,7 +627,7 @@ size_t DisparityEstimator::buffer_bytes() const {
                  b.right_best_d.capacity() * sizeof(int32_t) +
                  b.volume.capacity() * sizeof(int16_t) +
                  (b.previous.capacity() + b.current.capacity()) * sizeof(float) + b.left.bytes() +
-                 b.semi_global.bytes();
+                 b.semi_global.bytes() + b.cost_rows.bytes();
   for (const cv::Mat* m :
        {&b.left_grey, &b.right_grey, &b.right_view, &b.left_small, &b.right_small, &b.small_map}) {
     bytes += m->total() * m->elemSize();
@@ -603,7 +641,8 @@ void ZnccSlice(const cv::Mat& left, const cv::Mat& right, int d, int window, cv:
   CV_Assert(left.type() == CV_8UC1 && right.type() == CV_8UC1 && left.size() == right.size());
   CV_Assert(d >= 0 && d < left.cols);
   out->create(left.size(), CV_32FC1);
-  CostRows rows(left, right, d + 1, window);
+  CostRowsStorage storage;
+  CostRows rows(left, right, d + 1, window, &storage);
   std::vector<float> costs;
   rows.ForEachRow(&costs, [&](int y, const float* row) {
     float* z = out->ptr<float>(y);
@@ -778,7 +817,7 @@ void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right
                           : state->jump_from.data() + static_cast<size_t>(y) * width);
     std::copy(previous, previous + depth, state->row_ends.data() + static_cast<size_t>(y) * depth);
   };
-  CostRows rows(left_grey, right_grey, depth, options_.window);
+  CostRows rows(left_grey, right_grey, depth, options_.window, &b.cost_rows);
   rows.ForEachRow(&b.costs, [&](int y, const float* c) {
     if (options_.subpixel) {
       int16_t* v = b.volume.data() + static_cast<size_t>(y) * width * depth;
@@ -840,6 +879,45 @@ ATTEND_VECTOR_CLONES void SemiGlobalCosts(const float* __restrict zncc, int widt
   }
 }
 
+#ifdef ATTEND_DISPARITY_AVX2
+// Eight costs of SemiGlobalCosts as 32-bit integers.
+__attribute__((target("avx2"))) inline __m256i EightCosts(const float* z) {
+  const __m256 t = _mm256_sub_ps(_mm256_set1_ps(1.f), _mm256_loadu_ps(z));
+  return _mm256_cvttps_epi32(
+      _mm256_add_ps(_mm256_mul_ps(t, _mm256_set1_ps(kSgmScale)), _mm256_set1_ps(0.5f)));
+}
+
+// SemiGlobalCosts 32 or 16 disparities at a time, with the same operations in the same order
+// (subtract, multiply, add, truncate), so the same bytes; the rest as SemiGlobalCosts does.
+__attribute__((target("avx2"))) void SemiGlobalCostsAvx2(const float* zncc, int width,
+                                                         int depth, int stride,
+                                                         uint8_t* costs) {
+  // packs and packus work within 128-bit lanes; this puts the 4-byte groups back in order.
+  const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
+  for (int x = 0; x < width; ++x) {
+    const float* z = zncc + static_cast<size_t>(x) * depth;
+    uint8_t* cost = costs + static_cast<size_t>(x) * stride;
+    const int inside = std::min(depth, x + 1);
+    int d = 0;
+    for (; d + 32 <= inside; d += 32) {
+      const __m256i ab = _mm256_packs_epi32(EightCosts(z + d), EightCosts(z + d + 8));
+      const __m256i cd = _mm256_packs_epi32(EightCosts(z + d + 16), EightCosts(z + d + 24));
+      const __m256i bytes = _mm256_permutevar8x32_epi32(_mm256_packus_epi16(ab, cd), order);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(cost + d), bytes);
+    }
+    for (; d + 16 <= inside; d += 16) {
+      const __m256i ab = _mm256_packs_epi32(EightCosts(z + d), EightCosts(z + d + 8));
+      const __m256i bytes = _mm256_permutevar8x32_epi32(_mm256_packus_epi16(ab, ab), order);
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(cost + d), _mm256_castsi256_si128(bytes));
+    }
+    for (; d < inside; ++d) {
+      cost[d] = static_cast<uint8_t>(static_cast<int>((1.f - z[d]) * kSgmScale + 0.5f));
+    }
+    for (; d < depth; ++d) cost[d] = kSgmOutsideCost;
+  }
+}
+#endif
+
 }  // namespace
 
 void DisparityEstimator::EstimateSemiGlobal(const cv::Mat& left_grey, const cv::Mat& right_grey,
@@ -861,9 +939,14 @@ void DisparityEstimator::EstimateSemiGlobal(const cv::Mat& left_grey, const cv::
   SemiGlobalAggregator& aggregator = b.semi_global;
   aggregator.Begin(setup, disparity, options_.left_right_check ? &b.right_view : nullptr);
   const int stride = aggregator.stride();
-  CostRows rows(left_grey, right_grey, depth, options_.window);
+  CostRows rows(left_grey, right_grey, depth, options_.window, &b.cost_rows);
   rows.ForEachRow(&b.costs, [&](int y, const float* c) {
-    SemiGlobalCosts(c, width, depth, stride, aggregator.cost_row(y));
+#ifdef ATTEND_DISPARITY_AVX2
+    auto* costs = UseAvx2() ? SemiGlobalCostsAvx2 : SemiGlobalCosts;
+#else
+    auto* costs = SemiGlobalCosts;
+#endif
+    costs(c, width, depth, stride, aggregator.cost_row(y));
     aggregator.EndRow(y);
   });
   aggregator.Finish();
