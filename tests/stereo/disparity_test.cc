@@ -286,7 +286,11 @@ TEST(Disparity, Avx2KernelsGiveThePortableKernelsMaps) {
                         {37, DisparitySmoothness::kHard, false, false},
                         {13, DisparitySmoothness::kPenalty, true, true},
                         {64, DisparitySmoothness::kPenalty, false, true},
-                        {5, DisparitySmoothness::kHard, true, false}};
+                        {5, DisparitySmoothness::kHard, true, false},
+                        // sgm's costs: 32 and 16 at a time and the rest one by one.
+                        {48, DisparitySmoothness::kSgm, false, true},
+                        {20, DisparitySmoothness::kSgm, true, true},
+                        {64, DisparitySmoothness::kSgm, false, false}};
   for (const Case& c : cases) {
     DisparityOptions options;
     options.max_disparity = c.max_disparity;
@@ -310,6 +314,37 @@ TEST(Disparity, Avx2KernelsGiveThePortableKernelsMaps) {
     double low = 0, high = 0;
     cv::minMaxLoc(maps[0], &low, &high);
     EXPECT_GT(high - low, 3.0);
+  }
+}
+
+// An estimator keeps its buffers between pairs: a pair of another size after the first, and the
+// first again after it, give the maps a fresh estimator gives.
+TEST(Disparity, AReusedEstimatorGivesAFreshOnesMaps) {
+  const SceneRenderer renderer(LoadScene(testing::ProjectRoot() + "/sequences/lab.yaml"));
+  const RenderedFrame a = renderer.Render(10);
+  const RenderedFrame b = renderer.Render(40);
+  cv::Mat b_left, b_right;
+  cv::resize(b.left, b_left, cv::Size(), 0.75, 0.5, cv::INTER_AREA);
+  cv::resize(b.right, b_right, cv::Size(), 0.75, 0.5, cv::INTER_AREA);
+  for (const DisparitySmoothness smoothness :
+       {DisparitySmoothness::kSgm, DisparitySmoothness::kHard}) {
+    DisparityOptions options;
+    options.smoothness = smoothness;
+    options.max_disparity = 32;
+    DisparityEstimator reused(options);
+    cv::Mat map;
+    reused.Compute(a.left, a.right, &map);
+    cv::Mat second, fresh_map;
+    reused.Compute(b_left, b_right, &second);
+    DisparityEstimator fresh(options);
+    fresh.Compute(b_left, b_right, &fresh_map);
+    ASSERT_EQ(second.size(), b_left.size());
+    EXPECT_EQ(cv::countNonZero(second != fresh_map), 0) << DisparitySmoothnessName(smoothness);
+    // And the first size again, after the smaller one.
+    cv::Mat again, fresh_again;
+    reused.Compute(a.left, a.right, &again);
+    DisparityEstimator(options).Compute(a.left, a.right, &fresh_again);
+    EXPECT_EQ(cv::countNonZero(again != fresh_again), 0) << DisparitySmoothnessName(smoothness);
   }
 }
 
