@@ -42,6 +42,10 @@ std::string SegmentConfigPath() {
   return (fs::path(AttendHome()) / "configs" / "segment.yaml").string();
 }
 
+std::string TrackConfigPath() {
+  return (fs::path(AttendHome()) / "configs" / "track.yaml").string();
+}
+
 std::string EnsureBundledSequence(bool quiet) {
   const fs::path scene_path = fs::path(AttendHome()) / "sequences" / "lab.yaml";
   const std::string scene_text = ReadText(scene_path);

@@ -215,7 +215,7 @@ nlohmann::json TrackSequence(const TrackRequest& request,
   }
   WriteTracksCsv(tracks_path, rows);
 
-  const nlohmann::json summary = {{"source", source_options.Describe()},
+  nlohmann::json summary = {{"source", source_options.Describe()},
                                   {"out", request.out},
                                   {"tracker", tracker->name()},
                                   {"first_frame", first_frame},
@@ -224,6 +224,11 @@ nlohmann::json TrackSequence(const TrackRequest& request,
                                   {"targets", boxes.size()},
                                   {"lost", lost},
                                   {"ms_per_frame", frames > 1 ? track_ms / (frames - 1) : 0.0}};
+  if (request.options.kind == TrackerKind::kBip) {
+    // Which BIP tracker: the mode and whether its occlusion rules were on.
+    summary["mode"] = TrackerModeName(request.options.bip.mode);
+    summary["occlusion"] = request.options.bip.occlusion;
+  }
   // The same summary beside tracks.csv, so that the folder says which kind tracked.
   WriteSummary((out / "track.json").string(), summary);
   return summary;

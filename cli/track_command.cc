@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/home.h"
 #include "app/track_sequence.h"
 #include "cli/cli_options.h"
 #include "cli/commands.h"
@@ -67,20 +68,26 @@ cv::Rect ParseBox(const std::string& text) {
   return {value[0], value[1], value[2], value[3]};
 }
 
-// The `tracker.*` keys of --set over TargetTrackerOptions' defaults, read by the configuration's
-// one binding (pipeline/options_io.h), so that keys, ranges and messages (a kind that does not
-// exist, an option of another kind) are those of `attend run`.
+// The `tracker.*` keys of --set, read by the configuration's one binding
+// (pipeline/options_io.h), so that keys, ranges and messages (a kind that does not exist, an
+// option of another kind) are those of `attend run`. They apply over configs/track.yaml (the
+// BIP's bounded mode with its occlusion rules) when the kind is bip, and over
+// TargetTrackerOptions' defaults for another kind, whose options track.yaml does not set.
 TargetTrackerOptions ResolveTrackerOptions(const std::vector<std::string>& sets) {
-  ParamBlock root = ParamBlock::Parse("", "--set");
-  for (const std::string& assignment : sets) {
-    if (assignment.rfind("tracker.", 0) != 0) {
-      throw ConfigError("--set " + assignment +
-                        ": attend track takes only tracker.KEY=VALUE, KEY one of " +
-                        Join(TrackerKeys(), ", "));
+  auto read = [&sets](ParamBlock root) {
+    for (const std::string& assignment : sets) {
+      if (assignment.rfind("tracker.", 0) != 0) {
+        throw ConfigError("--set " + assignment +
+                          ": attend track takes only tracker.KEY=VALUE, KEY one of " +
+                          Join(TrackerKeys(), ", "));
+      }
+      root.Override(assignment);
     }
-    root.Override(assignment);
-  }
-  return ReadOptions(root).attention.tracker;
+    return ReadOptions(root).attention.tracker;
+  };
+  const TargetTrackerOptions given = read(ParamBlock::Parse("", "--set"));
+  if (given.kind != TrackerKind::kBip) return given;
+  return read(ParamBlock::LoadFile(TrackConfigPath()));
 }
 
 struct Dumps {

@@ -597,6 +597,7 @@ PYBIND11_MODULE(_attend, m) {
       .def("yaml", [](const Configuration& c) { return OptionsToYaml(c.options); });
   m.def("default_config_path", &DefaultConfigPath);
   m.def("segment_config_path", &SegmentConfigPath);
+  m.def("track_config_path", &TrackConfigPath);
   m.def("home", &AttendHome);
   m.def("bundled_sequence", [](bool quiet) {
     const py::gil_scoped_release release;

@@ -158,12 +158,15 @@ class Pipeline:
 
 
 class Tracker:
-    """A tracker of `kind` (bip, kcf, csrt) on numpy frames; options are the configuration's
-    tracker keys (e.g. mode="thesis", lost_frames=5)."""
+    """A tracker of `kind` (bip, kcf, csrt) on numpy frames, as `attend track`; options are the
+    configuration's tracker keys (e.g. mode="thesis", lost_frames=5). The BIP starts from
+    configs/track.yaml (the bounded mode with its occlusion rules): mode="thesis",
+    occlusion=False gives the thesis's tracker."""
 
     def __init__(self, kind="bip", **options):
-        tracker = dict(options, kind=kind)
-        self._core = _attend.Tracker(_configuration({"tracker": tracker}))
+        overrides = _overrides({"tracker": dict(options, kind=kind)})
+        path = _attend.track_config_path() if kind == "bip" else ""
+        self._core = _attend.Tracker(_attend.Configuration(path, overrides))
 
     def start(self, frame, box=None, mask=None):
         """Starts a target from a box [x, y, w, h] or a mask; returns its id (-1: no target)."""

@@ -280,7 +280,26 @@ TEST(TrackCommand, EveryKindFollowsTheRectangleAndTheSummaryNamesIt) {
     ASSERT_EQ(rows.size(), static_cast<size_t>(kFrames)) << kind;
     SCOPED_TRACE(kind);
     ExpectEveryFrameAbove(BoxesOf(rows, 1), Truth(kFrames, RedBox), 0.5);
+    // The BIP runs as configs/track.yaml says, the bounded mode with the occlusion rules; the
+    // other kinds have neither.
+    EXPECT_EQ(written.contains("mode"), kind == "bip");
+    if (kind == "bip") {
+      EXPECT_EQ(written["mode"], "bounded");
+      EXPECT_EQ(written["occlusion"], true);
+    }
   }
+}
+
+TEST(TrackCommand, TheThesisTrackerIsASetAway) {
+  TempDir dir;
+  WriteFrames(dir.File("seq/left"), 6, [](int f) { return Frame(f, {{RedBox(f), kRed}}); });
+  const Result r = Attend(dir, {"track", "--sequence", "seq", "--init", BoxArgument(RedBox(0)),
+                                "--out", "out", "--set", "tracker.mode=thesis", "--set",
+                                "tracker.occlusion=false"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json written = nlohmann::json::parse(ReadText(dir.File("out/track.json")));
+  EXPECT_EQ(written["mode"], "thesis");
+  EXPECT_EQ(written["occlusion"], false);
 }
 
 TEST(TrackCommand, SetChangesTheTrackerOptions) {
