@@ -136,6 +136,14 @@ TEST(Segmentation, EqualColoursThatDoNotTouchAreTwoRegions) {
 
 void ExpectAdjacencyMatchesLabels(const Segmentation& s);
 
+// The labels run from 0 to the number of regions - 1.
+void ExpectLabelsAreTheRegionIndices(const Segmentation& s) {
+  double minimum, maximum;
+  cv::minMaxLoc(s.labels, &minimum, &maximum);
+  EXPECT_EQ(minimum, 0);
+  EXPECT_EQ(maximum, static_cast<int>(s.regions.size()) - 1);
+}
+
 // Invariants that hold on any image.
 class SegmentationInvariants : public ::testing::TestWithParam<int> {};
 
@@ -158,10 +166,7 @@ TEST_P(SegmentationInvariants, HoldOnRandomImages) {
   const int regions = static_cast<int>(s.regions.size());
 
   // Labels cover every pixel once, with indices 0..R-1.
-  double minimum, maximum;
-  cv::minMaxLoc(s.labels, &minimum, &maximum);
-  EXPECT_EQ(minimum, 0);
-  EXPECT_EQ(maximum, regions - 1);
+  ExpectLabelsAreTheRegionIndices(s);
   long area_sum = 0;
   for (const RegionStats& r : s.regions) area_sum += r.area;
   EXPECT_EQ(area_sum, static_cast<long>(image.total()));
@@ -321,10 +326,7 @@ TEST_P(MergeBySpreadInvariants, HoldOnRandomImages) {
   Segmentation s;
   segmenter.SegmentCylinder(cylinder, &s);
   const int regions = static_cast<int>(s.regions.size());
-  double minimum, maximum;
-  cv::minMaxLoc(s.labels, &minimum, &maximum);
-  EXPECT_EQ(minimum, 0);
-  EXPECT_EQ(maximum, regions - 1);
+  ExpectLabelsAreTheRegionIndices(s);
   for (int r = 0; r < regions; ++r) {
     const cv::Mat mask = s.labels == r;
     EXPECT_EQ(Components(mask), 1) << "region " << r;
