@@ -151,7 +151,19 @@ nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::
   if (!fs::is_directory(run) || !fs::exists(run / "frames.jsonl")) {
     throw InputError(run_dir + ": not a run folder (no frames.jsonl)");
   }
-  const AttendOptions options = LoadOptions((run / "config.yaml").string(), {});
+  // The run's configuration is part of the run: a missing or broken one is bad input (exit
+  // status 3), as for `attend compare`, not a configuration error of this command.
+  const fs::path config_path = run / "config.yaml";
+  if (!fs::exists(config_path)) {
+    throw InputError(config_path.string() +
+                     ": missing; a run folder holds the configuration it ran with");
+  }
+  AttendOptions options;
+  try {
+    options = LoadOptions(config_path.string(), {});
+  } catch (const ConfigError& e) {
+    throw InputError(e.what());
+  }
   std::string gt = gt_dir;
   if (gt.empty()) {
     if (options.sequence.folder.empty()) {

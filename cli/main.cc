@@ -1,11 +1,14 @@
 // attend: visual attention on stereo image sequences. See README.md and SPEC 3.2.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <cstdlib>
+#include <string_view>
 #include <iostream>
 #include <opencv2/core/utils/logger.hpp>
 
 #include "cli/commands.h"
 #include "util/error.h"
+#include "util/strings.h"
 
 int main(int argc, char** argv) {
   // attend reports its own errors, naming the file; OpenCV's backend chatter (GStreamer,
@@ -19,6 +22,31 @@ int main(int argc, char** argv) {
   // only after every other backend refused it: 1 is the lowest priority (0 would turn the
   // backend off, and --gst with it).
   setenv("OPENCV_VIDEOIO_PRIORITY_GSTREAMER", "1", 0);
+
+  // Paths and values from the command line go into config.yaml, summary.json and the other
+  // records, which are UTF-8 text: bytes that are not UTF-8 would be written as U+FFFD and
+  // name a file that does not exist, so that the run could not be read back. They are
+  // refused, with the bytes shown as \xNN.
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view argument(argv[i]);
+    const size_t bad = attend::InvalidUtf8At(argument);
+    if (bad == std::string_view::npos) continue;
+    std::string shown;
+    for (const unsigned char c : argument) {
+      if (c >= 0x20 && c < 0x7f) {
+        shown += static_cast<char>(c);
+      } else {
+        char escaped[8];
+        std::snprintf(escaped, sizeof(escaped), "\\x%02X", c);
+        shown += escaped;
+      }
+    }
+    std::cerr << "attend: error: argument " << i << " ('" << shown << "') is not valid UTF-8 "
+              << "(byte " << bad << "): attend records paths and values in UTF-8 JSON and YAML, "
+              << "where these bytes cannot be written so that they read back; rename the file "
+              << "or folder\n";
+    return static_cast<int>(attend::ExitStatus::kUsage);
+  }
 
   CLI::App app{"attend: visual attention on stereo image sequences (Bounded Irregular Pyramid)"};
   app.set_version_flag("--version", std::string("attend ") + ATTEND_VERSION);

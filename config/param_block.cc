@@ -352,6 +352,8 @@ double ParamBlock::GetDouble(const std::string& key, double default_value, Range
   if (Absent(node)) return default_value;
   double value = 0.0;
   if (!DecodeScalar(node, &value)) Fail(key, "expected a number, got " + Describe(node));
+  // YAML spells infinity .inf and not-a-number .nan; no key takes either, whatever its range.
+  if (!std::isfinite(value)) Fail(key, "value " + node.Scalar() + " is not a finite number");
   if (!range.Contains(value))
     Fail(key, "value " + node.Scalar() + " out of range: " + range.Describe());
   return value;
@@ -390,6 +392,12 @@ std::vector<T> GetList(const ParamBlock& block, const std::string& key,
     if (!DecodeScalar(node[i], &value)) {
       block.Fail(key, "element " + std::to_string(i) + ": expected " + what + ", got " +
                           Describe(node[i]));
+    }
+    if constexpr (std::is_floating_point_v<T>) {
+      if (!std::isfinite(value)) {
+        block.Fail(key, "element " + std::to_string(i) + " = " + node[i].Scalar() +
+                            " is not a finite number");
+      }
     }
     if constexpr (std::is_arithmetic_v<T>) {
       if (range != nullptr && !range->Contains(static_cast<double>(value))) {

@@ -16,6 +16,36 @@ namespace attend {
 
 namespace {
 
+// The ELF machine this attend was built for, and a name for a machine number.
+#if defined(__x86_64__)
+constexpr int kThisMachine = EM_X86_64;
+#elif defined(__aarch64__)
+constexpr int kThisMachine = EM_AARCH64;
+#else
+constexpr int kThisMachine = -1;  // not checked
+#endif
+
+std::string MachineName(int machine) {
+  switch (machine) {
+    case EM_X86_64:
+      return "x86-64";
+    case EM_AARCH64:
+      return "AArch64 (64-bit ARM)";
+    case EM_386:
+      return "x86 (32-bit)";
+    case EM_ARM:
+      return "ARM (32-bit)";
+    case EM_RISCV:
+      return "RISC-V";
+    case EM_PPC64:
+      return "64-bit PowerPC";
+    case EM_S390:
+      return "IBM Z";
+    default:
+      return "ELF machine number " + std::to_string(machine);
+  }
+}
+
 // Why the file at `path` is not a whole 64-bit ELF shared object, or "" when it is. dlopen maps
 // the segments that the program headers name; a file cut short (an interrupted copy or build)
 // keeps headers that point past its end, and touching those pages raises SIGBUS inside the
@@ -34,6 +64,13 @@ std::string IncompleteElf(const std::string& path) {
   if (std::memcmp(header.e_ident, ELFMAG, SELFMAG) != 0) return "is not an ELF shared library";
   if (header.e_ident[EI_CLASS] != ELFCLASS64) return "is not a 64-bit ELF library";
   if (header.e_type != ET_DYN) return "is an ELF file but not a shared library";
+  // glibc's answer to a library of another machine is "cannot open shared object file: No
+  // such file or directory", which reads as if the file were missing.
+  if (kThisMachine >= 0 && header.e_machine != kThisMachine) {
+    return "exists but cannot be loaded here: it was built for " + MachineName(header.e_machine) +
+           ", and this attend runs on " + MachineName(kThisMachine) +
+           "; rebuild the plugin on this machine";
+  }
   // Sizes as unsigned 64-bit sums of 16- and 32-bit fields cannot overflow.
   const uint64_t table_end =
       header.e_phoff + static_cast<uint64_t>(header.e_phnum) * header.e_phentsize;
@@ -79,8 +116,15 @@ void LoadFeaturePlugin(const std::string& path, const std::string& where,
   const std::string load_path = std::filesystem::absolute(path).string();
   void* library = dlopen(load_path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (library == nullptr) {
-    const char* reason = dlerror();
-    throw ConfigError(prefix + "cannot be loaded: " + (reason != nullptr ? reason : "unknown"));
+    const char* error = dlerror();
+    const std::string reason = error != nullptr ? error : "";
+    std::string message = prefix + "cannot be loaded: " + (reason.empty() ? "unknown" : reason);
+    // The plugin exists (checked above), so a missing file is one of the libraries it needs.
+    if (reason.find("cannot open shared object file") != std::string::npos) {
+      message += " (the plugin exists; a library it depends on was not found: check `ldd " +
+                 load_path + "`)";
+    }
+    throw ConfigError(message);
   }
   dlerror();
   void* symbol = dlsym(library, ATTEND_PLUGIN_ENTRY_SYMBOL);

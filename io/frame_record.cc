@@ -114,6 +114,7 @@ std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
   if (!in) throw InputError(path + ": cannot read (is this a run folder?)");
   std::vector<FrameRecord> frames;
   std::string line;
+  int previous_line = 0;  // the line of the last record read
   for (int number = 1; std::getline(in, line); ++number) {
     if (line.empty()) continue;
     try {
@@ -150,7 +151,23 @@ std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
         record.timings.Add(stage, ms.get<double>());
       }
       if (json.contains("latency_ms")) record.latency_ms = json.at("latency_ms").get<double>();
+      // A run records each frame once, in increasing order; a second record of a frame would
+      // be scored as if it were another frame.
+      if (!frames.empty() && record.frame <= frames.back().frame) {
+        const int before = frames.back().frame;
+        throw InputError(
+            path + ":" + std::to_string(number) + ": " +
+            (record.frame == before
+                ? "frame " + std::to_string(record.frame) + " again (line " +
+                      std::to_string(previous_line) + " has it too)"
+                : "frame " + std::to_string(record.frame) + " after frame " +
+                      std::to_string(before) + " (line " + std::to_string(previous_line) +
+                      "): the records must be in increasing frame order"));
+      }
+      previous_line = number;
       frames.push_back(std::move(record));
+    } catch (const InputError&) {
+      throw;
     } catch (const std::exception& e) {
       throw InputError(path + ":" + std::to_string(number) + ": not a frame record (" + e.what() +
                        ")");

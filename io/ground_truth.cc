@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "io/text_fields.h"
@@ -32,6 +33,9 @@ std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read the ground-truth file");
   std::vector<GtObject> objects;
+  // The line of each (frame, id): an object boxed twice in one frame would be scored as two
+  // objects, one of them never attended.
+  std::map<std::pair<int, int>, int> lines;
   std::string text;
   int line = 0;
   while (std::getline(in, text)) {
@@ -63,6 +67,13 @@ std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
     if (object.kind != "object" && object.kind != "skin") {
       throw InputError(path + ":" + std::to_string(line) + ": kind must be object or skin, got '" +
                        object.kind + "'");
+    }
+    const auto [at, added] = lines.emplace(std::make_pair(object.frame, object.id), line);
+    if (!added) {
+      throw InputError(path + ":" + std::to_string(line) + ": object " +
+                       std::to_string(object.id) + " again in frame " +
+                       std::to_string(object.frame) + " (line " + std::to_string(at->second) +
+                       " has it too)");
     }
     objects.push_back(object);
   }

@@ -38,7 +38,15 @@ RunFolder::RunFolder(const std::string& dir, bool overwrite) : dir_(dir) {
   if (!frames_) throw OutputError(frames_path + ": cannot write");
 }
 
-RunFolder::~RunFolder() = default;
+// A frame whose record was never written (a later dump of it failed, the disk filled, the run
+// stopped on an error) leaves its finished dumps as temporaries: they are removed, so that no
+// NNNNNN.part.* file is left beside the finished ones.
+RunFolder::~RunFolder() {
+  for (const auto& [temporary, path] : pending_) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+  }
+}
 
 void RunFolder::WriteConfig(const std::string& yaml) {
   const std::string path = (fs::path(dir_) / "config.yaml").string();

@@ -58,6 +58,28 @@ TEST(ParamBlock, WrongTypeAndOutOfRangeNameKeyAndLine) {
   EXPECT_NE(message.find("expected a list of integers"), std::string::npos) << message;
 }
 
+// YAML's infinities and not-a-number (.inf, -.Inf, .NaN) decode as numbers; no key takes one,
+// whatever its range, in a scalar or in a list.
+TEST(ParamBlock, NonFiniteNumbersAreRefusedWithKeyAndLine) {
+  const ParamBlock block =
+      ParamBlock::Parse("a: .inf\nb: -.Inf\nc: .NaN\nd: [1, .inf]\ne: 1e300\n", "n.yaml");
+  std::string message = ConfigErrorOf([&] { block.GetDouble("a", 0.0, Range::AtLeast(0)); });
+  EXPECT_NE(message.find("n.yaml:1: a: value .inf is not a finite number"), std::string::npos)
+      << message;
+  message = ConfigErrorOf([&] { block.GetDouble("b", 0.0); });
+  EXPECT_NE(message.find("n.yaml:2: b: value -.Inf is not a finite number"), std::string::npos)
+      << message;
+  message = ConfigErrorOf([&] { block.GetDouble("c", 0.0); });
+  EXPECT_NE(message.find("n.yaml:3: c: value .NaN is not a finite number"), std::string::npos)
+      << message;
+  message = ConfigErrorOf([&] { block.GetDoubles("d", {}); });
+  EXPECT_NE(message.find("n.yaml:4: d: element 1 = .inf is not a finite number"),
+            std::string::npos)
+      << message;
+  // A large finite number is a number.
+  EXPECT_EQ(block.GetDouble("e", 0.0), 1e300);
+}
+
 TEST(ParamBlock, SyntaxErrorDuplicateKeyAndMissingFile) {
   std::string message = ConfigErrorOf([] { ParamBlock::Parse("a: [1, 2\nb: 3\n", "bad.yaml"); });
   EXPECT_NE(message.find("bad.yaml:"), std::string::npos) << message;

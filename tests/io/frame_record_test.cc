@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/error_message.h"
 #include "tests/support/temp_dir.h"
 
 namespace attend {
@@ -94,6 +95,27 @@ TEST(FrameRecordJson, AResumedTargetsAbsentFramesAndALabelReadBack) {
   EXPECT_EQ(read[0].targets[0].label, "person");
   EXPECT_EQ(read[0].targets[1].absent_frames, 0);
   EXPECT_EQ(read[0].targets[1].label, "");
+}
+
+// A frame recorded twice, or out of order, is bad input naming the file and both lines: scored,
+// it would count as another frame.
+TEST(FrameRecordJson, ADuplicateOrOutOfOrderFrameIsRefusedWithItsLines) {
+  auto line = [](int frame) {
+    FrameRecord record;
+    record.frame = frame;
+    return FrameRecordToJson(record) + "\n";
+  };
+  const testing::TempDir dir;
+  const std::string ok = dir.Write("ok.jsonl", line(0) + line(2) + "\n" + line(5));
+  EXPECT_EQ(ReadFrameRecords(ok).size(), 3u);
+  const std::string twice = dir.Write("twice.jsonl", line(0) + line(1) + line(1) + line(2));
+  std::string message = testing::InputErrorOf([&] { ReadFrameRecords(twice); });
+  EXPECT_NE(message.find(twice + ":3: frame 1 again (line 2 has it too)"), std::string::npos)
+      << message;
+  const std::string back = dir.Write("back.jsonl", line(3) + line(4) + line(2));
+  message = testing::InputErrorOf([&] { ReadFrameRecords(back); });
+  EXPECT_NE(message.find(back + ":3: frame 2 after frame 4 (line 2)"), std::string::npos)
+      << message;
 }
 
 }  // namespace

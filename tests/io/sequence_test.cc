@@ -921,6 +921,44 @@ TEST(Sequence, MonocularVideoWithRange) {
       << message;
 }
 
+// A video cut short keeps the header that announces all its frames: the frames that are there
+// are delivered, then the end is an error naming how many were announced (issue 30: it used to
+// end quietly, the run saying frames_in_range 20 over 10 frames).
+TEST(Sequence, AVideoCutShortIsBadInputAtTheFrameWhereItEnds) {
+  testing::TempDir dir;
+  const std::string path = dir.File("cut.avi");
+  std::vector<cv::Mat> frames;
+  for (int i = 0; i < 20; ++i) {
+    cv::Mat frame(48, 64, CV_8UC3);
+    cv::randu(frame, cv::Scalar::all(0), cv::Scalar::all(255));
+    frames.push_back(frame);
+  }
+  ATTEND_WRITE_VIDEO_OR_SKIP(path, frames);
+  fs::resize_file(path, fs::file_size(path) / 2);
+  SequenceOptions options;
+  options.video = path;
+  options.resize = "native";
+  auto source = FrameSource::Open(options);
+  EXPECT_EQ(source->info().frame_count, 20);
+  StereoFrame frame;
+  int delivered = 0;
+  const std::string message = ErrorOf<InputError>([&] {
+    while (source->Next(&frame)) ++delivered;
+  });
+  EXPECT_GT(delivered, 3);
+  EXPECT_LT(delivered, 20);
+  EXPECT_NE(message.find("ends at frame " + std::to_string(delivered) +
+                         ", but it announces 20 frames (0..19); the file may be cut short"),
+            std::string::npos)
+      << message;
+  // A range that stops before the cut reads to its end without an error.
+  options.last_frame = delivered - 1;
+  source = FrameSource::Open(options);
+  int read = 0;
+  while (source->Next(&frame)) ++read;
+  EXPECT_EQ(read, delivered);
+}
+
 TEST(Sequence, VideosThatCannotBeOpenedAreBadInput) {
   testing::TempDir dir;
   SequenceOptions options;

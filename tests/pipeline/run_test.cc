@@ -187,6 +187,28 @@ TEST(RunFolder, RefusesNonEmptyFolderAndOverwriteKeepsForeignFiles) {
   EXPECT_THROW(RunFolder("", true), OutputError);
 }
 
+// A frame whose second dump cannot be written leaves no NNNNNN.part.* of its first one (issue
+// 30): the temporaries of a frame never recorded go when the folder is closed.
+TEST(RunFolder, TheDumpsOfAFrameNeverRecordedLeaveNoTemporaries) {
+  testing::TempDir dir;
+  {
+    RunFolder folder(dir.File("run"), false);
+    FrameRecord first;
+    first.frame = 0;
+    folder.WriteImage("overlay", 0, cv::Mat(8, 8, CV_8UC3, cv::Scalar(1, 2, 3)));
+    folder.AppendFrame(first);
+    folder.WriteImage("overlay", 1, cv::Mat(8, 8, CV_8UC3, cv::Scalar(4, 5, 6)));
+    EXPECT_TRUE(fs::exists(dir.File("run/overlay/000001.part.png")));
+    // The saliency folder cannot be made: a file holds its name.
+    dir.Write("run/saliency", "in the way");
+    const cv::Mat map(8, 8, CV_32FC1, cv::Scalar(0.5f));
+    EXPECT_THROW(folder.WriteMap("saliency", 1, map, map, true, false), OutputError);
+  }
+  EXPECT_TRUE(fs::exists(dir.File("run/overlay/000000.png")));
+  EXPECT_FALSE(fs::exists(dir.File("run/overlay/000001.part.png")));
+  EXPECT_FALSE(fs::exists(dir.File("run/overlay/000001.png")));
+}
+
 TEST(RunFolder, OverwriteRefusesAFolderThatIsNotARun) {
   // A folder of the user's that happens to have a `features/` subfolder is not a run: nothing
   // in it may be deleted.
