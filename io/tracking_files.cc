@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,8 @@ std::vector<TrackRow> ReadTracksCsv(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read the tracks file");
   std::vector<TrackRow> rows;
+  // The line of each (frame, id): a target with two rows in one frame would be scored twice.
+  std::map<std::pair<int, int>, int> lines;
   std::string text;
   int line = 0;
   bool header = false;
@@ -77,6 +80,12 @@ std::vector<TrackRow> ReadTracksCsv(const std::string& path) {
     if (row.state != "found" && row.state != "occluded" && row.state != "lost") {
       throw InputError(Where(path, line) + ": state must be found, occluded or lost, got '" +
                        row.state + "'");
+    }
+    const auto [at, added] = lines.emplace(std::make_pair(row.frame, row.id), line);
+    if (!added) {
+      throw InputError(Where(path, line) + ": target " + std::to_string(row.id) +
+                       " again in frame " + std::to_string(row.frame) + " (line " +
+                       std::to_string(at->second) + " has it too)");
     }
     rows.push_back(row);
   }

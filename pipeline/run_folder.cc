@@ -1,8 +1,10 @@
 #include "pipeline/run_folder.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <iostream>
 
 #include "io/ground_truth.h"
 #include "io/image_file.h"
@@ -156,8 +158,20 @@ void RunFolder::WriteMap(const std::string& kind, int frame, const cv::Mat& map,
 void RunFolder::AppendVideoFrame(const std::string& name, const cv::Mat& image, double fps) {
   if (!video_) {
     video_path_ = (fs::path(dir_) / (name + ".avi")).string();
+    // The encoder takes frame rates in about this range: below 0.01 frames a second it has no
+    // time base, and at 1e-9 FFmpeg padded five frames into a 44 GB file before it was stopped
+    // (issue 30). A time-lapse or a high-speed sequence is played back at the nearest rate in
+    // range, with a note.
+    constexpr double kSlowest = 1.0, kFastest = 1000.0;
+    const double rate = std::clamp(fps, kSlowest, kFastest);
+    if (rate != fps) {
+      std::cerr << "attend: note: " << video_path_ << " plays at " << rate
+                << " frames a second: the sequence's " << fps
+                << " is outside what the video is written at (" << kSlowest << " to " << kFastest
+                << ")\n";
+    }
     video_ = cvextra::Get("output.video").OpenWriter(
-        video_path_, cvextra::FourCc('M', 'J', 'P', 'G'), fps, image.size());
+        video_path_, cvextra::FourCc('M', 'J', 'P', 'G'), rate, image.size());
     if (!video_->IsOpened()) {
       throw OutputError(video_path_ + ": this OpenCV build cannot write Motion-JPEG video " +
                         "(set output.video: false)");

@@ -36,14 +36,23 @@ constexpr int16_t kPad = kLargest - SemiGlobalAggregator::kMaxPenalty;
 [[gnu::always_inline]] inline void Store(int16_t* p, Shorts v) { std::memcpy(p, &v, sizeof(v)); }
 [[gnu::always_inline]] inline Shorts Min(Shorts a, Shorts b) { return a < b ? a : b; }
 
+// The lanes of `v` in the order of the 16 indices (GCC spells it __builtin_shuffle with a
+// vector of indices, clang __builtin_shufflevector with constants; the fuzz build is clang's).
+#if defined(__clang__)
+#define ATTEND_SHUFFLE(v, ...) __builtin_shufflevector(v, v, __VA_ARGS__)
+#else
+#define ATTEND_SHUFFLE(v, ...) __builtin_shuffle(v, Shorts{__VA_ARGS__})
+#endif
+
 // The least lane of `v`.
 [[gnu::always_inline]] inline int16_t LeastLane(Shorts v) {
-  v = Min(v, __builtin_shuffle(v, Shorts{8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 4, 5, 6, 7}));
-  v = Min(v, __builtin_shuffle(v, Shorts{4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3}));
-  v = Min(v, __builtin_shuffle(v, Shorts{2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1}));
-  v = Min(v, __builtin_shuffle(v, Shorts{1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0}));
+  v = Min(v, ATTEND_SHUFFLE(v, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 4, 5, 6, 7));
+  v = Min(v, ATTEND_SHUFFLE(v, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3));
+  v = Min(v, ATTEND_SHUFFLE(v, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1));
+  v = Min(v, ATTEND_SHUFFLE(v, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0));
   return v[0];
 }
+#undef ATTEND_SHUFFLE
 
 // One pixel of one path, over `stride` disparities (a multiple of 16) of which the first
 // `depth` are candidates:
@@ -55,7 +64,7 @@ constexpr int16_t kPad = kLargest - SemiGlobalAggregator::kMaxPenalty;
                                                const int16_t* __restrict prev, int16_t prev_min,
                                                int16_t p1, int16_t p2, int16_t* __restrict out,
                                                const int16_t* sum_in, int16_t* sum_out,
-                                               int stride, Shorts depth) {
+                                               int stride, const Shorts& depth) {
   const Shorts jump = Shorts{} + static_cast<int16_t>(prev_min + p2);
   const Shorts step = Shorts{} + p1;
   const Shorts base = Shorts{} + prev_min;

@@ -123,6 +123,25 @@ TEST(SilentResults, AnArgumentThatIsNotUtf8IsRefusedShowingItsBytes) {
   EXPECT_TRUE(Contains(ReadText(dir.File("r\xC3\xA9n/config.yaml")), utf8));
 }
 
+// Found while looking for the next layer: `fps: 1e-9` (finite, above 0) made the video encoder
+// pad five frames into a 44 GB overlay.avi; the video now plays at a rate the encoder takes.
+TEST(SilentResults, ATinyFrameRateGivesAPlayableVideoNotAHugeOne) {
+  testing::TempDir dir;
+  testing::MakeFolderSequence(dir.File("seq"), 3, 32, 24);
+  dir.Write("seq/sequence.yaml", "name: seq\nfps: 1e-9\n");
+  const auto start = std::chrono::steady_clock::now();
+  const Result r = Attend(dir, {"run", "--sequence", "seq", "--out", "run", "--quiet", "--set",
+                                "output.video=true"});
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_LT(seconds, 20.0);
+  ASSERT_TRUE(fs::exists(dir.File("run/overlay.avi")));
+  EXPECT_LT(fs::file_size(dir.File("run/overlay.avi")), 1u << 20);
+  EXPECT_TRUE(Contains(r.err, "overlay.avi plays at 1 frames a second: the sequence's 1e-09"))
+      << r.err;
+}
+
 // A run folder without its config.yaml gave exit 2 (a usage error) from `attend eval`.
 TEST(SilentResults, EvalOfARunWithoutItsConfigurationIsBadInput) {
   testing::TempDir dir;

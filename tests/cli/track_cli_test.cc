@@ -600,7 +600,8 @@ TEST(EvalTrackingCommand, ErrorsExitTwoOrThree) {
   dir.Write("twice.csv", "frame,id,x,y,w,h,state\n0,1,2,3,4,5,found\n0,1,2,3,4,5,found\n");
   r = Attend(dir, {"eval-tracking", "twice.csv", "--gt", gt});
   EXPECT_EQ(r.status, 3);
-  EXPECT_TRUE(Contains(r.err, "two rows for frame 0")) << r.err;
+  EXPECT_TRUE(Contains(r.err, "twice.csv:3: target 1 again in frame 0 (line 2 has it too)"))
+      << r.err;
   dir.Write("empty.csv", "frame,id,x,y,w,h,state\n");
   r = Attend(dir, {"eval-tracking", "empty.csv", "--gt", gt});
   EXPECT_EQ(r.status, 3);

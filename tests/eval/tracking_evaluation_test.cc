@@ -176,6 +176,9 @@ TEST(TracksCsv, MalformedRowsNameFileAndLine) {
       {header + "0,1,2,3,-4,5,found\n", "t.csv:2: w and h must be >= 0"},
       {header + "-1,1,2,3,4,5,found\n", "t.csv:2: frame number out of range: '-1' (must be in 0..1000000)"},
       {header + "0,1,2,3,4,5,hidden\n", "t.csv:2: state must be found, occluded or lost"},
+      // A target's second row in one frame would be scored as another frame (issue 30).
+      {header + "0,1,2,3,4,5,found\n0,2,2,3,4,5,found\n0,1,6,3,4,5,found\n",
+       "t.csv:4: target 1 again in frame 0 (line 2 has it too)"},
       {"0,1,2,3,4,5,found\n", "t.csv:1: expected the header"},
       {"", "t.csv: empty"},
   };
