@@ -4,9 +4,13 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/videoio.hpp>
 #include <string>
 
 #include "tests/cli/attend_cli.h"
@@ -140,6 +144,37 @@ TEST(SilentResults, ATinyFrameRateGivesAPlayableVideoNotAHugeOne) {
   EXPECT_LT(fs::file_size(dir.File("run/overlay.avi")), 1u << 20);
   EXPECT_TRUE(Contains(r.err, "overlay.avi plays at 1 frames a second: the sequence's 1e-09"))
       << r.err;
+}
+
+// A video cut in half ran 10 of its 20 frames with exit 0 and a summary saying 20 frames were
+// in range. Now the run stops with exit 3 at the frame where the file ends, keeping the records
+// and a summary of the frames before it.
+TEST(SilentResults, AVideoCutShortEndsTheRunWithAnErrorAndKeepsItsFrames) {
+  testing::TempDir dir;
+  const std::string video = dir.File("cut.avi");
+  {
+    cv::VideoWriter writer(video, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10.0,
+                           cv::Size(64, 48));
+    if (!writer.isOpened()) GTEST_SKIP() << "this OpenCV build cannot write MJPG video";
+    for (int i = 0; i < 20; ++i) {
+      cv::Mat frame(48, 64, CV_8UC3);
+      cv::randu(frame, cv::Scalar::all(0), cv::Scalar::all(255));
+      writer.write(frame);
+    }
+  }
+  fs::resize_file(video, fs::file_size(video) / 2);
+  const Result r = Attend(dir, {"run", "--video", video, "--out", "run", "--quiet"});
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_TRUE(Contains(r.err, "but it announces 20 frames (0..19); the file may be cut short"))
+      << r.err;
+  const std::string records = ReadText(dir.File("run/frames.jsonl"));
+  const int kept = static_cast<int>(std::count(records.begin(), records.end(), '\n'));
+  EXPECT_GT(kept, 3);
+  EXPECT_LT(kept, 20);
+  const nlohmann::json summary = nlohmann::json::parse(ReadText(dir.File("run/summary.json")));
+  EXPECT_EQ(summary["frames"], kept);
+  EXPECT_TRUE(Contains(summary["error"].get<std::string>(), "ends at frame " +
+                                                               std::to_string(kept)));
 }
 
 // A run folder without its config.yaml gave exit 2 (a usage error) from `attend eval`.
