@@ -1,10 +1,13 @@
 #include "io/sequence.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <condition_variable>
 #include <cstdint>
+#include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <mutex>
@@ -17,10 +20,6 @@
 #include <thread>
 #include <utility>
 #include <vector>
-
-#include <unistd.h>
-
-#include <cstdio>
 
 #include "config/param_block.h"
 #include "io/image_file.h"
