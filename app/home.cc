@@ -42,7 +42,8 @@ std::string SegmentConfigPath() {
   return (fs::path(AttendHome()) / "configs" / "segment.yaml").string();
 }
 
-std::string TrackConfigPath() {
+std::string TrackConfigPath(TrackerKind kind) {
+  if (kind != TrackerKind::kBip) return "";
   return (fs::path(AttendHome()) / "configs" / "track.yaml").string();
 }
 

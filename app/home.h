@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "tracker/target_tracker.h"
+
 namespace attend {
 
 // The project folder holding configs/ and sequences/.
@@ -15,8 +17,10 @@ std::string DefaultConfigPath();
 // configs/segment.yaml below AttendHome(): the defaults of `attend segment`.
 std::string SegmentConfigPath();
 
-// configs/track.yaml below AttendHome(): the defaults of `attend track`.
-std::string TrackConfigPath();
+// The file that `attend track` and Python's attend.Tracker start a tracker of kind `kind` from:
+// configs/track.yaml below AttendHome() for the BIP (its bounded mode with the occlusion
+// rules), "" for the other kinds, whose options it does not set.
+std::string TrackConfigPath(TrackerKind kind);
 
 // The bundled default sequence, rendered from sequences/lab.yaml on first use into
 // sequences/generated/lab-<hash of the scene file> (a changed scene renders anew). Returns the

@@ -70,9 +70,8 @@ cv::Rect ParseBox(const std::string& text) {
 
 // The `tracker.*` keys of --set, read by the configuration's one binding
 // (pipeline/options_io.h), so that keys, ranges and messages (a kind that does not exist, an
-// option of another kind) are those of `attend run`. They apply over configs/track.yaml (the
-// BIP's bounded mode with its occlusion rules) when the kind is bip, and over
-// TargetTrackerOptions' defaults for another kind, whose options track.yaml does not set.
+// option of another kind) are those of `attend run`. They apply over the kind's file
+// (TrackConfigPath: configs/track.yaml for the BIP), or TargetTrackerOptions' defaults.
 TargetTrackerOptions ResolveTrackerOptions(const std::vector<std::string>& sets) {
   auto read = [&sets](ParamBlock root) {
     for (const std::string& assignment : sets) {
@@ -86,8 +85,8 @@ TargetTrackerOptions ResolveTrackerOptions(const std::vector<std::string>& sets)
     return ReadOptions(root).attention.tracker;
   };
   const TargetTrackerOptions given = read(ParamBlock::Parse("", "--set"));
-  if (given.kind != TrackerKind::kBip) return given;
-  return read(ParamBlock::LoadFile(TrackConfigPath()));
+  const std::string base = TrackConfigPath(given.kind);
+  return base.empty() ? given : read(ParamBlock::LoadFile(base));
 }
 
 struct Dumps {

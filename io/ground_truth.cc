@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <sstream>
 
 #include "io/text_fields.h"
@@ -33,9 +32,8 @@ std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read the ground-truth file");
   std::vector<GtObject> objects;
-  // The line of each (frame, id): an object boxed twice in one frame would be scored as two
-  // objects, one of them never attended.
-  std::map<std::pair<int, int>, int> lines;
+  // An object boxed twice in one frame would be scored as two objects, one never attended.
+  RowsOnce rows;
   std::string text;
   int line = 0;
   while (std::getline(in, text)) {
@@ -68,13 +66,7 @@ std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
       throw InputError(path + ":" + std::to_string(line) + ": kind must be object or skin, got '" +
                        object.kind + "'");
     }
-    const auto [at, added] = lines.emplace(std::make_pair(object.frame, object.id), line);
-    if (!added) {
-      throw InputError(path + ":" + std::to_string(line) + ": object " +
-                       std::to_string(object.id) + " again in frame " +
-                       std::to_string(object.frame) + " (line " + std::to_string(at->second) +
-                       " has it too)");
-    }
+    rows.Add(object.frame, object.id, path, line, "object");
     objects.push_back(object);
   }
   return objects;

@@ -38,4 +38,12 @@ double ParseWholeField(const std::string& text, const std::string& path, int lin
   return value;
 }
 
+void RowsOnce::Add(int frame, int id, const std::string& path, int line, const char* what) {
+  const auto [at, added] = lines_.emplace(std::make_pair(frame, id), line);
+  if (added) return;
+  throw InputError(path + ":" + std::to_string(line) + ": " + what + " " + std::to_string(id) +
+                   " again in frame " + std::to_string(frame) + " (line " +
+                   std::to_string(at->second) + " has it too)");
+}
+
 }  // namespace attend

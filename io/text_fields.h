@@ -2,7 +2,9 @@
 // Errors are InputError naming the file, the line and the field.
 #pragma once
 
+#include <map>
 #include <string>
+#include <utility>
 
 namespace attend {
 
@@ -18,5 +20,16 @@ double ParseNumberField(const std::string& text, const std::string& path, int li
 // converting; "PATH:LINE: field 'FIELD' is not an integer: 'TEXT'" otherwise.
 double ParseWholeField(const std::string& text, const std::string& path, int line,
                        const char* field);
+
+// The line of each (frame, id) row of a file: a second row of one target or object in one
+// frame, which a scorer would count twice, is "PATH:LINE: WHAT ID again in frame FRAME (line L
+// has it too)".
+class RowsOnce {
+ public:
+  void Add(int frame, int id, const std::string& path, int line, const char* what);
+
+ private:
+  std::map<std::pair<int, int>, int> lines_;
+};
 
 }  // namespace attend

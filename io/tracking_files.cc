@@ -3,7 +3,6 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -35,8 +34,7 @@ std::vector<TrackRow> ReadTracksCsv(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read the tracks file");
   std::vector<TrackRow> rows;
-  // The line of each (frame, id): a target with two rows in one frame would be scored twice.
-  std::map<std::pair<int, int>, int> lines;
+  RowsOnce once;  // a target with two rows in one frame would be scored twice
   std::string text;
   int line = 0;
   bool header = false;
@@ -81,12 +79,7 @@ std::vector<TrackRow> ReadTracksCsv(const std::string& path) {
       throw InputError(Where(path, line) + ": state must be found, occluded or lost, got '" +
                        row.state + "'");
     }
-    const auto [at, added] = lines.emplace(std::make_pair(row.frame, row.id), line);
-    if (!added) {
-      throw InputError(Where(path, line) + ": target " + std::to_string(row.id) +
-                       " again in frame " + std::to_string(row.frame) + " (line " +
-                       std::to_string(at->second) + " has it too)");
-    }
+    once.Add(row.frame, row.id, path, line, "target");
     rows.push_back(row);
   }
   if (!header) throw InputError(path + ": empty; expected the header '" + kTracksCsvHeader + "'");

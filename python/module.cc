@@ -597,7 +597,11 @@ PYBIND11_MODULE(_attend, m) {
       .def("yaml", [](const Configuration& c) { return OptionsToYaml(c.options); });
   m.def("default_config_path", &DefaultConfigPath);
   m.def("segment_config_path", &SegmentConfigPath);
-  m.def("track_config_path", &TrackConfigPath);
+  m.def("track_config_path", [](const std::string& kind_name) {
+    TrackerKind kind = TrackerKind::kBip;
+    // An unknown kind is named by the configuration reader, with the kinds there are.
+    return TrackerKindFromName(kind_name, &kind) ? TrackConfigPath(kind) : std::string();
+  });
   m.def("home", &AttendHome);
   m.def("bundled_sequence", [](bool quiet) {
     const py::gil_scoped_release release;

@@ -165,7 +165,7 @@ class Tracker:
 
     def __init__(self, kind="bip", **options):
         overrides = _overrides({"tracker": dict(options, kind=kind)})
-        path = _attend.track_config_path() if kind == "bip" else ""
+        path = _attend.track_config_path(kind)
         self._core = _attend.Tracker(_attend.Configuration(path, overrides))
 
     def start(self, frame, box=None, mask=None):
