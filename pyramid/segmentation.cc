@@ -414,7 +414,7 @@ bool Segmenter::Workspace::MergeSimilar(float spread) {
 }
 
 // Relabels `labels` after a merge (regions numbered by first appearance) and updates
-// `regions`, their |c|^2 sums and the edges exactly, without another pass over the pixels.
+// `regions` and the edges exactly, without another pass over the pixels.
 // Returns the new number of regions.
 int Segmenter::Workspace::ApplyMerge(cv::Mat* labels, std::vector<RegionStats>* regions) {
   const int count = static_cast<int>(regions->size());
@@ -442,7 +442,6 @@ int Segmenter::Workspace::ApplyMerge(cv::Mat* labels, std::vector<RegionStats>* 
     region.bbox = region.area == 0 ? source.bbox : (region.bbox | source.bbox);
     region.area += source.area;
   }
-  squares.resize(next);
   for (int r = 0; r < count; ++r) {
     if (Find(r) != r) continue;
     RegionStats& region = merged[renumber[r]];
@@ -451,7 +450,6 @@ int Segmenter::Workspace::ApplyMerge(cv::Mat* labels, std::vector<RegionStats>* 
                      static_cast<float>(sum[r][2] / area[r])};
     region.intensity = region.colour.v;
     region.saturation = static_cast<float>(sum[r][3] / area[r]);
-    squares[renumber[r]] = sum[r][4];
   }
   pairs.clear();
   for (const RegionEdge& edge : edges) {

@@ -88,8 +88,9 @@ struct TrackerOptions {
   // is not found in that frame (an occluder or the background took its place), and is searched
   // for by its model as any target not found. While not found, such a target's template
   // forgets at `occlusion_alpha` instead of `alpha`: it survives 1 / occlusion_alpha frames.
-  // Off by default: it lifts the OTB mean success AUC from 0.569 to 0.718 (above CSRT's 0.659)
-  // but lowers IDF1 in the attention loop on three of the four still-camera MOT sequences.
+  // Off here and in the loop: it lifts the OTB mean success AUC from 0.569 to 0.718 (above
+  // CSRT's 0.659) but lowers IDF1 in the attention loop on three of the four still-camera MOT
+  // sequences. `attend track` and attend.Tracker turn it on (configs/track.yaml).
   bool occlusion = false;
   float occlusion_gate = 0.7f;
   float occlusion_ratio = 0.55f;
