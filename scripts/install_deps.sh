@@ -18,6 +18,7 @@ packages=(
   slurm-wlm munge
   # live input through OpenCV's GStreamer backend and its tests' videotestsrc pipelines
   gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-tools
+  universal-ctags # where functions begin and end, for scripts/check_structure.py's test
   ccache          # the builds reuse what earlier builds on the machine compiled (scripts/ccache.sh)
 )
 
