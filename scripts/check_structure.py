@@ -12,8 +12,8 @@ python/; tests/, bench/, fuzz/, examples/ and sanitizers/ are not library code. 
   3. no include cycle between units (a unit is a .h with its .cc; a header without a .cc is
      part of the unit whose files share it), and no include that runs
      up the layers (a folder includes only itself and the folders before it in ATTEND_LAYERS);
-  4. option values are read only through field tables: no GetDouble, GetInt, GetDoubles or
-     YAML::Load outside config/.
+  4. option values are read only through field tables: no call of ParamBlock's accessors
+     (.GetDouble, .GetInt, .GetString, .GetChoice, ...) or of YAML::Load outside config/.
 
 Functions are found with universal-ctags (scripts/install_deps.sh installs it), which gives
 each function's first and last line. Prints one line per breach, naming file and line, and
@@ -32,7 +32,8 @@ MAX_FUNCTION_LINES = 80
 REASON = "One function:"
 NOT_LIBRARY = {"tests", "bench", "fuzz", "examples", "sanitizers", "build"}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
-OPTION_CALL = re.compile(r"\b(GetDouble|GetInt|GetDoubles|YAML::Load)\s*\(")
+# ParamBlock's accessors (config/param_block.h) and yaml-cpp's parser.
+OPTION_CALL = re.compile(r"(\.Get(?:Bool|Int|Double|String|Choice|Doubles|Ints|Strings)\b|YAML::Load\b)\s*\(")
 
 
 class MissingTool(RuntimeError):

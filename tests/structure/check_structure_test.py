@@ -54,7 +54,7 @@ def main():
         expected = ["util/big.cc: 601 lines", "io/c.cc:3: TooLong is 81 lines",
                     "include cycle between the units io/c, io/d",
                     "util/up.cc:1: includes io/b.h, a layer above util/",
-                    "io/read.cc:1: GetInt outside config/", "io/read.cc:2: YAML::Load outside config/",
+                    "io/read.cc:1: .GetInt outside config/", "io/read.cc:2: YAML::Load outside config/",
                     "6 breaches"]
         if status != 1:
             failures.append(f"a tree with breaches: status {status}, not 1")
