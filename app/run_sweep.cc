@@ -64,13 +64,15 @@ OpenedSweep OpenSweepFolder(const SweepRequest& request) {
 OpenedSweep OpenSweepFile(const SweepRequest& request) {
   std::error_code error;
   if (fs::is_directory(request.target, error)) {
-    throw ConfigError(request.target + ": a folder without sweep.json; give a sweep file (YAML) "
+    throw ConfigError(request.target +
+                      ": a folder without sweep.json; give a sweep file (YAML) "
                       "or a sweep folder");
   }
   const std::string& out = request.out;
   if (out.empty() && !request.dry_run) throw ConfigError("--out is required with a sweep file");
   if (!out.empty() && !request.dry_run && !IsSweepFolder(out) && !IsEmptyOrScenesOnly(out)) {
-    throw OutputError(out + ": not empty and not a sweep folder (no sweep.json); give a new "
+    throw OutputError(out +
+                      ": not empty and not a sweep folder (no sweep.json); give a new "
                       "--out");
   }
   OpenedSweep opened;
@@ -87,10 +89,9 @@ LocalSweepResult RunHere(const StoredSweep& sweep, const std::vector<int>& index
   g_sweep_signal.store(0);
   std::signal(SIGINT, OnSweepSignal);
   std::signal(SIGTERM, OnSweepSignal);
-  return RunSweepLocally(sweep, indexes, jobs, &g_sweep_signal,
-                         [&](const LocalProgress& progress) {
-                           if (observer.on_progress) observer.on_progress(progress);
-                         });
+  return RunSweepLocally(sweep, indexes, jobs, &g_sweep_signal, [&](const LocalProgress& progress) {
+    if (observer.on_progress) observer.on_progress(progress);
+  });
 }
 
 }  // namespace

@@ -69,7 +69,7 @@ SweepStatus ReadSweepStatus(const std::string& dir);
 
 // What a sweep tells while it runs.
 struct SweepObserver {
-  std::function<void(const std::string&)> on_note;  // what the folder kept or added, ...
+  std::function<void(const std::string&)> on_note;        // what the folder kept or added, ...
   std::function<void(const LocalProgress&)> on_progress;  // a local run's progress
 };
 
@@ -79,8 +79,8 @@ struct SweepRunResult {
   // The folder's cells before the run.
   int cells = 0;
   int done = 0;
-  int failed = 0;  // failed or killed
-  int queued = 0;  // still queued in Slurm
+  int failed = 0;                             // failed or killed
+  int queued = 0;                             // still queued in Slurm
   std::optional<SlurmSubmission> submission;  // with --slurm
   int jobs = 0;                               // cells at once, run here
   LocalSweepResult local;                     // run here

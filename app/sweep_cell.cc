@@ -53,8 +53,8 @@ std::string ErrorMessage(const std::string& err) {
 }
 
 // Numbers below `json`, their keys joined by '.', skipping `skip` at the top.
-void Flatten(const Json& json, const std::string& prefix,
-             const std::set<std::string>& skip, std::vector<std::pair<std::string, double>>* out) {
+void Flatten(const Json& json, const std::string& prefix, const std::set<std::string>& skip,
+             std::vector<std::pair<std::string, double>>* out) {
   for (const auto& [key, value] : json.items()) {
     if (prefix.empty() && skip.count(key) != 0) continue;
     const std::string name = prefix.empty() ? key : prefix + "." + key;
@@ -79,7 +79,8 @@ Json CellScores(const std::string& command, const fs::path& cell_dir, const std:
     for (const char* key : {"success_auc", "precision_20", "mean_iou", "frames", "found"}) {
       scores.emplace_back(key, target.at(key).get<double>());
     }
-    const nlohmann::json track = nlohmann::json::parse(ReadFileText(cell_dir / "out" / "track.json"));
+    const nlohmann::json track =
+        nlohmann::json::parse(ReadFileText(cell_dir / "out" / "track.json"));
     if (track.contains("ms_per_frame")) {
       scores.emplace_back("ms_per_frame", track["ms_per_frame"].get<double>());
     }
@@ -90,8 +91,8 @@ Json CellScores(const std::string& command, const fs::path& cell_dir, const std:
       for (const auto& [metric, value] : entry.items()) {
         if (!value.is_object() || !value.contains("mean")) continue;
         const std::string name = method == "attend" ? metric : method + "." + metric;
-        scores.emplace_back(name, value["mean"].is_number() ? value["mean"].get<double>()
-                                                            : std::nan(""));
+        scores.emplace_back(name,
+                            value["mean"].is_number() ? value["mean"].get<double>() : std::nan(""));
       }
     }
   }
@@ -156,10 +157,10 @@ StepEnd RunStep(const std::string& program, const std::vector<std::string>& comm
   if (exit.Status() == 0 && signal == 0) return {};
   if (signal != 0) {
     const std::string cause = std::string(strsignal(signal)) + " during " + command[0];
-    return in_slurm ? StepEnd{"killed", 128 + signal,
-                              "stopped by Slurm (" + cause +
-                                  "): a time limit, scancel or preemption"}
-                    : StepEnd{"interrupted", 128 + signal, cause};
+    return in_slurm
+               ? StepEnd{"killed", 128 + signal,
+                         "stopped by Slurm (" + cause + "): a time limit, scancel or preemption"}
+               : StepEnd{"interrupted", 128 + signal, cause};
   }
   if (exit.signal != 0) {
     return {"killed", exit.Status(), command[0] + " was killed by " + strsignal(exit.signal)};
@@ -185,12 +186,9 @@ int RunCell(const std::string& dir, int index) {
   const char* job = std::getenv("SLURM_ARRAY_JOB_ID");
   const char* task = std::getenv("SLURM_ARRAY_TASK_ID");
   const bool in_slurm = job != nullptr && task != nullptr;
-  Json running = {{"state", "running"},
-                  {"cell", cell.name},
-                  {"index", index},
-                  {"executor", in_slurm ? "slurm" : "local"},
-                  {"host", HostName()},
-                  {"pid", static_cast<long>(getpid())},
+  Json running = {{"state", "running"},       {"cell", cell.name},
+                  {"index", index},           {"executor", in_slurm ? "slurm" : "local"},
+                  {"host", HostName()},       {"pid", static_cast<long>(getpid())},
                   {"started", UtcTimestamp()}};
   if (in_slurm) running["slurm_task"] = std::string(job) + "_" + task;
   CellStatusFile status(cell_dir, std::move(running));
@@ -253,9 +251,9 @@ LocalSweepResult RunSweepLocally(const StoredSweep& sweep, const std::vector<int
       std::error_code error;
       fs::create_directories(logs, error);
       std::string start_error;
-      const pid_t pid = StartProcess(
-          {program, "sweep", sweep.dir, "--cell", std::to_string(index)},
-          (logs / "cell.out").string(), (logs / "cell.err").string(), &start_error, true);
+      const pid_t pid = StartProcess({program, "sweep", sweep.dir, "--cell", std::to_string(index)},
+                                     (logs / "cell.out").string(), (logs / "cell.err").string(),
+                                     &start_error, true);
       if (pid < 0) {
         close(lock);
         throw InternalError("cannot start a cell: " + start_error);
@@ -291,6 +289,5 @@ LocalSweepResult RunSweepLocally(const StoredSweep& sweep, const std::vector<int
   close(lock);
   return result;
 }
-
 
 }  // namespace attend

@@ -103,8 +103,9 @@ std::vector<SweptList> ReadValueLists(const YamlDocument& document, const YAML::
     swept.key = entry.first.as<std::string>();
     const std::string path = section + "." + swept.key;
     if (!entry.second.IsSequence()) {
-      document.Fail(entry.second, path, "expected a list of values (write [" +
-                                            FlowText(entry.second) + "] for one value)");
+      document.Fail(
+          entry.second, path,
+          "expected a list of values (write [" + FlowText(entry.second) + "] for one value)");
     }
     if (entry.second.size() == 0) document.Fail(entry.second, path, "an empty list of values");
     std::set<std::string> seen;

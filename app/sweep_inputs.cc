@@ -17,8 +17,8 @@ namespace fs = std::filesystem;
 
 const std::vector<std::string>& InputKeys() {
   static const std::vector<std::string> keys = {
-      "name", "sequence", "video", "images", "left", "right", "side_by_side",
-      "fixations", "scene", "gt", "frames", "skip", "first"};
+      "name",      "sequence", "video", "images", "left", "right", "side_by_side",
+      "fixations", "scene",    "gt",    "frames", "skip", "first"};
   return keys;
 }
 
@@ -48,9 +48,8 @@ std::string SceneFolder(const std::string& scene, const std::string& dir) {
 
 // An entry's source: its one kind key, the path (which must exist), a scene's folder, and the
 // right video beside `left`. Returns the source's node, for the errors that follow.
-YAML::Node ReadSource(const YamlDocument& document, const YAML::Node& node,
-                      const std::string& path, SweepCommand command, const std::string& dir,
-                      SweepInput* input) {
+YAML::Node ReadSource(const YamlDocument& document, const YAML::Node& node, const std::string& path,
+                      SweepCommand command, const std::string& dir, SweepInput* input) {
   std::vector<std::string> kinds;
   for (const std::string& kind : SourceKinds()) {
     if (node[kind]) kinds.push_back(kind);
@@ -87,8 +86,8 @@ YAML::Node ReadSource(const YamlDocument& document, const YAML::Node& node,
 }
 
 // The entry's frames, a fixation dataset's split and its ground truth's path.
-void ReadInputOptions(const YamlDocument& document, const YAML::Node& node,
-                      const std::string& path, SweepInput* input) {
+void ReadInputOptions(const YamlDocument& document, const YAML::Node& node, const std::string& path,
+                      SweepInput* input) {
   if (node["frames"]) input->frames = document.String(node["frames"], path + ".frames");
   if (node["skip"] || node["first"]) {
     if (input->kind != "fixations") {
@@ -103,8 +102,8 @@ void ReadInputOptions(const YamlDocument& document, const YAML::Node& node,
 
 // What each command takes, and its ground truth.
 void CheckInputForCommand(const YamlDocument& document, const YAML::Node& node,
-                          const YAML::Node& source, const std::string& path,
-                          SweepCommand command, const SweepInput& input) {
+                          const YAML::Node& source, const std::string& path, SweepCommand command,
+                          const SweepInput& input) {
   const std::string key = path + "." + input.kind;
   std::error_code error;
   if (command == SweepCommand::kSaliency) {
@@ -130,8 +129,9 @@ void CheckInputForCommand(const YamlDocument& document, const YAML::Node& node,
   // brings its own).
   if (command == SweepCommand::kRun && !(input.kind == "scene" && input.gt.empty())) {
     const std::string gt =
-        !input.gt.empty() ? input.gt
-                          : (input.kind == "sequence" ? (fs::path(input.path) / "gt").string() : "");
+        !input.gt.empty()
+            ? input.gt
+            : (input.kind == "sequence" ? (fs::path(input.path) / "gt").string() : "");
     if (gt.empty()) {
       document.Fail(node, path,
                     "attend eval needs ground truth: give gt: (a folder holding objects.csv)");
@@ -144,8 +144,8 @@ void CheckInputForCommand(const YamlDocument& document, const YAML::Node& node,
 }
 
 // The entry's name: given, else its source's file or folder name.
-std::string InputName(const YamlDocument& document, const YAML::Node& node,
-                      const std::string& path, const SweepInput& input) {
+std::string InputName(const YamlDocument& document, const YAML::Node& node, const std::string& path,
+                      const SweepInput& input) {
   std::string name;
   if (node["name"]) {
     name = document.String(node["name"], path + ".name");

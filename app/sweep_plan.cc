@@ -58,10 +58,10 @@ std::string ShortKey(const std::string& key, const std::vector<std::string>& key
     bool unique = true;
     for (const std::string& other : keys) {
       if (other == key) continue;
-      if (other == suffix || (other.size() > suffix.size() &&
-                              other.compare(other.size() - suffix.size(), suffix.size(),
-                                            suffix) == 0 &&
-                              other[other.size() - suffix.size() - 1] == '.')) {
+      if (other == suffix ||
+          (other.size() > suffix.size() &&
+           other.compare(other.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+           other[other.size() - suffix.size() - 1] == '.')) {
         unique = false;
       }
     }
@@ -134,15 +134,14 @@ std::vector<std::vector<std::string>> TrackCommands(const SweepPlan& plan, const
   compute.insert(compute.end(), sets.begin(), sets.end());
   if (!input.frames.empty()) compute.insert(compute.end(), {"--frames", input.frames});
   compute.insert(compute.end(), {"--out", out, "--overwrite"});
-  std::vector<std::string> score = {"eval-tracking", (fs::path(out) / "tracks.csv").string(),
-                                    "--gt", input.gt, "--id", "1"};
+  std::vector<std::string> score = {
+      "eval-tracking", (fs::path(out) / "tracks.csv").string(), "--gt", input.gt, "--id", "1"};
   if (!input.frames.empty()) score.insert(score.end(), {"--frames", input.frames});
   return {compute, score};
 }
 
 // attend saliency over the split's images, scored by eval-fixations with the sweep's options.
-std::vector<std::vector<std::string>> SaliencyCommands(const SweepPlan& plan,
-                                                       const SweepCell& cell,
+std::vector<std::vector<std::string>> SaliencyCommands(const SweepPlan& plan, const SweepCell& cell,
                                                        const std::string& out) {
   const SweepInput& input = plan.inputs[cell.input];
   const FixationDataset dataset = OpenFixationDataset(input.path);
@@ -158,11 +157,13 @@ std::vector<std::vector<std::string>> SaliencyCommands(const SweepPlan& plan,
   compute.insert(compute.end(), sets.begin(), sets.end());
   compute.insert(compute.end(), {"--out", maps, "--quiet"});
   const FixationScoring& scoring = plan.fixations;
-  std::vector<std::string> score = {
-      "eval-fixations", "attend=" + maps, "--dataset", input.path, "--skip",
-      std::to_string(input.skip), "--first", std::to_string(input.first), "--sigma",
-      ShortestNumber(scoring.sigma), "--max-side", std::to_string(scoring.max_side),
-      "--baseline-blur", ShortestNumber(scoring.baseline_blur)};
+  std::vector<std::string> score = {"eval-fixations",  "attend=" + maps,
+                                    "--dataset",       input.path,
+                                    "--skip",          std::to_string(input.skip),
+                                    "--first",         std::to_string(input.first),
+                                    "--sigma",         ShortestNumber(scoring.sigma),
+                                    "--max-side",      std::to_string(scoring.max_side),
+                                    "--baseline-blur", ShortestNumber(scoring.baseline_blur)};
   if (!scoring.baselines.empty()) {
     score.push_back("--baselines");
     score.insert(score.end(), scoring.baselines.begin(), scoring.baselines.end());
