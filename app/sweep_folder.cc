@@ -1,28 +1,19 @@
 #include "app/sweep_folder.h"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/file.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cmath>
-#include <csignal>
-#include <cstring>
-#include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
-#include <sstream>
 
+#include "app/render_scene.h"
 #include "util/error.h"
 #include "util/json_text.h"
 #include "util/output_folder.h"
 #include "util/strings.h"
 #include "util/subprocess.h"
-#include "util/timer.h"
 
 namespace attend {
 
@@ -129,84 +120,100 @@ std::vector<SweepSetting> ReadSettings(const Json& json) {
   return settings;
 }
 
-// The child running a cell's command, and the signal that asked the cell to stop; a signal
-// handler can only reach globals.
-std::atomic<pid_t> g_command_pid{0};
-std::atomic<int> g_cell_signal{0};
-
-extern "C" void OnCellSignal(int signal) {
-  g_cell_signal.store(signal);
-  const pid_t child = g_command_pid.load();
-  if (child > 0) kill(child, signal);
-}
-
-// The last "attend: error: " line of a command's standard error, else its last line.
-std::string ErrorMessage(const std::string& err) {
-  std::istringstream lines(err);
-  std::string line, last, error;
-  while (std::getline(lines, line)) {
-    if (line.empty()) continue;
-    last = line;
-    if (line.rfind("attend: error: ", 0) == 0) error = line.substr(15);
-  }
-  return error.empty() ? last : error;
-}
-
-// Numbers below `json`, their keys joined by '.', skipping `skip` at the top.
-void Flatten(const Json& json, const std::string& prefix,
-             const std::set<std::string>& skip, std::vector<std::pair<std::string, double>>* out) {
-  for (const auto& [key, value] : json.items()) {
-    if (prefix.empty() && skip.count(key) != 0) continue;
-    const std::string name = prefix.empty() ? key : prefix + "." + key;
-    if (value.is_object()) {
-      Flatten(value, name, {}, out);
-    } else if (value.is_number()) {
-      out->emplace_back(name, value.get<double>());
-    } else if (value.is_boolean()) {
-      out->emplace_back(name, value.get<bool>() ? 1.0 : 0.0);
+// The scene inputs not yet rendered, each rendered beside its folder and renamed into place
+// (a stopped render leaves no folder that looks finished).
+void RenderScenes(const SweepPlan& plan) {
+  for (const SweepInput& input : plan.inputs) {
+    std::error_code error;
+    if (input.kind != "scene" || fs::exists(fs::path(input.path) / "sequence.yaml", error)) {
+      continue;
+    }
+    fs::create_directories(fs::path(input.path).parent_path(), error);
+    const std::string temporary = input.path + ".tmp-" + std::to_string(getpid());
+    fs::remove_all(temporary, error);
+    RenderSceneRequest request;
+    request.scene = input.scene;
+    request.out = temporary;
+    RenderScene(request);
+    fs::rename(temporary, input.path, error);
+    fs::remove_all(temporary, error);
+    if (!fs::exists(fs::path(input.path) / "sequence.yaml", error)) {
+      throw OutputError(input.path + ": cannot write the rendered scene " + input.scene);
     }
   }
 }
 
-// The scores of a finished cell from what its scorer wrote.
-Json CellScores(const std::string& command, const fs::path& cell_dir, const std::string& out) {
-  std::vector<std::pair<std::string, double>> scores;
-  if (command == "run") {
-    Flatten(Json::parse(out), "", {"run", "gt", "per_object"}, &scores);
-  } else if (command == "track") {
-    const nlohmann::json report = nlohmann::json::parse(out);
-    const nlohmann::json& target = report.at("targets").at(0);
-    for (const char* key : {"success_auc", "precision_20", "mean_iou", "frames", "found"}) {
-      scores.emplace_back(key, target.at(key).get<double>());
-    }
-    const nlohmann::json track = nlohmann::json::parse(ReadFileText(cell_dir / "out" / "track.json"));
-    if (track.contains("ms_per_frame")) {
-      scores.emplace_back("ms_per_frame", track["ms_per_frame"].get<double>());
-    }
-  } else {
-    const nlohmann::json report =
-        nlohmann::json::parse(ReadFileText(cell_dir / "out" / "scores" / "fixations.json"));
-    for (const auto& [method, entry] : report.at("methods").items()) {
-      for (const auto& [metric, value] : entry.items()) {
-        if (!value.is_object() || !value.contains("mean")) continue;
-        const std::string name = method == "attend" ? metric : method + "." + metric;
-        scores.emplace_back(name, value["mean"].is_number() ? value["mean"].get<double>()
-                                                            : std::nan(""));
-      }
-    }
+// A cell DIR holds must run the commands and the configuration planned for it now.
+void CheckSameCell(const SweepPlan& plan, const fs::path& dir, const SweepCell& cell,
+                   const PlannedCell& planned) {
+  const fs::path cell_dir = dir / "cells" / cell.name;
+  const std::string old_json = ReadFileText(cell_dir / "cell.json");
+  Json old;
+  try {
+    old = Json::parse(old_json);
+  } catch (const std::exception&) {
+    throw InputError((cell_dir / "cell.json").string() + ": missing or not valid JSON");
   }
-  Json json = Json::object();
-  for (const auto& [key, value] : scores) {
-    json[key] = std::isfinite(value) ? Json(value) : Json();
+  const bool same_commands = old.value("commands", Json()) == planned.json["commands"];
+  const bool same_config = ReadFileText(cell_dir / "config.yaml") == planned.config;
+  if (!same_commands || !same_config) {
+    throw ConfigError(plan.file + ": the cell " + cell.name + " in " + dir.string() +
+                      " would now run " +
+                      (same_commands ? "with another effective configuration (the base "
+                                       "configuration file changed)"
+                                     : "other commands (the base configuration, set, "
+                                       "inputs or scoring changed)") +
+                      ": that is another sweep; give another --out");
   }
-  return json;
 }
 
-void WriteStatus(const fs::path& cell_dir, const Json& status) {
-  ReplaceFileText((cell_dir / "status.json").string(), JsonText(status, 2) + "\n");
+// The planned cells that DIR does not hold yet, with their cell.json. A cell DIR holds must run
+// as planned; new cells, and cells of DIR the plan no longer has, need `extend`.
+std::vector<std::pair<const SweepCell*, PlannedCell>> NewCells(
+    const SweepPlan& plan, const fs::path& dir, const std::vector<StoredCell>& cells, bool extend,
+    std::vector<std::string>* notes) {
+  std::map<std::string, const StoredCell*> by_name;
+  for (const StoredCell& cell : cells) by_name[cell.name] = &cell;
+  std::vector<std::pair<const SweepCell*, PlannedCell>> added;
+  std::set<std::string> planned_names;
+  for (const SweepCell& cell : plan.cells) {
+    planned_names.insert(cell.name);
+    const fs::path cell_dir = dir / "cells" / cell.name;
+    PlannedCell planned = PlanCell(plan, cell, cell_dir);
+    if (by_name.count(cell.name) != 0) {
+      CheckSameCell(plan, dir, cell, planned);
+      continue;
+    }
+    added.emplace_back(&cell, std::move(planned));
+  }
+  if (!cells.empty() && !added.empty() && !extend) {
+    throw ConfigError(plan.file + ": changed since " + dir.string() + " was made: " +
+                      std::to_string(added.size()) + " cells are new (the first: " +
+                      added.front().first->name +
+                      "); give --extend to add them to the sweep, or another --out");
+  }
+  int dropped = 0;
+  for (const StoredCell& cell : cells) dropped += planned_names.count(cell.name) == 0 ? 1 : 0;
+  if (dropped > 0) {
+    if (!extend) {
+      throw ConfigError(plan.file + ": changed since " + dir.string() + " was made: " +
+                        std::to_string(dropped) +
+                        " of its cells are no longer in the file; give --extend to keep them "
+                        "and run the file's, or another --out");
+    }
+    notes->push_back(std::to_string(dropped) +
+                     " cells of the folder are no longer in the sweep file; they are kept");
+  }
+  return added;
 }
 
 }  // namespace
+
+std::vector<std::vector<std::string>> ReadCellCommands(const StoredSweep& sweep,
+                                                       const StoredCell& cell) {
+  const Json description = ReadJson(fs::path(sweep.CellDir(cell)) / "cell.json");
+  return description.at("commands").get<std::vector<std::vector<std::string>>>();
+}
 
 bool IsEmptyOrScenesOnly(const std::string& dir) {
   std::error_code error;
@@ -253,57 +260,8 @@ StoredSweep PrepareSweepFolder(const SweepPlan& plan, const std::string& dir_tex
   }
   fs::create_directories(dir / "cells", error);
   if (error) throw OutputError(dir.string() + ": cannot create the folder: " + error.message());
-
-  // The planned cells against those in the folder.
-  std::map<std::string, const StoredCell*> by_name;
-  for (const StoredCell& cell : cells) by_name[cell.name] = &cell;
-  std::vector<std::pair<const SweepCell*, PlannedCell>> added;
-  std::set<std::string> planned_names;
-  for (const SweepCell& cell : plan.cells) {
-    planned_names.insert(cell.name);
-    const fs::path cell_dir = dir / "cells" / cell.name;
-    PlannedCell planned = PlanCell(plan, cell, cell_dir);
-    if (by_name.count(cell.name) != 0) {
-      const std::string old_json = ReadFileText(cell_dir / "cell.json");
-      Json old;
-      try {
-        old = Json::parse(old_json);
-      } catch (const std::exception&) {
-        throw InputError((cell_dir / "cell.json").string() + ": missing or not valid JSON");
-      }
-      const bool same_commands = old.value("commands", Json()) == planned.json["commands"];
-      const bool same_config = ReadFileText(cell_dir / "config.yaml") == planned.config;
-      if (!same_commands || !same_config) {
-        throw ConfigError(plan.file + ": the cell " + cell.name + " in " + dir.string() +
-                          " would now run " +
-                          (same_commands ? "with another effective configuration (the base "
-                                           "configuration file changed)"
-                                         : "other commands (the base configuration, set, "
-                                           "inputs or scoring changed)") +
-                          ": that is another sweep; give another --out");
-      }
-      continue;
-    }
-    added.emplace_back(&cell, std::move(planned));
-  }
-  if (!cells.empty() && !added.empty() && !extend) {
-    throw ConfigError(plan.file + ": changed since " + dir.string() + " was made: " +
-                      std::to_string(added.size()) + " cells are new (the first: " +
-                      added.front().first->name +
-                      "); give --extend to add them to the sweep, or another --out");
-  }
-  int dropped = 0;
-  for (const StoredCell& cell : cells) dropped += planned_names.count(cell.name) == 0 ? 1 : 0;
-  if (dropped > 0) {
-    if (!extend) {
-      throw ConfigError(plan.file + ": changed since " + dir.string() + " was made: " +
-                        std::to_string(dropped) +
-                        " of its cells are no longer in the file; give --extend to keep them "
-                        "and run the file's, or another --out");
-    }
-    notes->push_back(std::to_string(dropped) +
-                     " cells of the folder are no longer in the sweep file; they are kept");
-  }
+  auto added = NewCells(plan, dir, cells, extend, notes);
+  RenderScenes(plan);
   for (auto& [cell, planned] : added) {
     StoredCell stored;
     stored.index = static_cast<int>(cells.size());
@@ -407,165 +365,6 @@ std::vector<std::pair<std::string, double>> ReadCellScores(const StoredSweep& sw
     scores.emplace_back(key, value.is_number() ? value.get<double>() : std::nan(""));
   }
   return scores;
-}
-
-int RunCell(const std::string& dir, int index) {
-  const StoredSweep sweep = LoadSweepFolder(dir);
-  if (index < 0 || index >= static_cast<int>(sweep.cells.size())) {
-    throw ConfigError("--cell " + std::to_string(index) + ": " + dir + " has cells 0 to " +
-                      std::to_string(sweep.cells.size() - 1));
-  }
-  const StoredCell& cell = sweep.cells[index];
-  const fs::path cell_dir = sweep.CellDir(cell);
-  const Json description = ReadJson(cell_dir / "cell.json");
-  std::error_code error;
-  fs::create_directories(cell_dir / "logs", error);
-  fs::remove(cell_dir / "scores.json", error);
-
-  const char* job = std::getenv("SLURM_ARRAY_JOB_ID");
-  const char* task = std::getenv("SLURM_ARRAY_TASK_ID");
-  const bool in_slurm = job != nullptr && task != nullptr;
-  Json status = {{"state", "running"},
-                 {"cell", cell.name},
-                 {"index", index},
-                 {"executor", in_slurm ? "slurm" : "local"},
-                 {"host", HostName()},
-                 {"pid", static_cast<long>(getpid())},
-                 {"started", UtcTimestamp()}};
-  if (in_slurm) status["slurm_task"] = std::string(job) + "_" + task;
-  WriteStatus(cell_dir, status);
-
-  g_cell_signal.store(0);
-  std::signal(SIGINT, OnCellSignal);
-  std::signal(SIGTERM, OnCellSignal);
-  const Stopwatch watch;
-  const std::string program = SelfExecutable();
-  const std::vector<std::vector<std::string>> commands =
-      description.at("commands").get<std::vector<std::vector<std::string>>>();
-  std::string scorer_out;
-  const auto finish = [&](const std::string& state, int exit_status, const std::string& message) {
-    status["state"] = state;
-    status["exit_status"] = exit_status;
-    if (!message.empty()) status["message"] = message;
-    status["finished"] = UtcTimestamp();
-    status["seconds"] = watch.ElapsedMs() / 1000.0;
-    WriteStatus(cell_dir, status);
-    return exit_status;
-  };
-  for (std::size_t step = 0; step < commands.size(); ++step) {
-    if (g_cell_signal.load() != 0) break;
-    std::vector<std::string> argv = {program};
-    argv.insert(argv.end(), commands[step].begin(), commands[step].end());
-    const std::string log =
-        (cell_dir / "logs" / (std::to_string(step + 1) + "-" + commands[step][0])).string();
-    std::string start_error;
-    const pid_t pid = StartProcess(argv, log + ".out", log + ".err", &start_error, true);
-    if (pid < 0) return finish("failed", 1, "cannot start " + program + ": " + start_error);
-    g_command_pid.store(pid);
-    // A signal that came before the pid was known still reaches the command.
-    if (g_cell_signal.load() != 0) kill(pid, g_cell_signal.load());
-    const ProcessExit exit = WaitProcess(pid);
-    g_command_pid.store(0);
-    if (exit.Status() != 0 || g_cell_signal.load() != 0) {
-      const int signal = g_cell_signal.load();
-      if (signal != 0) {
-        const std::string cause = std::string(strsignal(signal)) + " during " + commands[step][0];
-        return in_slurm ? finish("killed", 128 + signal,
-                                 "stopped by Slurm (" + cause +
-                                     "): a time limit, scancel or preemption")
-                        : finish("interrupted", 128 + signal, cause);
-      }
-      if (exit.signal != 0) {
-        return finish("killed", exit.Status(),
-                      commands[step][0] + " was killed by " + strsignal(exit.signal));
-      }
-      const std::string message = ErrorMessage(ReadFileText(log + ".err"));
-      return finish("failed", exit.code, commands[step][0] + ": " + message);
-    }
-    if (step + 1 == commands.size()) scorer_out = ReadFileText(log + ".out");
-  }
-  if (g_cell_signal.load() != 0) {
-    const int signal = g_cell_signal.load();
-    return finish(in_slurm ? "killed" : "interrupted", 128 + signal, strsignal(signal));
-  }
-  Json scores;
-  try {
-    scores = CellScores(sweep.command, cell_dir, scorer_out);
-  } catch (const std::exception& e) {
-    return finish("failed", 1, std::string("the scores cannot be read: ") + e.what());
-  }
-  ReplaceFileText((cell_dir / "scores.json").string(), JsonText(scores, 2) + "\n");
-  return finish("done", 0, "");
-}
-
-LocalSweepResult RunSweepLocally(const StoredSweep& sweep, const std::vector<int>& indexes,
-                                 int jobs, const std::atomic<int>* stop,
-                                 const std::function<void(const LocalProgress&)>& on_progress) {
-  const fs::path lock_path = fs::path(sweep.dir) / ".lock";
-  const int lock = open(lock_path.c_str(), O_RDWR | O_CREAT, 0644);
-  if (lock < 0 || flock(lock, LOCK_EX | LOCK_NB) != 0) {
-    if (lock >= 0) close(lock);
-    throw OutputError(sweep.dir + ": another attend sweep is running this folder on this machine");
-  }
-  LocalSweepResult result;
-  LocalProgress& progress = result.progress;
-  progress.total = static_cast<int>(indexes.size());
-  const Stopwatch watch;
-  const std::string program = SelfExecutable();
-  std::map<pid_t, int> running;  // pid to cell index
-  std::size_t next = 0;
-  int forwarded = 0;
-  while (next < indexes.size() || !running.empty()) {
-    const int signal = stop != nullptr ? stop->load() : 0;
-    if (signal != 0 && forwarded == 0) {
-      for (const auto& [pid, index] : running) kill(pid, signal);
-      forwarded = signal;
-      result.stop_signal = signal;
-    }
-    while (signal == 0 && next < indexes.size() && static_cast<int>(running.size()) < jobs) {
-      const int index = indexes[next++];
-      const StoredCell& cell = sweep.cells[index];
-      const fs::path logs = fs::path(sweep.CellDir(cell)) / "logs";
-      std::error_code error;
-      fs::create_directories(logs, error);
-      std::string start_error;
-      const pid_t pid = StartProcess(
-          {program, "sweep", sweep.dir, "--cell", std::to_string(index)},
-          (logs / "cell.out").string(), (logs / "cell.err").string(), &start_error, true);
-      if (pid < 0) {
-        close(lock);
-        throw InternalError("cannot start a cell: " + start_error);
-      }
-      running[pid] = index;
-    }
-    progress.running = static_cast<int>(running.size());
-    progress.elapsed_s = watch.ElapsedMs() / 1000.0;
-    if (on_progress) on_progress(progress);
-    if (running.empty()) break;
-    // Polled, so that a stop signal is passed on at once whatever the cells are doing.
-    int status = 0;
-    const pid_t pid = waitpid(-1, &status, WNOHANG);
-    if (pid <= 0) {
-      usleep(50000);
-      continue;
-    }
-    const auto found = running.find(pid);
-    if (found == running.end()) continue;
-    const CellStatus cell = ReadCellStatus(sweep, sweep.cells[found->second]);
-    running.erase(found);
-    if (cell.state == CellState::kDone) {
-      ++progress.done;
-      progress.cell_seconds += cell.seconds;
-    } else if (cell.state == CellState::kFailed || cell.state == CellState::kKilled) {
-      ++progress.failed;
-      progress.cell_seconds += cell.seconds;
-    }
-  }
-  progress.running = 0;
-  progress.elapsed_s = watch.ElapsedMs() / 1000.0;
-  if (on_progress) on_progress(progress);
-  close(lock);
-  return result;
 }
 
 }  // namespace attend

@@ -11,12 +11,9 @@
 //   DIR/slurm/                  batch scripts, jobs.json and the array tasks' logs
 //   DIR/sweep.csv, report.html  written by --collect
 //
-// A cell is computed by `attend sweep DIR --cell INDEX`, whichever executor starts it (this
-// machine or a Slurm array task), so both give the same results.
+// A cell is computed by `attend sweep DIR --cell INDEX` (app/sweep_cell.h).
 #pragma once
 
-#include <atomic>
-#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -48,7 +45,8 @@ struct StoredSweep {
 // names, commands and configurations). A sweep file that adds cells is refused unless `extend`
 // (the new cells are appended, the old keep their indexes); one that changes what an existing
 // cell runs is refused always. ConfigError for both; OutputError when DIR cannot be written or
-// holds something else. `notes` receives what was kept or added.
+// holds something else. Once the cells are accepted, the scene inputs not yet rendered are
+// rendered into DIR/scenes/. `notes` receives what was kept or added.
 StoredSweep PrepareSweepFolder(const SweepPlan& plan, const std::string& dir, bool extend,
                                std::vector<std::string>* notes);
 
@@ -80,31 +78,8 @@ CellStatus ReadCellStatus(const StoredSweep& sweep, const StoredCell& cell);
 std::vector<std::pair<std::string, double>> ReadCellScores(const StoredSweep& sweep,
                                                            const StoredCell& cell);
 
-// Computes and scores cell `index` of DIR: its commands one after the other, each a process
-// of this program, recording status.json and scores.json. SIGINT and SIGTERM are passed on to
-// the command running; the cell is then recorded as interrupted (or, in a Slurm job, killed).
-// Returns the cell's exit status (0 done).
-int RunCell(const std::string& dir, int index);
-
-struct LocalProgress {
-  int total = 0;
-  int done = 0;
-  int failed = 0;
-  int running = 0;
-  double elapsed_s = 0.0;
-  double cell_seconds = 0.0;  // sum of the finished cells' wall times
-};
-
-struct LocalSweepResult {
-  LocalProgress progress;
-  int stop_signal = 0;  // the signal that stopped the sweep early, 0 when it ran to the end
-};
-
-// Runs `indexes` of DIR on this machine, `jobs` cells at once, each `attend sweep DIR --cell
-// I`. `stop` ends it early: no new cell starts and the running ones receive the signal. One
-// local sweep at a time per folder (a lock): OutputError for a second.
-LocalSweepResult RunSweepLocally(const StoredSweep& sweep, const std::vector<int>& indexes,
-                                 int jobs, const std::atomic<int>* stop,
-                                 const std::function<void(const LocalProgress&)>& on_progress);
+// The commands of a cell, as its cell.json lists them (what RunCell runs).
+std::vector<std::vector<std::string>> ReadCellCommands(const StoredSweep& sweep,
+                                                       const StoredCell& cell);
 
 }  // namespace attend

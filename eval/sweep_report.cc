@@ -166,85 +166,9 @@ std::string BestTable(const SweepReportInput& input) {
   return html + "</section>\n";
 }
 
-// Each score against each swept key: the data, drawn by the page's script.
-std::string Plots(const SweepReportInput& input, std::vector<std::string>* notes) {
-  if (input.keys.empty()) return "";
-  std::vector<std::string> plotted = ComparedScores(input);
-  // The headline score of each scorer is shown first.
-  for (const char* headline : {"coverage", "success_auc", "nss"}) {
-    const auto found = std::find(plotted.begin(), plotted.end(), headline);
-    if (found != plotted.end()) std::rotate(plotted.begin(), found, found + 1);
-  }
-  if (plotted.empty()) return "";
-  if (!input.chart.found()) {
-    notes->push_back(ChartLibraryMissingNote(input.chart));
-    return "";
-  }
-  Json data;
-  // One plot a group of keys swept together; its values are the groups' distinct tuples.
-  std::vector<std::vector<int>> groups = input.groups;
-  if (groups.empty()) {
-    for (std::size_t k = 0; k < input.keys.size(); ++k) groups.push_back({static_cast<int>(k)});
-  }
-  Json group_json = Json::array();
-  for (const std::vector<int>& group : groups) {
-    std::vector<std::vector<std::string>> seen;
-    std::vector<std::string> labels, names;
-    for (const SweepReportCell& cell : input.cells) {
-      std::vector<std::string> tuple;
-      for (const int k : group) tuple.push_back(cell.settings[k]);
-      if (std::find(seen.begin(), seen.end(), tuple) == seen.end()) {
-        seen.push_back(tuple);
-        labels.push_back(Join(tuple, " / "));
-      }
-    }
-    for (const int k : group) names.push_back(input.keys[k]);
-    group_json.push_back({{"label", Join(names, " / ")}, {"keys", group}, {"values", seen},
-                          {"labels", labels}});
-  }
-  data["groups"] = group_json;
-  data["scores"] = plotted;
-  Json cells = Json::array();
-  for (const SweepReportCell& cell : input.cells) {
-    if (cell.state != "done") continue;
-    Json scores = Json::object();
-    for (const std::string& score : plotted) {
-      scores[score] = HasValue(cell, score) ? Json(cell.scores.at(score)) : Json();
-    }
-    cells.push_back({{"input", cell.input}, {"settings", cell.settings}, {"scores", scores}});
-  }
-  data["cells"] = cells;
-  std::vector<std::string> inputs;
-  for (const SweepReportCell& cell : input.cells) {
-    if (std::find(inputs.begin(), inputs.end(), cell.input) == inputs.end()) {
-      inputs.push_back(cell.input);
-    }
-  }
-  std::string html =
-      "<section><h2>Scores against the swept parameters</h2><p>Score: <select id=\"score\">";
-  for (std::size_t s = 0; s < plotted.size(); ++s) {
-    html += "<option value=\"" + std::to_string(s) + "\">" + HtmlEscape(plotted[s]) + "</option>";
-  }
-  html += "</select> Inputs: <select id=\"input\"><option value=\"\">all</option>";
-  for (const std::string& name : inputs) {
-    html += "<option value=\"" + HtmlEscape(name) + "\">" + HtmlEscape(name) + "</option>";
-  }
-  html +=
-      "</select></p><p class=\"small\">For each value of a parameter: the mean of the score over "
-      "the done cells with that value (the inputs chosen and every value of the other "
-      "parameters), with the band of one standard deviation and the range (dashed).</p>"
-      "<div class=\"charts\">";
-  for (std::size_t g = 0; g < groups.size(); ++g) {
-    std::vector<std::string> names;
-    for (const int k : groups[g]) names.push_back(input.keys[k]);
-    html += "<figure><canvas id=\"plot-" + std::to_string(g) +
-            "\" width=\"460\" height=\"260\"></canvas><figcaption><code>" +
-            HtmlEscape(Join(names, " / ")) + "</code>" +
-            (groups[g].size() > 1 ? " (zipped: changed together)" : "") +
-            "</figcaption></figure>";
-  }
-  html += "</div></section>\n";
-  const std::string drawing = R"JS(
+// Draws DATA's plots (PlotData) with Chart.js: for the chosen score and inputs, the mean of
+// each group's values with its standard deviation band and its range.
+constexpr const char* kDrawPlots = R"JS(
 const charts = [];
 function summary(score, group, input) {
   return group.values.map(function (tuple) {
@@ -286,7 +210,104 @@ function draw() {
 document.getElementById('score').addEventListener('change', draw);
 document.getElementById('input').addEventListener('change', draw);
 draw();)JS";
-  return html + ChartScripts(input.chart, JsonText(data), drawing);
+
+// The groups of keys plotted together: each zip group, each grid key alone.
+std::vector<std::vector<int>> PlotGroups(const SweepReportInput& input) {
+  std::vector<std::vector<int>> groups = input.groups;
+  if (groups.empty()) {
+    for (std::size_t k = 0; k < input.keys.size(); ++k) groups.push_back({static_cast<int>(k)});
+  }
+  return groups;
+}
+
+// What the page's script draws: each group's distinct tuples of values, the plotted scores and
+// the done cells' settings and scores.
+Json PlotData(const SweepReportInput& input, const std::vector<std::vector<int>>& groups,
+              const std::vector<std::string>& plotted) {
+  Json data;
+  Json group_json = Json::array();
+  for (const std::vector<int>& group : groups) {
+    std::vector<std::vector<std::string>> seen;
+    std::vector<std::string> labels, names;
+    for (const SweepReportCell& cell : input.cells) {
+      std::vector<std::string> tuple;
+      for (const int k : group) tuple.push_back(cell.settings[k]);
+      if (std::find(seen.begin(), seen.end(), tuple) == seen.end()) {
+        seen.push_back(tuple);
+        labels.push_back(Join(tuple, " / "));
+      }
+    }
+    for (const int k : group) names.push_back(input.keys[k]);
+    group_json.push_back({{"label", Join(names, " / ")}, {"keys", group}, {"values", seen},
+                          {"labels", labels}});
+  }
+  data["groups"] = group_json;
+  data["scores"] = plotted;
+  Json cells = Json::array();
+  for (const SweepReportCell& cell : input.cells) {
+    if (cell.state != "done") continue;
+    Json scores = Json::object();
+    for (const std::string& score : plotted) {
+      scores[score] = HasValue(cell, score) ? Json(cell.scores.at(score)) : Json();
+    }
+    cells.push_back({{"input", cell.input}, {"settings", cell.settings}, {"scores", scores}});
+  }
+  data["cells"] = cells;
+  return data;
+}
+
+// The plots' section: a choice of score and of inputs, and a canvas a group.
+std::string PlotSection(const SweepReportInput& input, const std::vector<std::vector<int>>& groups,
+                        const std::vector<std::string>& plotted) {
+  std::vector<std::string> inputs;
+  for (const SweepReportCell& cell : input.cells) {
+    if (std::find(inputs.begin(), inputs.end(), cell.input) == inputs.end()) {
+      inputs.push_back(cell.input);
+    }
+  }
+  std::string html =
+      "<section><h2>Scores against the swept parameters</h2><p>Score: <select id=\"score\">";
+  for (std::size_t s = 0; s < plotted.size(); ++s) {
+    html += "<option value=\"" + std::to_string(s) + "\">" + HtmlEscape(plotted[s]) + "</option>";
+  }
+  html += "</select> Inputs: <select id=\"input\"><option value=\"\">all</option>";
+  for (const std::string& name : inputs) {
+    html += "<option value=\"" + HtmlEscape(name) + "\">" + HtmlEscape(name) + "</option>";
+  }
+  html +=
+      "</select></p><p class=\"small\">For each value of a parameter: the mean of the score over "
+      "the done cells with that value (the inputs chosen and every value of the other "
+      "parameters), with the band of one standard deviation and the range (dashed).</p>"
+      "<div class=\"charts\">";
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    std::vector<std::string> names;
+    for (const int k : groups[g]) names.push_back(input.keys[k]);
+    html += "<figure><canvas id=\"plot-" + std::to_string(g) +
+            "\" width=\"460\" height=\"260\"></canvas><figcaption><code>" +
+            HtmlEscape(Join(names, " / ")) + "</code>" +
+            (groups[g].size() > 1 ? " (zipped: changed together)" : "") +
+            "</figcaption></figure>";
+  }
+  return html + "</div></section>\n";
+}
+
+// Each score against each swept key: the data, drawn by the page's script.
+std::string Plots(const SweepReportInput& input, std::vector<std::string>* notes) {
+  if (input.keys.empty()) return "";
+  std::vector<std::string> plotted = ComparedScores(input);
+  // The headline score of each scorer is shown first.
+  for (const char* headline : {"coverage", "success_auc", "nss"}) {
+    const auto found = std::find(plotted.begin(), plotted.end(), headline);
+    if (found != plotted.end()) std::rotate(plotted.begin(), found, found + 1);
+  }
+  if (plotted.empty()) return "";
+  if (!input.chart.found()) {
+    notes->push_back(ChartLibraryMissingNote(input.chart));
+    return "";
+  }
+  const std::vector<std::vector<int>> groups = PlotGroups(input);
+  return PlotSection(input, groups, plotted) +
+         ChartScripts(input.chart, JsonText(PlotData(input, groups, plotted)), kDrawPlots);
 }
 
 }  // namespace

@@ -1,0 +1,293 @@
+#include "app/sweep_cell.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "util/error.h"
+#include "util/json_text.h"
+#include "util/output_folder.h"
+#include "util/strings.h"
+#include "util/subprocess.h"
+#include "util/timer.h"
+
+namespace attend {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+// The child running a cell's command, and the signal that asked the cell to stop; a signal
+// handler can only reach globals.
+std::atomic<pid_t> g_command_pid{0};
+std::atomic<int> g_cell_signal{0};
+
+extern "C" void OnCellSignal(int signal) {
+  g_cell_signal.store(signal);
+  const pid_t child = g_command_pid.load();
+  if (child > 0) kill(child, signal);
+}
+
+// The last "attend: error: " line of a command's standard error, else its last line.
+std::string ErrorMessage(const std::string& err) {
+  std::istringstream lines(err);
+  std::string line, last, error;
+  while (std::getline(lines, line)) {
+    if (line.empty()) continue;
+    last = line;
+    if (line.rfind("attend: error: ", 0) == 0) error = line.substr(15);
+  }
+  return error.empty() ? last : error;
+}
+
+// Numbers below `json`, their keys joined by '.', skipping `skip` at the top.
+void Flatten(const Json& json, const std::string& prefix, const std::set<std::string>& skip,
+             std::vector<std::pair<std::string, double>>* out) {
+  for (const auto& [key, value] : json.items()) {
+    if (prefix.empty() && skip.count(key) != 0) continue;
+    const std::string name = prefix.empty() ? key : prefix + "." + key;
+    if (value.is_object()) {
+      Flatten(value, name, {}, out);
+    } else if (value.is_number()) {
+      out->emplace_back(name, value.get<double>());
+    } else if (value.is_boolean()) {
+      out->emplace_back(name, value.get<bool>() ? 1.0 : 0.0);
+    }
+  }
+}
+
+// The scores of a finished cell from what its scorer wrote.
+Json CellScores(const std::string& command, const fs::path& cell_dir, const std::string& out) {
+  std::vector<std::pair<std::string, double>> scores;
+  if (command == "run") {
+    Flatten(Json::parse(out), "", {"run", "gt", "per_object"}, &scores);
+  } else if (command == "track") {
+    const nlohmann::json report = nlohmann::json::parse(out);
+    const nlohmann::json& target = report.at("targets").at(0);
+    for (const char* key : {"success_auc", "precision_20", "mean_iou", "frames", "found"}) {
+      scores.emplace_back(key, target.at(key).get<double>());
+    }
+    const nlohmann::json track =
+        nlohmann::json::parse(ReadFileText(cell_dir / "out" / "track.json"));
+    if (track.contains("ms_per_frame")) {
+      scores.emplace_back("ms_per_frame", track["ms_per_frame"].get<double>());
+    }
+  } else {
+    const nlohmann::json report =
+        nlohmann::json::parse(ReadFileText(cell_dir / "out" / "scores" / "fixations.json"));
+    for (const auto& [method, entry] : report.at("methods").items()) {
+      for (const auto& [metric, value] : entry.items()) {
+        if (!value.is_object() || !value.contains("mean")) continue;
+        const std::string name = method == "attend" ? metric : method + "." + metric;
+        scores.emplace_back(name,
+                            value["mean"].is_number() ? value["mean"].get<double>() : std::nan(""));
+      }
+    }
+  }
+  Json json = Json::object();
+  for (const auto& [key, value] : scores) {
+    json[key] = std::isfinite(value) ? Json(value) : Json();
+  }
+  return json;
+}
+
+void WriteStatus(const fs::path& cell_dir, const Json& status) {
+  ReplaceFileText((cell_dir / "status.json").string(), JsonText(status, 2) + "\n");
+}
+
+// A cell's status.json: running from the start, then how the cell ended, with its wall time.
+class CellStatusFile {
+ public:
+  CellStatusFile(fs::path cell_dir, Json status)
+      : cell_dir_(std::move(cell_dir)), status_(std::move(status)) {
+    WriteStatus(cell_dir_, status_);
+  }
+  // Records the end; returns `exit_status`.
+  int Finish(const std::string& state, int exit_status, const std::string& message) {
+    status_["state"] = state;
+    status_["exit_status"] = exit_status;
+    if (!message.empty()) status_["message"] = message;
+    status_["finished"] = UtcTimestamp();
+    status_["seconds"] = watch_.ElapsedMs() / 1000.0;
+    WriteStatus(cell_dir_, status_);
+    return exit_status;
+  }
+
+ private:
+  fs::path cell_dir_;
+  Json status_;
+  Stopwatch watch_;
+};
+
+// How a command of a cell ended: state "" when it succeeded, else failed, killed or
+// interrupted, with the cell's exit status and why.
+struct StepEnd {
+  std::string state;
+  int exit_status = 0;
+  std::string message;
+};
+
+// Runs `command` as a process of `program`, its output in `log`.out and `log`.err; a signal the
+// cell receives meanwhile is passed on to it.
+StepEnd RunStep(const std::string& program, const std::vector<std::string>& command,
+                const std::string& log, bool in_slurm) {
+  std::vector<std::string> argv = {program};
+  argv.insert(argv.end(), command.begin(), command.end());
+  std::string start_error;
+  const pid_t pid = StartProcess(argv, log + ".out", log + ".err", &start_error, true);
+  if (pid < 0) return {"failed", 1, "cannot start " + program + ": " + start_error};
+  g_command_pid.store(pid);
+  // A signal that came before the pid was known still reaches the command.
+  if (g_cell_signal.load() != 0) kill(pid, g_cell_signal.load());
+  const ProcessExit exit = WaitProcess(pid);
+  g_command_pid.store(0);
+  const int signal = g_cell_signal.load();
+  if (exit.Status() == 0 && signal == 0) return {};
+  if (signal != 0) {
+    const std::string cause = std::string(strsignal(signal)) + " during " + command[0];
+    return in_slurm
+               ? StepEnd{"killed", 128 + signal,
+                         "stopped by Slurm (" + cause + "): a time limit, scancel or preemption"}
+               : StepEnd{"interrupted", 128 + signal, cause};
+  }
+  if (exit.signal != 0) {
+    return {"killed", exit.Status(), command[0] + " was killed by " + strsignal(exit.signal)};
+  }
+  return {"failed", exit.code, command[0] + ": " + ErrorMessage(ReadFileText(log + ".err"))};
+}
+
+}  // namespace
+
+int RunCell(const std::string& dir, int index) {
+  const StoredSweep sweep = LoadSweepFolder(dir);
+  if (index < 0 || index >= static_cast<int>(sweep.cells.size())) {
+    throw ConfigError("--cell " + std::to_string(index) + ": " + dir + " has cells 0 to " +
+                      std::to_string(sweep.cells.size() - 1));
+  }
+  const StoredCell& cell = sweep.cells[index];
+  const fs::path cell_dir = sweep.CellDir(cell);
+  const std::vector<std::vector<std::string>> commands = ReadCellCommands(sweep, cell);
+  std::error_code error;
+  fs::create_directories(cell_dir / "logs", error);
+  fs::remove(cell_dir / "scores.json", error);
+
+  const char* job = std::getenv("SLURM_ARRAY_JOB_ID");
+  const char* task = std::getenv("SLURM_ARRAY_TASK_ID");
+  const bool in_slurm = job != nullptr && task != nullptr;
+  Json running = {{"state", "running"},       {"cell", cell.name},
+                  {"index", index},           {"executor", in_slurm ? "slurm" : "local"},
+                  {"host", HostName()},       {"pid", static_cast<long>(getpid())},
+                  {"started", UtcTimestamp()}};
+  if (in_slurm) running["slurm_task"] = std::string(job) + "_" + task;
+  CellStatusFile status(cell_dir, std::move(running));
+
+  g_cell_signal.store(0);
+  std::signal(SIGINT, OnCellSignal);
+  std::signal(SIGTERM, OnCellSignal);
+  const std::string program = SelfExecutable();
+  std::string scorer_out;
+  for (std::size_t step = 0; step < commands.size(); ++step) {
+    if (g_cell_signal.load() != 0) break;
+    const std::string log =
+        (cell_dir / "logs" / (std::to_string(step + 1) + "-" + commands[step][0])).string();
+    const StepEnd end = RunStep(program, commands[step], log, in_slurm);
+    if (!end.state.empty()) return status.Finish(end.state, end.exit_status, end.message);
+    if (step + 1 == commands.size()) scorer_out = ReadFileText(log + ".out");
+  }
+  if (g_cell_signal.load() != 0) {
+    const int signal = g_cell_signal.load();
+    return status.Finish(in_slurm ? "killed" : "interrupted", 128 + signal, strsignal(signal));
+  }
+  Json scores;
+  try {
+    scores = CellScores(sweep.command, cell_dir, scorer_out);
+  } catch (const std::exception& e) {
+    return status.Finish("failed", 1, std::string("the scores cannot be read: ") + e.what());
+  }
+  ReplaceFileText((cell_dir / "scores.json").string(), JsonText(scores, 2) + "\n");
+  return status.Finish("done", 0, "");
+}
+
+LocalSweepResult RunSweepLocally(const StoredSweep& sweep, const std::vector<int>& indexes,
+                                 int jobs, const std::atomic<int>* stop,
+                                 const std::function<void(const LocalProgress&)>& on_progress) {
+  const fs::path lock_path = fs::path(sweep.dir) / ".lock";
+  const int lock = open(lock_path.c_str(), O_RDWR | O_CREAT, 0644);
+  if (lock < 0 || flock(lock, LOCK_EX | LOCK_NB) != 0) {
+    if (lock >= 0) close(lock);
+    throw OutputError(sweep.dir + ": another attend sweep is running this folder on this machine");
+  }
+  LocalSweepResult result;
+  LocalProgress& progress = result.progress;
+  progress.total = static_cast<int>(indexes.size());
+  const Stopwatch watch;
+  const std::string program = SelfExecutable();
+  std::map<pid_t, int> running;  // pid to cell index
+  std::size_t next = 0;
+  int forwarded = 0;
+  while (next < indexes.size() || !running.empty()) {
+    const int signal = stop != nullptr ? stop->load() : 0;
+    if (signal != 0 && forwarded == 0) {
+      for (const auto& [pid, index] : running) kill(pid, signal);
+      forwarded = signal;
+      result.stop_signal = signal;
+    }
+    while (signal == 0 && next < indexes.size() && static_cast<int>(running.size()) < jobs) {
+      const int index = indexes[next++];
+      const StoredCell& cell = sweep.cells[index];
+      const fs::path logs = fs::path(sweep.CellDir(cell)) / "logs";
+      std::error_code error;
+      fs::create_directories(logs, error);
+      std::string start_error;
+      const pid_t pid = StartProcess({program, "sweep", sweep.dir, "--cell", std::to_string(index)},
+                                     (logs / "cell.out").string(), (logs / "cell.err").string(),
+                                     &start_error, true);
+      if (pid < 0) {
+        close(lock);
+        throw InternalError("cannot start a cell: " + start_error);
+      }
+      running[pid] = index;
+    }
+    progress.running = static_cast<int>(running.size());
+    progress.elapsed_s = watch.ElapsedMs() / 1000.0;
+    if (on_progress) on_progress(progress);
+    if (running.empty()) break;
+    // Polled, so that a stop signal is passed on at once whatever the cells are doing.
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    if (pid <= 0) {
+      usleep(50000);
+      continue;
+    }
+    const auto found = running.find(pid);
+    if (found == running.end()) continue;
+    const CellStatus cell = ReadCellStatus(sweep, sweep.cells[found->second]);
+    running.erase(found);
+    if (cell.state == CellState::kDone) {
+      ++progress.done;
+      progress.cell_seconds += cell.seconds;
+    } else if (cell.state == CellState::kFailed || cell.state == CellState::kKilled) {
+      ++progress.failed;
+      progress.cell_seconds += cell.seconds;
+    }
+  }
+  progress.running = 0;
+  progress.elapsed_s = watch.ElapsedMs() / 1000.0;
+  if (on_progress) on_progress(progress);
+  close(lock);
+  return result;
+}
+
+}  // namespace attend
