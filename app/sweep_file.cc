@@ -30,7 +30,8 @@ const std::vector<std::string>& TopLevelKeys() {
 // scored by saliency).
 SweepCommand ReadCommand(const YamlDocument& document) {
   const YAML::Node& root = document.root();
-  std::string command = document.block().GetString("command", "");
+  const YAML::Node& given = root["command"];
+  std::string command = given.IsDefined() ? document.String(given, "command") : "";
   if (command.empty()) {
     bool fixations = false;
     if (root["inputs"] && root["inputs"].IsSequence()) {

@@ -180,6 +180,18 @@ SweepInput ReadInput(const YamlDocument& document, const YAML::Node& node, std::
 
 }  // namespace
 
+const char* SweepCommandName(SweepCommand command) {
+  switch (command) {
+    case SweepCommand::kRun:
+      return "run";
+    case SweepCommand::kTrack:
+      return "track";
+    case SweepCommand::kSaliency:
+      return "saliency";
+  }
+  return "run";
+}
+
 std::vector<SweepInput> ReadSweepInputs(const YamlDocument& document, SweepCommand command,
                                         const std::string& dir) {
   const YAML::Node inputs = document.root()["inputs"];

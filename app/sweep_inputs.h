@@ -7,10 +7,30 @@
 #include <string>
 #include <vector>
 
-#include "app/sweep_plan.h"
 #include "config/yaml_document.h"
 
 namespace attend {
+
+// What each cell runs: `attend run` scored by `attend eval`, `attend track` scored by
+// `attend eval-tracking`, or `attend saliency` scored by `attend eval-fixations`.
+enum class SweepCommand { kRun, kTrack, kSaliency };
+
+const char* SweepCommandName(SweepCommand command);
+
+struct SweepInput {
+  std::string name;  // unique among the inputs; part of the cells' folder names
+  // sequence, video, images, left (with right), side_by_side, fixations, or scene (a scene
+  // file rendered once into the sweep folder's scenes/, then a sequence); app/sweep_inputs.h
+  std::string kind;
+  std::string path;   // absolute; for a scene, the sequence it renders into
+  std::string scene;  // a scene's file
+  std::string right;  // the right video of a left/right pair
+  std::string gt;     // run: a gt/ folder; track: an OTB groundtruth_rect.txt; "" the default
+  std::string frames;  // FIRST:LAST, "" for all
+  int skip = 0;        // fixations: leave out the first N images (by id) ...
+  int first = 0;       // ... and take the next N (0: all)
+  std::string where;   // "FILE:LINE" of its entry
+};
 
 // Reads and checks the `inputs:` list: each entry's source exists and suits `command`, its
 // ground truth is there, and the names are unique. Scene inputs get the folder they render

@@ -174,18 +174,6 @@ std::vector<std::vector<std::string>> SaliencyCommands(const SweepPlan& plan, co
 
 }  // namespace
 
-const char* SweepCommandName(SweepCommand command) {
-  switch (command) {
-    case SweepCommand::kRun:
-      return "run";
-    case SweepCommand::kTrack:
-      return "track";
-    case SweepCommand::kSaliency:
-      return "saliency";
-  }
-  return "run";
-}
-
 void CheckSweepSettings(const SweepPlan& plan) {
   try {
     CheckConfiguration(plan.command, plan.config, plan.sets);

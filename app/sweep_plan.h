@@ -17,30 +17,10 @@
 #include <utility>
 #include <vector>
 
+#include "app/sweep_inputs.h"
 #include "util/option_fields.h"
 
 namespace attend {
-
-// What each cell runs: `attend run` scored by `attend eval`, `attend track` scored by
-// `attend eval-tracking`, or `attend saliency` scored by `attend eval-fixations`.
-enum class SweepCommand { kRun, kTrack, kSaliency };
-
-const char* SweepCommandName(SweepCommand command);
-
-struct SweepInput {
-  std::string name;  // unique among the inputs; part of the cells' folder names
-  // sequence, video, images, left (with right), side_by_side, fixations, or scene (a scene
-  // file rendered once into the sweep folder's scenes/, then a sequence); app/sweep_inputs.h
-  std::string kind;
-  std::string path;   // absolute; for a scene, the sequence it renders into
-  std::string scene;  // a scene's file
-  std::string right;  // the right video of a left/right pair
-  std::string gt;     // run: a gt/ folder; track: an OTB groundtruth_rect.txt; "" the default
-  std::string frames;  // FIRST:LAST, "" for all
-  int skip = 0;        // fixations: leave out the first N images (by id) ...
-  int first = 0;       // ... and take the next N (0: all)
-  std::string where;   // "FILE:LINE" of its entry
-};
 
 // One value of a swept key: YAML text in flow style, as `--set KEY=VALUE` takes it.
 using SweepSetting = std::pair<std::string, std::string>;
