@@ -43,8 +43,9 @@ std::string SegmentConfigPath() {
 }
 
 std::string TrackConfigPath(TrackerKind kind) {
-  if (kind != TrackerKind::kBip) return "";
-  return (fs::path(AttendHome()) / "configs" / "track.yaml").string();
+  const char* file = TrackerKindOf(kind).config_file;
+  if (file == nullptr) return "";
+  return (fs::path(AttendHome()) / "configs" / file).string();
 }
 
 std::string EnsureBundledSequence(bool quiet) {

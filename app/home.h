@@ -18,8 +18,8 @@ std::string DefaultConfigPath();
 std::string SegmentConfigPath();
 
 // The file that `attend track` and Python's attend.Tracker start a tracker of kind `kind` from:
-// configs/track.yaml below AttendHome() for the BIP (its bounded mode with the occlusion
-// rules), "" for the other kinds, whose options it does not set.
+// its row's config_file under configs/ below AttendHome() (configs/track.yaml for the BIP, its
+// bounded mode with the occlusion rules), "" for a kind without one.
 std::string TrackConfigPath(TrackerKind kind);
 
 // The bundled default sequence, rendered from sequences/lab.yaml on first use into

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <opencv2/imgproc.hpp>
 #include <system_error>
+#include <variant>
 
 #include "io/ground_truth.h"
 #include "io/image_file.h"
@@ -112,12 +113,11 @@ void StartOnBoxes(const TrackRequest& request, const StereoFrame& frame, TargetT
   for (size_t i = 0; i < boxes.size(); ++i) {
     const int id = tracker->StartFromBox(frame.left, boxes[i]);
     if (id >= 0) continue;
-    if (request.options.kind != TrackerKind::kBip) {
-      throw InputError(what(i) + ": the " + tracker->name() + " tracker cannot start on it");
-    }
-    throw InputError(what(i) +
-                     ": no target: no region of the frame's over-segmentation lies mostly inside "
-                     "the box, or the target is too thin for a template");
+    const char* why = TrackerKindOf(request.options.kind).no_target;
+    throw InputError(what(i) + ": " +
+                     (why != nullptr
+                          ? std::string(why)
+                          : "the " + std::string(tracker->name()) + " tracker cannot start on it"));
   }
 }
 
@@ -224,10 +224,10 @@ nlohmann::json TrackSequence(const TrackRequest& request,
                                   {"targets", boxes.size()},
                                   {"lost", lost},
                                   {"ms_per_frame", frames > 1 ? track_ms / (frames - 1) : 0.0}};
-  if (request.options.kind == TrackerKind::kBip) {
-    // Which BIP tracker: the mode and whether its occlusion rules were on.
-    summary["mode"] = TrackerModeName(request.options.bip.mode);
-    summary["occlusion"] = request.options.bip.occlusion;
+  // The kind's own settings (the BIP's mode and occlusion rules).
+  const TrackerKindInfo& kind = TrackerKindOf(request.options.kind);
+  for (const TrackerSetting& setting : kind.settings(request.options)) {
+    std::visit([&](const auto& value) { summary[setting.key] = value; }, setting.value);
   }
   // The same summary beside tracks.csv, so that the folder says which kind tracked.
   WriteSummary((out / "track.json").string(), summary);

@@ -132,13 +132,13 @@ void VisitTracker(AttendOptions* o, Visitor& v) {
   v.BeginSection("tracker");
   TargetTrackerOptions& t = o->attention.tracker;
   v.Fields(&t, TargetTrackerOptions::Fields());
-  v.Fields(&t.bip, TrackerOptions::Fields());
-  v.Fields(&t.opencv, OpenCvTrackerOptions::Fields());
+  ForEachTrackerOptionBlock([&](auto block, const auto& fields) { v.Fields(&(t.*block), fields); });
   if constexpr (Visitor::kChecks) {
     const TrackerKindInfo& chosen = TrackerKindOf(t.kind);
     const TargetTrackerOptions defaults;
-    CheckOwnedKeys(t.bip, defaults.bip, TrackerOptions::Fields(), chosen, v);
-    CheckOwnedKeys(t.opencv, defaults.opencv, OpenCvTrackerOptions::Fields(), chosen, v);
+    ForEachTrackerOptionBlock([&](auto block, const auto& fields) {
+      CheckOwnedKeys(t.*block, defaults.*block, fields, chosen, v);
+    });
   }
   v.EndSection([o] { return o->attention.Check(); });
 }

@@ -1,5 +1,7 @@
 // The bip kind of TargetTracker: MultiTracker (tracker/tracker.h) as it is.
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "tracker/tracker_kinds.h"
 
@@ -38,10 +40,38 @@ class BipTargetTracker final : public TargetTracker {
   MultiTracker tracker_;
 };
 
+bool UsesBipKey(std::string_view key) { return HasKey(TrackerOptions::Fields(), key); }
+
+std::string CheckBip(const TargetTrackerOptions& options) { return options.bip.Check(); }
+
+// Which BIP tracker: the mode and whether its occlusion rules were on.
+std::vector<TrackerSetting> BipSettings(const TargetTrackerOptions& options) {
+  return {{"mode", std::string(TrackerModeName(options.bip.mode))},
+          {"occlusion", options.bip.occlusion}};
+}
+
+std::unique_ptr<TargetTracker> CreateBip(const TargetTrackerOptions& options) {
+  return std::make_unique<BipTargetTracker>(options.bip);
+}
+
 }  // namespace
 
-std::unique_ptr<TargetTracker> CreateBipTracker(const TargetTrackerOptions& options) {
-  return std::make_unique<BipTargetTracker>(options.bip);
+const TrackerKindInfo& BipKind() {
+  static const TrackerKindInfo row = {
+      .kind = TrackerKind::kBip,
+      .name = "bip",
+      .colour_similarity = "hsv",
+      .skin_similarity = "skin",
+      .uses_key = &UsesBipKey,
+      .check = &CheckBip,
+      // The bounded mode with its occlusion rules.
+      .config_file = "track.yaml",
+      .no_target =
+          "no target: no region of the frame's over-segmentation lies mostly inside the "
+          "box, or the target is too thin for a template",
+      .settings = &BipSettings,
+      .create = &CreateBip};
+  return row;
 }
 
 }  // namespace attend

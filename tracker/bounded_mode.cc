@@ -1,217 +1,222 @@
-// What TrackerMode::kBounded adds to the thesis's tracker (tracker_impl.h; docs/TRACKING.md,
-// "Modes"): the distinctive colour weights, the grey appearance and its redetection, the
-// plausible box that bounds the refinement and the smoothed box.
+// The bounded mode (TrackerMode::kBounded; docs/TRACKING.md, "Modes"): the thesis's tracker
+// for real footage. Its search weighs the overlap by a motion prior and the target's grey
+// appearance and refines a coarse match at level 0; its refinement and box are bounded by
+// where the target can plausibly be (BoundedRefinement); its template weights count by how
+// distinctive their colour is; with the occlusion rules, a match that does not look like the
+// target is an occlusion, and a target not found is searched for by its appearance.
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-#include "tracker/tracker_impl.h"
-#include "util/error.h"
+#include "tracker/appearance_model.h"
+#include "tracker/bounded_refinement.h"
+#include "tracker/refinement.h"
+#include "tracker/template_search.h"
+#include "tracker/tracker_mode.h"
 
 namespace attend {
+namespace tracker_internal {
 
-using namespace tracker_internal;
+namespace {
 
-void MultiTracker::Impl::LearnDistinct(const Hierarchy& h, Target* target) const {
-  if (!options.distinctive_weights || target->similarity != TrackSimilarity::kColour ||
-      target->mask.empty()) {
-    return;
+class BoundedMode final : public ModePolicy {
+ public:
+  explicit BoundedMode(const TrackerOptions& options)
+      : options_(options), appearance_(options), refinement_(options) {}
+
+  TrackFrame Frame(const cv::Mat& bgr, const cv::Mat& cylinder) override {
+    if (!options_.appearance) return {bgr, cylinder, cv::Mat()};
+    cv::cvtColor(bgr, grey_, cv::COLOR_BGR2GRAY);
+    return {bgr, cylinder, grey_};
   }
-  fg_.assign(kColourBins, 0.f);
-  bg_.assign(kColourBins, 0.f);
-  const BipLevel& base = h.bip->level(0);
-  const cv::Rect roi = target->roi & cv::Rect(h.origin, h.size);
-  float nf = 0.f, nb = 0.f;
-  for (int y = roi.y; y < roi.y + roi.height; ++y) {
-    const uchar* m = target->mask.ptr<uchar>(y);
-    const int row = (y - h.origin.y) * base.cols - h.origin.x;
-    for (int x = roi.x; x < roi.x + roi.width; ++x) {
-      const int cell = row + x;
-      const int bin = ColourBin(base.Feature(cell));
-      if (m[x]) {
-        fg_[bin] += 1.f, nf += 1.f;
-      } else if (!target->box.contains({x, y})) {
-        bg_[bin] += 1.f, nb += 1.f;
-      }
+
+  // A user's box says where the object is, and a multi-coloured object's parts need not be
+  // regions that lie mostly inside it.
+  bool BoxIsTarget() const override { return true; }
+  // An over-segmentation region mostly in the mask may still reach far beyond it.
+  cv::Rect StartBounds(const cv::Mat& mask, cv::Size) const override {
+    return cv::boundingRect(mask);
+  }
+  void Start(const cv::Mat& frame, const Hierarchy& h, const cv::Rect& built,
+             Target* target) override {
+    if (target->similarity != TrackSimilarity::kColour) return;
+    target->roi = built;
+    appearance_.LearnDistinct(h, target);
+    if (options_.appearance) {
+      cv::cvtColor(frame, grey_, cv::COLOR_BGR2GRAY);
+      appearance_.LearnGrey(grey_, target);
     }
   }
-  if (nf <= 0.f) return;
-  const bool first = target->distinct.empty();
-  if (first) target->distinct.assign(kColourBins, 1.f);
-  for (int b = 0; b < kColourBins; ++b) {
-    const float f = fg_[b] / nf, g = nb > 0.f ? bg_[b] / nb : 0.f;
-    const float d = f + g > 0.f ? f / (f + g) : 0.5f;
-    float& w = target->distinct[b];
-    w = first ? d : (1.f - options.distinct_rate) * w + options.distinct_rate * d;
-  }
-}
 
-bool MultiTracker::Impl::Correlate(const Target& target, const cv::Rect& area,
-                                   cv::Mat* correlation) const {
-  if (options.mode != TrackerMode::kBounded || !options.appearance || target.appearance.empty() ||
-      grey_.empty()) {
-    return false;
+  void Track(const TrackFrame& frame, const Hierarchy* h, int pyramid_levels, Target* target,
+             TrackResult* result) override {
+    std::vector<uint8_t> in_target(h != nullptr ? h->regions : 0, 0);
+    Match match;
+    bool correlated = false;  // whether the appearance scored the search
+    if (h != nullptr) {
+      correlated = appearance_.Correlate(frame.grey, *target, target->roi, &correlation_);
+      match = Localise(*target, *h, correlated, &in_target);
+    }
+    result->overlap = match.overlap;
+    // With the occlusion rules and an appearance model: a match whose correlation falls well
+    // under the target's typical one is an occluder or the background taking its place.
+    const double typical = target->appearance.typical_correlation;
+    const bool judged = options_.occlusion && match.found && correlated && typical > 0.0;
+    if (!match.found || (judged && match.correlation < options_.occlusion_ratio * typical)) {
+      Missed(frame, target, result);
+      return;
+    }
+    // Under occlusion_gate the box moves, but the target learns nothing of the place.
+    const bool learn = !(judged && match.correlation < options_.occlusion_gate * typical);
+    Found(frame, *h, match, pyramid_levels, &in_target, target, result);
+    if (learn) Learn(frame, *h, correlated, match.correlation, target);
   }
-  const cv::Rect& box = target.box;
-  if (box.width < 2 || box.height < 2 || area.width < box.width || area.height < box.height) {
-    return false;
-  }
-  cv::resize(target.appearance, model_, box.size(), 0, 0, cv::INTER_LINEAR);
-  grey_(area).convertTo(patch_, CV_32F);
-  cv::matchTemplate(patch_, model_, *correlation, cv::TM_CCOEFF_NORMED);
-  return true;
-}
 
-double MultiTracker::Impl::CorrelationAt(const cv::Point& d, int l) const {
-  const int x = (d.x << l) + box_to_roi_.x, y = (d.y << l) + box_to_roi_.y;
-  if (x < 0 || y < 0 || x >= correlation_.cols || y >= correlation_.rows) return 0.0;
-  return correlation_.at<float>(y, x);
-}
+ private:
+  // Top-down localisation (4.2.3) with the bounded mode's scoring; a match at a coarse level
+  // is then refined at level 0 (AtLevelZero). Marks the matched ROI vertices' regions in
+  // `in_target` (the first stage of 4.2.4).
+  Match Localise(const Target& target, const Hierarchy& h, bool correlated,
+                 std::vector<uint8_t>* in_target) {
+    SearchScoring scoring;
+    scoring.t_colour = options_.t_colour;
+    scoring.min_overlap = options_.bounded_min_overlap;
+    scoring.motion_sigma = options_.motion_sigma;
+    scoring.appearance = correlated ? &correlation_ : nullptr;
+    scoring.appearance_share = options_.appearance_share;
+    scoring.min_score = options_.min_score;
+    const int working = WorkingLevel(target.levels, options_.working_area);
+    for (int l = std::min(working, h.bip->num_levels() - 1); l >= 0; --l) {
+      Match match = search_.SearchLevel(target, h, l, nullptr, scoring);
+      if (!match.found) continue;
+      if (l > 0) match = AtLevelZero(target, h, match, scoring);
+      MarkMatched(target.levels[match.level], h, match.level, match.displacement, options_.t_colour,
+                  in_target);
+      return match;
+    }
+    return {};
+  }
 
-double MultiTracker::Impl::MeanDistinct(const Target& target, const cv::Rect& box) const {
-  const cv::Rect inside = box & cv::Rect(0, 0, frame_.cols, frame_.rows);
-  if (target.distinct.empty() || inside.empty()) return -1.0;
-  // The caller's cylinder image when it gave one, else converted here (the same values).
-  cv::Mat cylinder;
-  if (frame_cylinder_.empty()) {
-    BgrToCylinder(frame_(inside), &cylinder_);
-    cylinder = cylinder_;
-  } else {
-    cylinder = frame_cylinder_(inside);
+  // A match at a coarse level searched again at level 0 within one coarse cell of it, so that
+  // the motion and the matched vertices are those of level 0 (a coarse cell of 2^l pixels
+  // otherwise rounds the motion by up to 2^l pixels). Any overlap is accepted there.
+  Match AtLevelZero(const Target& target, const Hierarchy& h, const Match& coarse,
+                    SearchScoring scoring) {
+    const int cell = 1 << coarse.level;
+    const cv::Rect window(coarse.displacement.x * cell - cell, coarse.displacement.y * cell - cell,
+                          2 * cell + 1, 2 * cell + 1);
+    scoring.min_overlap = 0.0;
+    const Match fine = search_.SearchLevel(target, h, 0, &window, scoring);
+    if (fine.found) return fine;
+    // The coarse match stands, but the correlation judged with it (occlusion rules, typical
+    // correlation) is that of the level-0 search's best displacement when the appearance
+    // scored one: so the tracker has always judged it, and its records depend on it.
+    Match match = coarse;
+    if (fine.scored) match.correlation = fine.correlation;
+    return match;
   }
-  double sum = 0.0;
-  for (int y = 0; y < cylinder.rows; ++y) {
-    const float* f = cylinder.ptr<float>(y);
-    for (int x = 0; x < cylinder.cols; ++x) sum += target.distinct[ColourBin(f + 3 * x)];
-  }
-  return sum / inside.area();
-}
 
-void MultiTracker::Impl::LearnAppearance(Target* target) const {
-  if (!options.appearance || target->similarity != TrackSimilarity::kColour || grey_.empty()) {
-    return;
+  // A target found at `match`: its box first (bounded and smoothed), then its pixels and
+  // template inside that box only.
+  void Found(const TrackFrame& frame, const Hierarchy& h, const Match& match, int pyramid_levels,
+             std::vector<uint8_t>* in_target, Target* target, TrackResult* result) {
+    const cv::Rect image(0, 0, frame.bgr.cols, frame.bgr.rows);
+    const cv::Point shift(match.displacement.x << match.level, match.displacement.y << match.level);
+    cv::Rect keep = target->roi;
+    const cv::Rect plausible = refinement_.BoundTarget(h, *target, shift, image, in_target);
+    PaintTarget(h, *in_target, plausible, frame.bgr.size(), &target->mask);
+    const cv::Rect mask_box = cv::boundingRect(target->mask(plausible)) + plausible.tl();
+    if (!mask_box.empty()) {
+      cv::Rect2d smooth;
+      keep = refinement_.SmoothBox(*target, shift, mask_box, plausible, image, &smooth);
+      target->smooth = smooth;
+      target->box = keep;
+    }
+    result->area =
+        TakeFound(h, *in_target, keep, shift, pyramid_levels, options_, frame.bgr.size(), target);
+    result->state = TrackState::kFound;
+    result->level = match.level;
   }
-  const cv::Rect box = target->box & cv::Rect(0, 0, grey_.cols, grey_.rows);
-  if (box.width < 2 || box.height < 2) return;
-  grey_(box).convertTo(patch_, CV_32F);
-  if (!target->appearance_judged) {
-    target->appearance_judged = true;
-    // A flat patch's correlation is noise (and OpenCV gives a flat model 1 everywhere): a
-    // target without texture when it starts has no appearance model.
-    cv::Scalar mean, deviation;
-    cv::meanStdDev(patch_, mean, deviation);
-    if (deviation[0] >= kMinAppearanceDeviation) target->appearance = patch_.clone();
-    return;
-  }
-  if (target->appearance.empty()) return;
-  cv::resize(patch_, patch_, target->appearance.size(), 0, 0, cv::INTER_AREA);
-  cv::addWeighted(target->appearance, 1.0 - options.appearance_rate, patch_,
-                  options.appearance_rate, 0.0, target->appearance);
-}
 
-void MultiTracker::Impl::Redetect(Target* target) {
-  if (target->typical_correlation <= 0.0) return;
-  const cv::Rect& box = target->box;
-  const int gx = static_cast<int>(std::lround(options.redetect_range * box.width));
-  const int gy = static_cast<int>(std::lround(options.redetect_range * box.height));
-  const cv::Rect area = cv::Rect(box.x - gx, box.y - gy, box.width + 2 * gx, box.height + 2 * gy) &
-                        cv::Rect(0, 0, grey_.cols, grey_.rows);
-  cv::Mat correlation;
-  if (!Correlate(*target, area, &correlation)) return;
-  double best = 0.0;
-  cv::Point at;
-  cv::minMaxLoc(correlation, nullptr, &best, nullptr, &at);
-  if (best < options.redetect_ratio * target->typical_correlation) return;
-  const cv::Point shift = area.tl() + at - box.tl();
-  // The grey correlation does not see colour: the place must also have the target's
-  // distinctive colours, by the same share of their typical mean.
-  if (target->typical_distinct > 0.0 &&
-      MeanDistinct(*target, box + shift) < options.redetect_ratio * target->typical_distinct) {
-    return;
-  }
-  for (size_t l = 0; l < target->levels.size(); ++l) {
-    target->levels[l].cells.x +=
-        static_cast<int>(std::lround(shift.x / static_cast<double>(1 << l)));
-    target->levels[l].cells.y +=
-        static_cast<int>(std::lround(shift.y / static_cast<double>(1 << l)));
-  }
-  target->box += shift;
-  target->smooth.x += shift.x;
-  target->smooth.y += shift.y;
-  target->centroid += cv::Point2f(shift);
-}
-
-cv::Rect MultiTracker::Impl::BoundTarget(const Hierarchy& h, const Target& target, cv::Point shift,
-                                         const cv::Rect& image,
-                                         std::vector<uint8_t>* in_target) const {
-  const cv::Rect moved = target.box + shift;
-  const int gx = std::max(2, static_cast<int>(std::lround(options.bound_growth * moved.width)));
-  const int gy = std::max(2, static_cast<int>(std::lround(options.bound_growth * moved.height)));
-  const cv::Rect plausible =
-      cv::Rect(moved.x - gx, moved.y - gy, moved.width + 2 * gx, moved.height + 2 * gy) &
-      target.roi & image;
-  const std::vector<uint8_t> matched = *in_target;
-  Refine(h, plausible, in_target);
-  region_inside_.assign(h.regions, 0);
-  region_all_.assign(h.regions, 0);
-  const BipLevel& base = h.bip->level(0);
-  const cv::Rect roi = target.roi & cv::Rect(h.origin, h.size);
-  for (int y = roi.y; y < roi.y + roi.height; ++y) {
-    const int row = (y - h.origin.y) * base.cols - h.origin.x;
-    const bool y_in = y >= moved.y && y < moved.y + moved.height;
-    for (int x = roi.x; x < roi.x + roi.width; ++x) {
-      const int cell = row + x;
-      if (!base.hom[cell]) continue;
-      const int r = h.region[0][cell];
-      if (r < 0 || !(*in_target)[r]) continue;
-      ++region_all_[r];
-      if (y_in && x >= moved.x && x < moved.x + moved.width) ++region_inside_[r];
+  // What a found target learns of its looks: its distinctive colours and grey model, and,
+  // when the appearance scored the search, the typical correlation (from the match's) and the
+  // typical distinctiveness of its box.
+  void Learn(const TrackFrame& frame, const Hierarchy& h, bool correlated, double correlation,
+             Target* target) {
+    appearance_.LearnDistinct(h, target);
+    appearance_.LearnGrey(frame.grey, target);
+    if (!correlated) return;
+    TargetAppearance& a = target->appearance;
+    a.typical_correlation = a.typical_correlation == 0.0
+                                ? correlation
+                                : 0.9 * a.typical_correlation + 0.1 * correlation;
+    const double distinct = appearance_.MeanDistinct(frame, *target, target->box);
+    if (distinct >= 0.0) {
+      a.typical_distinct =
+          a.typical_distinct == 0.0 ? distinct : 0.9 * a.typical_distinct + 0.1 * distinct;
     }
   }
-  bool any = false;
-  for (int r = 0; r < h.regions; ++r) {
-    if (!(*in_target)[r]) continue;
-    (*in_target)[r] = 2 * region_inside_[r] >= region_all_[r];
-    any = any || (*in_target)[r];
+
+  // A target not found (4.2.7). With the occlusion rules, one with an appearance model forgets
+  // at occlusion_alpha: it outlasts an occlusion longer, and its model can find it again when
+  // it comes out (Redetect).
+  void Missed(const TrackFrame& frame, Target* target, TrackResult* result) {
+    const float alpha =
+        options_.occlusion && options_.appearance && !target->appearance.grey.empty()
+            ? options_.occlusion_alpha
+            : options_.alpha;
+    TakeMissed(alpha, options_.EpsilonMaxPixels(frame.bgr.cols), target);
+    if (!target->levels.empty()) Redetect(frame, target);
+    result->state = target->levels.empty() ? TrackState::kLost : TrackState::kOccluded;
   }
-  // When every region reaches out, the matched regions are kept, cut to the box.
-  if (!any) *in_target = matched;
-  return plausible;
+
+  // A target not found is searched for by its grey model within `redetect_range` box sides of
+  // its box; where it correlates by `redetect_ratio` of its typical correlation or more (and
+  // its distinctive colours are there by the same share), the box and the template move there.
+  // The target is still not found in this frame; the next frame's search starts there.
+  void Redetect(const TrackFrame& frame, Target* target) {
+    const TargetAppearance& a = target->appearance;
+    if (a.typical_correlation <= 0.0) return;
+    const cv::Rect& box = target->box;
+    const int gx = static_cast<int>(std::lround(options_.redetect_range * box.width));
+    const int gy = static_cast<int>(std::lround(options_.redetect_range * box.height));
+    const cv::Rect area =
+        cv::Rect(box.x - gx, box.y - gy, box.width + 2 * gx, box.height + 2 * gy) &
+        cv::Rect(0, 0, frame.grey.cols, frame.grey.rows);
+    CorrelationMap map;
+    if (!appearance_.Correlate(frame.grey, *target, area, &map)) return;
+    double best = 0.0;
+    cv::Point at;
+    cv::minMaxLoc(map.zncc, nullptr, &best, nullptr, &at);
+    if (best < options_.redetect_ratio * a.typical_correlation) return;
+    const cv::Point shift = area.tl() + at - box.tl();
+    // The grey correlation does not see colour: the place must also have the target's
+    // distinctive colours, by the same share of their typical mean.
+    if (a.typical_distinct > 0.0 && appearance_.MeanDistinct(frame, *target, box + shift) <
+                                        options_.redetect_ratio * a.typical_distinct) {
+      return;
+    }
+    MoveTemplate(shift, &target->levels);
+    target->box += shift;
+    target->smooth.x += shift.x;
+    target->smooth.y += shift.y;
+    target->centroid += cv::Point2f(shift);
+  }
+
+  TrackerOptions options_;
+  AppearanceModel appearance_;
+  BoundedRefinement refinement_;
+  TemplateSearch search_;
+  // Buffers reused from call to call; no call reads what another left in them.
+  cv::Mat grey_;                // the frame in grey (Frame, Start)
+  CorrelationMap correlation_;  // the target's model over its ROI (Track)
+};
+
+}  // namespace
+
+std::unique_ptr<ModePolicy> MakeBoundedMode(const TrackerOptions& options) {
+  return std::make_unique<BoundedMode>(options);
 }
 
-cv::Rect MultiTracker::Impl::SmoothBox(const Target& target, cv::Point shift, cv::Rect mask_box,
-                                       const cv::Rect& plausible, const cv::Rect& image,
-                                       cv::Rect2d* smooth) const {
-  const cv::Rect moved = target.box + shift;
-  // The unrounded box moved as the rounded one: only its size and sub-pixel offset carry.
-  const cv::Rect2d last = target.smooth.area() > 0 ? target.smooth : cv::Rect2d(target.box);
-  const cv::Rect2d moved_smooth(last.x + shift.x, last.y + shift.y, last.width, last.height);
-  int x0 = mask_box.x, y0 = mask_box.y;
-  int x1 = mask_box.x + mask_box.width, y1 = mask_box.y + mask_box.height;
-  if (x0 <= plausible.x && plausible.x > 0) x0 = std::max(x0, moved.x);
-  if (y0 <= plausible.y && plausible.y > 0) y0 = std::max(y0, moved.y);
-  if (x1 >= plausible.x + plausible.width && x1 < image.width) {
-    x1 = std::min(x1, moved.x + moved.width);
-  }
-  if (y1 >= plausible.y + plausible.height && y1 < image.height) {
-    y1 = std::min(y1, moved.y + moved.height);
-  }
-  if (x1 <= x0 || y1 <= y0) return moved & image;
-  const double rate = options.size_rate;
-  const double w = (1 - rate) * moved_smooth.width + rate * (x1 - x0);
-  const double hgt = (1 - rate) * moved_smooth.height + rate * (y1 - y0);
-  const double crate = options.centre_rate;
-  const double cx =
-      (1 - crate) * (moved_smooth.x + moved_smooth.width / 2.0) + crate * (x0 + x1) / 2.0;
-  const double cy =
-      (1 - crate) * (moved_smooth.y + moved_smooth.height / 2.0) + crate * (y0 + y1) / 2.0;
-  *smooth = cv::Rect2d(cx - w / 2, cy - hgt / 2, std::max(1.0, w), std::max(1.0, hgt));
-  cv::Rect box(static_cast<int>(std::lround(cx - w / 2)),
-               static_cast<int>(std::lround(cy - hgt / 2)),
-               std::max(1, static_cast<int>(std::lround(w))),
-               std::max(1, static_cast<int>(std::lround(hgt))));
-  box &= image;
-  return box.empty() ? (moved & image) : box;
-}
-
+}  // namespace tracker_internal
 }  // namespace attend

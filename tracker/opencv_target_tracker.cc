@@ -17,11 +17,12 @@ class OpenCvTargetTracker final : public TargetTracker {
  public:
   // Loads the optional OpenCV module (util/opencv_extra.h) at once, so that a missing one is
   // reported before the run starts.
-  OpenCvTargetTracker(TrackerKind kind, const OpenCvTrackerOptions& options)
+  OpenCvTargetTracker(TrackerKind kind, cvextra::TrackerType type,
+                      const OpenCvTrackerOptions& options)
       : kind_(kind),
+        type_(type),
         options_(options),
-        opencv_(&cvextra::Get(std::string("tracker.kind ") +
-                              (kind == TrackerKind::kKcf ? "kcf" : "csrt"))) {}
+        opencv_(&cvextra::Get(std::string("tracker.kind ") + TrackerKindName(kind))) {}
 
   int StartFromBox(const cv::Mat& frame, const cv::Rect& box, TrackSimilarity,
                    const cv::Mat&) override {
@@ -103,9 +104,7 @@ class OpenCvTargetTracker final : public TargetTracker {
   };
 
   std::unique_ptr<cvextra::Tracker> MakeTracker() const {
-    return opencv_->CreateTracker(
-        kind_ == TrackerKind::kKcf ? cvextra::TrackerType::kKcf : cvextra::TrackerType::kCsrt,
-        options_.kcf_detect_thresh);
+    return opencv_->CreateTracker(type_, options_.kcf_detect_thresh);
   }
 
   // The start shape resized to `box` and placed there, in a mask of `size`.
@@ -134,6 +133,7 @@ class OpenCvTargetTracker final : public TargetTracker {
   }
 
   TrackerKind kind_;
+  cvextra::TrackerType type_;
   OpenCvTrackerOptions options_;
   cvextra::Module* opencv_;
   std::map<int, Target> targets_;
@@ -141,14 +141,51 @@ class OpenCvTargetTracker final : public TargetTracker {
   double milliseconds_ = 0.0;
 };
 
-}  // namespace
+bool UsesKcfKey(std::string_view key) { return HasKey(OpenCvTrackerOptions::Fields(), key); }
+bool UsesCsrtKey(std::string_view key) { return key == "lost_frames"; }
 
-std::unique_ptr<TargetTracker> CreateKcfTracker(const TargetTrackerOptions& options) {
-  return std::make_unique<OpenCvTargetTracker>(TrackerKind::kKcf, options.opencv);
+std::string CheckOpenCv(const TargetTrackerOptions& options) { return options.opencv.Check(); }
+
+std::vector<TrackerSetting> NoSettings(const TargetTrackerOptions&) { return {}; }
+
+std::unique_ptr<TargetTracker> CreateKcf(const TargetTrackerOptions& options) {
+  return std::make_unique<OpenCvTargetTracker>(TrackerKind::kKcf, cvextra::TrackerType::kKcf,
+                                               options.opencv);
 }
 
-std::unique_ptr<TargetTracker> CreateCsrtTracker(const TargetTrackerOptions& options) {
-  return std::make_unique<OpenCvTargetTracker>(TrackerKind::kCsrt, options.opencv);
+std::unique_ptr<TargetTracker> CreateCsrt(const TargetTrackerOptions& options) {
+  return std::make_unique<OpenCvTargetTracker>(TrackerKind::kCsrt, cvextra::TrackerType::kCsrt,
+                                               options.opencv);
+}
+
+}  // namespace
+
+const TrackerKindInfo& KcfKind() {
+  static const TrackerKindInfo row = {.kind = TrackerKind::kKcf,
+                                      .name = "kcf",
+                                      .colour_similarity = "appearance",
+                                      .skin_similarity = "appearance",
+                                      .uses_key = &UsesKcfKey,
+                                      .check = &CheckOpenCv,
+                                      .config_file = nullptr,
+                                      .no_target = nullptr,
+                                      .settings = &NoSettings,
+                                      .create = &CreateKcf};
+  return row;
+}
+
+const TrackerKindInfo& CsrtKind() {
+  static const TrackerKindInfo row = {.kind = TrackerKind::kCsrt,
+                                      .name = "csrt",
+                                      .colour_similarity = "appearance",
+                                      .skin_similarity = "appearance",
+                                      .uses_key = &UsesCsrtKey,
+                                      .check = &CheckOpenCv,
+                                      .config_file = nullptr,
+                                      .no_target = nullptr,
+                                      .settings = &NoSettings,
+                                      .create = &CreateCsrt};
+  return row;
 }
 
 }  // namespace attend

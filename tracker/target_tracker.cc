@@ -8,21 +8,9 @@
 
 namespace attend {
 
-namespace {
-
-bool UsesBipKeys(std::string_view key) { return HasKey(TrackerOptions::Fields(), key); }
-bool UsesKcfKeys(std::string_view key) { return HasKey(OpenCvTrackerOptions::Fields(), key); }
-bool UsesCsrtKeys(std::string_view key) { return key == "lost_frames"; }
-
-}  // namespace
-
 const std::vector<TrackerKindInfo>& TrackerKinds() {
-  // One row a kind. The record's similarity: that of a colour target, then of a skin target.
-  static const std::vector<TrackerKindInfo> kinds = {
-      {TrackerKind::kBip, "bip", "hsv", "skin", &UsesBipKeys, &CreateBipTracker},
-      {TrackerKind::kKcf, "kcf", "appearance", "appearance", &UsesKcfKeys, &CreateKcfTracker},
-      {TrackerKind::kCsrt, "csrt", "appearance", "appearance", &UsesCsrtKeys, &CreateCsrtTracker},
-  };
+  // One row a kind, each from its kind's file (tracker_kinds.h).
+  static const std::vector<TrackerKindInfo> kinds = {BipKind(), KcfKind(), CsrtKind()};
   return kinds;
 }
 
@@ -79,9 +67,7 @@ const OptionFields<TargetTrackerOptions>& TargetTrackerOptions::Fields() {
   return fields;
 }
 
-std::string TargetTrackerOptions::Check() const {
-  return kind == TrackerKind::kBip ? bip.Check() : opencv.Check();
-}
+std::string TargetTrackerOptions::Check() const { return TrackerKindOf(kind).check(*this); }
 
 int TargetTracker::StartFromRegion(const cv::Mat& frame, const cv::Mat& labels, int region,
                                    TrackSimilarity similarity, const cv::Mat& skin) {

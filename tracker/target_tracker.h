@@ -31,14 +31,16 @@
 #include <opencv2/core.hpp>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "tracker/tracker.h"
 
 namespace attend {
 
-// The tracker kinds. Adding one: a value here, its class and factory in a file of its own
-// (as opencv_target_tracker.cc), and its row in TrackerKinds() (target_tracker.cc).
+// The tracker kinds. Adding one (CONTRIBUTING.md, "A tracker kind"): a value here, its class
+// and its row (TrackerKindInfo) in a file of its own (as opencv_target_tracker.cc), the row's
+// function declared in tracker_kinds.h and listed in TrackerKinds() (target_tracker.cc).
 enum class TrackerKind { kBip, kKcf, kCsrt };
 // "bip", "kcf", "csrt" (the tracker.kind key and the records).
 const char* TrackerKindName(TrackerKind kind);
@@ -75,17 +77,44 @@ struct TargetTrackerOptions {
   static const OptionFields<TargetTrackerOptions>& Fields();
 };
 
+// Every option block of TargetTrackerOptions with its field table, in the tracker section's
+// order: visit(member, fields) for each. The configuration binds the blocks from here
+// (VisitTracker, pipeline/options_io.cc); a kind's row says which keys of them it reads.
+template <typename Visit>
+void ForEachTrackerOptionBlock(Visit&& visit) {
+  visit(&TargetTrackerOptions::bip, TrackerOptions::Fields());
+  visit(&TargetTrackerOptions::opencv, OpenCvTrackerOptions::Fields());
+}
+
 class TargetTracker;
 
-// A tracker kind's row: its name, what the records call its similarity, which keys of the
-// configuration's tracker section it reads (its option block: TrackerOptions for bip,
-// OpenCvTrackerOptions for the OpenCV kinds) and its factory.
+// A setting of its kind's options that `attend track` reports in its summary (track.json).
+struct TrackerSetting {
+  std::string key;
+  std::variant<std::string, bool> value;
+};
+
+// A tracker kind's row: everything that differs by kind outside its class. Each kind's file
+// defines its row (tracker_kinds.h).
 struct TrackerKindInfo {
   TrackerKind kind;
-  const char* name;
+  const char* name;               // tracker.kind's value, the records' and attend track's
   const char* colour_similarity;  // the record's similarity of a colour target
   const char* skin_similarity;    // ... and of a skin target
+  // Which keys of the configuration's tracker section it reads (of its option block:
+  // TrackerOptions for bip, OpenCvTrackerOptions for the OpenCV kinds); the others are refused
+  // unless at their defaults while it is chosen.
   bool (*uses_key)(std::string_view key);
+  // Its options' check: "" when valid, otherwise the field and the broken constraint.
+  std::string (*check)(const TargetTrackerOptions& options);
+  // The file under configs/ that `attend track` and attend.Tracker start it from (TrackConfigPath,
+  // app/home.h); nullptr: the options' defaults.
+  const char* config_file;
+  // Why a start on a box gave no target, for attend track's error; nullptr: "the <name> tracker
+  // cannot start on it".
+  const char* no_target;
+  // The settings attend track's summary reports.
+  std::vector<TrackerSetting> (*settings)(const TargetTrackerOptions& options);
   std::unique_ptr<TargetTracker> (*create)(const TargetTrackerOptions& options);
 };
 // Every kind, one row each.

@@ -16,7 +16,6 @@
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "util/option_fields.h"
@@ -24,13 +23,11 @@
 namespace attend {
 
 // Which tracker: the thesis's as written (chapter 4), or the variant for real footage whose
-// refinement and box are bounded (docs/TRACKING.md, "Modes").
+// refinement and box are bounded (docs/TRACKING.md, "Modes"). Each is a policy of its own,
+// chosen when the tracker is made (tracker_mode.h: thesis_mode.cc, bounded_mode.cc).
 enum class TrackerMode { kThesis, kBounded };
 // "thesis", "bounded" (the tracker.mode key).
 const char* TrackerModeName(TrackerMode mode);
-const std::vector<std::string>& TrackerModeNames();
-// The mode called `name`; false when there is none.
-bool TrackerModeFromName(std::string_view name, TrackerMode* mode);
 
 struct TrackerOptions {
   TrackerMode mode = TrackerMode::kThesis;

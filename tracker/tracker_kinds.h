@@ -1,15 +1,13 @@
-// The factories of the tracker kinds, one file each; TrackerKinds() (target_tracker.cc) lists
-// them. Not part of the public API.
+// The rows of the tracker kinds (TrackerKindInfo), each defined in its kind's file beside its
+// class; TrackerKinds() (target_tracker.cc) lists them. Not part of the public API.
 #pragma once
-
-#include <memory>
 
 #include "tracker/target_tracker.h"
 
 namespace attend {
 
-std::unique_ptr<TargetTracker> CreateBipTracker(const TargetTrackerOptions& options);
-std::unique_ptr<TargetTracker> CreateKcfTracker(const TargetTrackerOptions& options);
-std::unique_ptr<TargetTracker> CreateCsrtTracker(const TargetTrackerOptions& options);
+const TrackerKindInfo& BipKind();   // bip_target_tracker.cc
+const TrackerKindInfo& KcfKind();   // opencv_target_tracker.cc
+const TrackerKindInfo& CsrtKind();  // opencv_target_tracker.cc
 
 }  // namespace attend

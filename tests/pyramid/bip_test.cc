@@ -170,9 +170,9 @@ TEST(Bip, BuilderReuseGivesTheSameResultAsAFreshBuilder) {
   EXPECT_EQ(cv::countNonZero(labels_reused != labels_fresh), 0);
 }
 
-// The tracker builds the pyramid over a union of masked windows in parts (tracker/tracker.cc):
-// each part a crop with its origin on a multiple of 64, apart from the others by pixels outside
-// the mask, with the whole image's threshold schedule. Each part must segment its pixels exactly
+// The tracker builds the pyramid over a union of masked windows in parts
+// (tracker/roi_pyramid.cc): each part a crop with its origin on a multiple of 64, apart from the
+// others by pixels outside the mask, with the whole image's threshold schedule. Each part must segment its pixels exactly
 // as the pyramid over the whole masked image does.
 TEST(Bip, SeparatedMaskedPartsSegmentAsInTheWholeImageWithItsSchedule) {
   cv::Mat image(200, 300, CV_8UC3);

@@ -116,6 +116,26 @@ TEST(TargetTracker, InvalidOptionsOfTheChosenKindAreConfigErrors) {
   EXPECT_NE(options.Check().find("alpha"), std::string::npos) << options.Check();
 }
 
+// What the rows say beyond the class: the file attend track starts a kind from, why a start
+// gave no target, and the settings its summary reports.
+TEST(TargetTracker, EachKindsRowOwnsItsFileMessageAndSettings) {
+  EXPECT_STREQ(TrackerKindOf(TrackerKind::kBip).config_file, "track.yaml");
+  EXPECT_EQ(TrackerKindOf(TrackerKind::kKcf).config_file, nullptr);
+  EXPECT_EQ(TrackerKindOf(TrackerKind::kCsrt).no_target, nullptr);
+  EXPECT_NE(std::string(TrackerKindOf(TrackerKind::kBip).no_target).find("no target"),
+            std::string::npos);
+  TargetTrackerOptions options;
+  options.bip.mode = TrackerMode::kThesis;
+  options.bip.occlusion = true;
+  const std::vector<TrackerSetting> settings = TrackerKindOf(TrackerKind::kBip).settings(options);
+  ASSERT_EQ(settings.size(), 2u);
+  EXPECT_EQ(settings[0].key, "mode");
+  EXPECT_EQ(std::get<std::string>(settings[0].value), "thesis");
+  EXPECT_EQ(settings[1].key, "occlusion");
+  EXPECT_TRUE(std::get<bool>(settings[1].value));
+  EXPECT_TRUE(TrackerKindOf(TrackerKind::kCsrt).settings(options).empty());
+}
+
 class EveryKind : public ::testing::TestWithParam<TrackerKind> {};
 
 TEST_P(EveryKind, FollowsATranslatingTexturedSquare) {
