@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "pyramid/bip.h"
-#include "tracker/tracker.h"
+#include "tracker/tracker_options.h"
 
 namespace attend {
 namespace tracker_internal {

@@ -6,10 +6,10 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "tracker/appearance_model.h"
 #include "tracker/roi_pyramid.h"
+#include "tracker/target_appearance.h"
 #include "tracker/template_update.h"
-#include "tracker/tracker.h"
+#include "tracker/tracker_options.h"
 
 namespace attend {
 namespace tracker_internal {

@@ -11,7 +11,7 @@
 
 #include "tracker/roi_pyramid.h"
 #include "tracker/target.h"
-#include "tracker/tracker.h"
+#include "tracker/tracker_options.h"
 
 namespace attend {
 namespace tracker_internal {

@@ -1,8 +1,8 @@
-// TrackerOptions (tracker/tracker.h): its field table, its check and the names of its enums.
+// TrackerOptions (tracker/tracker_options.h): its field table, its check and the names of its enums.
 #include <algorithm>
 #include <cmath>
 
-#include "tracker/tracker.h"
+#include "tracker/tracker_options.h"
 #include "util/enum_table.h"
 
 namespace attend {
