@@ -10,6 +10,7 @@
 #include "app/run_attention.h"
 #include "cli/cli_options.h"
 #include "cli/commands.h"
+#include "pipeline/options_doc.h"
 #include "pipeline/options_io.h"
 #include "util/error.h"
 #include "util/timer.h"
@@ -75,7 +76,7 @@ int Run(const RunArguments& args) {
   if (args.list_keys) {
     std::cout << "The configuration's keys (configs/README.md): type, range, default and what "
                  "each does.\n"
-              << FormatFieldDescriptions(DescribeConfiguration());
+              << FormatFieldDescriptions(DescribeEveryKey());
     return 0;
   }
   AttentionRunRequest request;

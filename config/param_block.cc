@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -432,6 +433,22 @@ std::vector<std::string> ParamBlock::GetStrings(
   return GetList<std::string>(*this, key, default_value, "strings", nullptr, -1);
 }
 
+std::uint64_t ParamBlock::GetCount(const std::string& key, std::uint64_t default_value,
+                                   std::uint64_t max) const {
+  const YAML::Node node = Lookup(*state_, key);
+  if (Absent(node)) return default_value;
+  // Read as text: yaml-cpp's integers stop at 64 bits signed, and a seed may use all 64.
+  const std::string text = node.IsScalar() ? node.Scalar() : "";
+  std::uint64_t value = 0;
+  const auto [end, status] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (!node.IsScalar() || status != std::errc() || end != text.data() + text.size() ||
+      value > max) {
+    Fail(key, "expected an integer in [0, " + std::to_string(max) + "], got " +
+                  (node.IsScalar() ? "'" + text + "'" : Describe(node)));
+  }
+  return value;
+}
+
 double ParamBlock::RequireDouble(const std::string& key, Range range) const {
   if (!Has(key)) {
     Lookup(*state_, key);
@@ -481,6 +498,47 @@ std::vector<ParamBlock> ParamBlock::Children(const std::string& key) const {
     children.emplace_back(child);
   }
   return children;
+}
+
+namespace {
+
+std::string FlowTextOf(const YAML::Node& node) {
+  YAML::Emitter out;
+  out << YAML::Flow << node;
+  return out.c_str();
+}
+
+}  // namespace
+
+ParamBlock::Text ParamBlock::ValueText(const std::string& key) const {
+  const YAML::Node node = Lookup(*state_, key);
+  if (Absent(node)) Fail(key, "required key is missing");
+  return {FlowTextOf(node), Where(key)};
+}
+
+std::vector<ParamBlock::Text> ParamBlock::ElementTexts(const std::string& key) const {
+  const YAML::Node node = Lookup(*state_, key);
+  std::vector<Text> texts;
+  if (Absent(node) || node.IsNull()) return texts;
+  if (!node.IsSequence()) Fail(key, "expected a list, got " + Describe(node));
+  const std::string overridden = Where(key);
+  for (const YAML::Node& element : node) {
+    // An element set by --set is reported there; one in the file at its own line.
+    const bool from_file = overridden.rfind("--set ", 0) != 0 && !element.Mark().is_null();
+    texts.push_back({FlowTextOf(element),
+                     from_file ? state_->document->source + ":" +
+                                     std::to_string(element.Mark().line + 1)
+                               : overridden});
+  }
+  return texts;
+}
+
+bool ParamBlock::IsList(const std::string& key) const {
+  return state_->node.IsMap() && state_->node[key].IsSequence();
+}
+
+bool ParamBlock::IsMap(const std::string& key) const {
+  return state_->node.IsMap() && state_->node[key].IsMap();
 }
 
 void ParamBlock::CheckNoUnknownKeys() const {

@@ -5,6 +5,7 @@
 // type are reported the same way. All failures throw ConfigError (exit status 2).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -55,6 +56,9 @@ class ParamBlock {
                            Range range = {}, int size = -1) const;
   std::vector<std::string> GetStrings(const std::string& key,
                                       const std::vector<std::string>& default_value) const;
+  // A count or seed of up to 64 bits: a plain integer in [0, max] (an int is 32 bits).
+  std::uint64_t GetCount(const std::string& key, std::uint64_t default_value,
+                         std::uint64_t max) const;
 
   // Like the getters above, but the key must be present.
   double RequireDouble(const std::string& key, Range range = {}) const;
@@ -64,6 +68,21 @@ class ParamBlock {
   ParamBlock Child(const std::string& key) const;
   // A list of maps (empty when the key is absent or null).
   std::vector<ParamBlock> Children(const std::string& key) const;
+
+  // A value of any type as YAML text in flow style ("3", "[1, 2]", "{a: 1}"), with where it
+  // was written: what a reader that passes values on (a sweep's `--set KEY=VALUE`) keeps.
+  struct Text {
+    std::string text;
+    std::string where;  // "FILE:LINE", or the --set that set it
+  };
+  // The value of `key` (which must be present) as text.
+  Text ValueText(const std::string& key) const;
+  // The elements of the list at `key` (absent or null: none), each as text with its own line;
+  // a value that is not a list: ConfigError.
+  std::vector<Text> ElementTexts(const std::string& key) const;
+  // Whether `key` holds a list, or a map (false when absent).
+  bool IsList(const std::string& key) const;
+  bool IsMap(const std::string& key) const;
 
   // Throws ConfigError "WHERE: KEYPATH: message".
   [[noreturn]] void Fail(const std::string& key, const std::string& message) const;

@@ -10,39 +10,74 @@
 
 namespace attend {
 
+namespace {
+
+std::vector<FieldDescription> NoKeys() { return {}; }
+
+// The descriptions of several tables, one after the other.
+std::vector<FieldDescription> Joined(std::vector<FieldDescription> first,
+                                     const std::vector<FieldDescription>& second) {
+  first.insert(first.end(), second.begin(), second.end());
+  return first;
+}
+
+std::vector<FieldDescription> DisparityKeys() {
+  return Joined(DescribeFields(DisparityOptions::Fields()),
+                DescribeFields(DisparityFeatureOptions::Fields()));
+}
+
+std::vector<FieldDescription> PeopleKeys() {
+  return Joined(DescribeFields(HogPeopleOptions::Fields()),
+                DescribeFields(ObjectChannelOptions::Fields()));
+}
+
+std::vector<FieldDescription> FacesKeys() {
+  return Joined(DescribeFields(FaceCascadeOptions::Fields()),
+                DescribeFields(ObjectChannelOptions::Fields(), FacesChannelDefaults()));
+}
+
+}  // namespace
+
+const std::vector<BuiltinFeature>& BuiltinFeatureTable() {
+  static const std::vector<BuiltinFeature> table = {
+      {"colour_contrast", "mean colour gradient of each BIP colour region (thesis eq. 5.1)",
+       &CreateColourContrast, &NoKeys},
+      {"intensity_contrast", "mean intensity gradient of each BIP colour region (thesis eq. 5.2)",
+       &CreateIntensityContrast, &NoKeys},
+      {"skin", "TSL skin chrominance within a Mahalanobis threshold (thesis 5.1.1)",
+       &CreateSkinFeature, [] { return DescribeFields(SkinFeatureOptions::Fields()); }},
+      {"disparity",
+       "stereo disparity, nearer is more salient: box-filtered ZNCC and Sun's two-stage "
+       "dynamic programming (thesis 5.1.1)",
+       &CreateDisparityFeature, &DisparityKeys},
+      {"motion",
+       "luminance change against the previous frames, less global brightness change and "
+       "sensor noise (not in the thesis)",
+       &CreateMotionFeature, [] { return DescribeFields(MotionOptions::Fields()); }},
+      {"centre_bias",
+       "a Gaussian centred on the image: where people look in photographs (not in the thesis)",
+       &CreateCentreBiasFeature, [] { return DescribeFields(CentreBiasOptions::Fields()); }},
+      {"centre_surround",
+       "Lab colour and lightness contrast at several scales, as centre-surround differences of "
+       "Gaussians (Itti et al. 1998; not in the thesis)",
+       &CreateCentreSurroundFeature,
+       [] { return DescribeFields(CentreSurroundOptions::Fields()); }},
+      {"people",
+       "boxes of the people OpenCV's HOG pedestrian detector finds, where attention looks or "
+       "in the whole frame (top-down; not in the thesis)",
+       &CreatePeopleFeature, &PeopleKeys},
+      {"faces",
+       "boxes of the faces a cascade classifier finds, where attention looks or in the whole "
+       "frame (top-down; not in the thesis)",
+       &CreateFacesFeature, &FacesKeys}};
+  return table;
+}
+
 FeatureRegistry BuiltinFeatures() {
   FeatureRegistry registry;
-  registry.Add("colour_contrast", "mean colour gradient of each BIP colour region (thesis eq. 5.1)",
-               &CreateColourContrast);
-  registry.Add("intensity_contrast",
-               "mean intensity gradient of each BIP colour region (thesis eq. 5.2)",
-               &CreateIntensityContrast);
-  registry.Add("skin", "TSL skin chrominance within a Mahalanobis threshold (thesis 5.1.1)",
-               &CreateSkinFeature);
-  registry.Add("disparity",
-               "stereo disparity, nearer is more salient: box-filtered ZNCC and Sun's two-stage "
-               "dynamic programming (thesis 5.1.1)",
-               &CreateDisparityFeature);
-  registry.Add("motion",
-               "luminance change against the previous frames, less global brightness change "
-               "and sensor noise (not in the thesis)",
-               &CreateMotionFeature);
-  registry.Add("centre_bias",
-               "a Gaussian centred on the image: where people look in photographs (not in the "
-               "thesis)",
-               &CreateCentreBiasFeature);
-  registry.Add("centre_surround",
-               "Lab colour and lightness contrast at several scales, as centre-surround "
-               "differences of Gaussians (Itti et al. 1998; not in the thesis)",
-               &CreateCentreSurroundFeature);
-  registry.Add("people",
-               "boxes of the people OpenCV's HOG pedestrian detector finds, where attention looks "
-               "or in the whole frame (top-down; not in the thesis)",
-               &CreatePeopleFeature);
-  registry.Add("faces",
-               "boxes of the faces a cascade classifier finds, where attention looks or in the "
-               "whole frame (top-down; not in the thesis)",
-               &CreateFacesFeature);
+  for (const BuiltinFeature& feature : BuiltinFeatureTable()) {
+    registry.Add(feature.name, feature.summary, feature.create);
+  }
   return registry;
 }
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "config/read_fields.h"
+
 namespace attend {
 
 namespace {
@@ -21,6 +23,13 @@ class CentreBiasFeature final : public FeatureMap {
 };
 
 }  // namespace
+
+const OptionFields<CentreBiasOptions>& CentreBiasOptions::Fields() {
+  static const OptionFields<CentreBiasOptions> fields = {
+      {"sigma", &CentreBiasOptions::sigma, Range::AboveUpTo(0, 10),
+       "the Gaussian's sigma, share of the width (x) and height (y)"}};
+  return fields;
+}
 
 void CentreBiasMap(cv::Size size, double sigma, cv::Mat* out) {
   CV_Assert(size.width > 0 && size.height > 0 && sigma > 0.0);
@@ -42,8 +51,9 @@ void CentreBiasMap(cv::Size size, double sigma, cv::Mat* out) {
 
 std::unique_ptr<FeatureMap> CreateCentreBiasFeature(const ParamBlock& params,
                                                     const FeatureSetup&) {
-  const double sigma = params.GetDouble("sigma", 0.25, Range{0.0, 10.0, true, false});
-  return std::make_unique<CentreBiasFeature>(sigma);
+  CentreBiasOptions options;
+  ReadFields(params, CentreBiasOptions::Fields(), &options);
+  return std::make_unique<CentreBiasFeature>(options.sigma);
 }
 
 }  // namespace attend

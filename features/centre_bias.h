@@ -13,13 +13,19 @@
 #include <opencv2/core.hpp>
 
 #include "features/feature_map.h"
+#include "util/option_fields.h"
 
 namespace attend {
+
+struct CentreBiasOptions {
+  double sigma = 0.25;  // share of the width and height
+  static const OptionFields<CentreBiasOptions>& Fields();
+};
 
 // Fills `out` (CV_32FC1 of `size`) with the centre-bias Gaussian of relative sigma `sigma`.
 void CentreBiasMap(cv::Size size, double sigma, cv::Mat* out);
 
-// Parameters: `sigma` (share of the width and height, (0, 10], default 0.25).
+// Parameters: CentreBiasOptions::Fields().
 std::unique_ptr<FeatureMap> CreateCentreBiasFeature(const ParamBlock& params,
                                                     const FeatureSetup& setup);
 

@@ -34,6 +34,7 @@ void MinMaxInPlace(cv::Mat* map) {
 const OptionFields<CentreSurroundOptions>& CentreSurroundOptions::Fields() {
   using O = CentreSurroundOptions;
   static const OptionFields<CentreSurroundOptions> fields = {
+      {"scales", &O::scales, ScaleRange(), "the centre sigmas, px at the working size"},
       {"surround", &O::surround, Range::AboveUpTo(1, 50), "surround sigma over centre sigma"}};
   return fields;
 }
@@ -73,8 +74,6 @@ void CentreSurroundMap(const cv::Mat& bgr, const CentreSurroundOptions& options,
 std::unique_ptr<FeatureMap> CreateCentreSurroundFeature(const ParamBlock& params,
                                                         const FeatureSetup&) {
   CentreSurroundOptions options;
-  options.scales =
-      params.GetDoubles("scales", options.scales, CentreSurroundOptions::ScaleRange());
   ReadFields(params, CentreSurroundOptions::Fields(), &options);
   const std::string error = options.Check();
   if (!error.empty()) params.FailCheck(error);

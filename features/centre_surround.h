@@ -31,7 +31,7 @@ struct CentreSurroundOptions {
 // `bgr`: 8-bit BGR. Fills `out` (CV_32FC1, [0, 1]).
 void CentreSurroundMap(const cv::Mat& bgr, const CentreSurroundOptions& options, cv::Mat* out);
 
-// Parameters: `scales` (list of px, each in (0, 200]), `surround` (> 1, <= 50).
+// Parameters: CentreSurroundOptions::Fields().
 std::unique_ptr<FeatureMap> CreateCentreSurroundFeature(const ParamBlock& params,
                                                         const FeatureSetup& setup);
 

@@ -179,9 +179,9 @@ const OptionFields<HogPeopleOptions>& HogPeopleOptions::Fields() {
       {"scale", &O::scale, Range::AboveUpTo(1, 2), "step between pyramid levels"},
       {"stride", &O::stride, Range::Closed(8, 64), "window stride, px, a multiple of 8"},
       {"box_width", &O::box_width, Range::AboveUpTo(0, 2),
-       "the person's share of the window's width"},
+       "the person's share of the window's width; default 0.65 with model daimler"},
       {"box_height", &O::box_height, Range::AboveUpTo(0, 2),
-       "the person's share of the window's height"}};
+       "the person's share of the window's height; default 0.97 with model daimler"}};
   return fields;
 }
 
@@ -212,6 +212,7 @@ const OptionFields<FaceCascadeOptions>& FaceCascadeOptions::Fields() {
   using O = FaceCascadeOptions;
   // `model` is a path the feature resolves itself (CreateFacesFeature).
   static const OptionFields<FaceCascadeOptions> fields = {
+      {"model", &O::model, "the cascade file (Haar or LBP, OpenCV's XML format)"},
       {"min_neighbours", &O::min_neighbours, Range::Closed(0, 100),
        "a detection needs more than this many overlapping hits"},
       {"scale", &O::scale, Range::AboveUpTo(1, 2), "step between pyramid levels"}};
@@ -440,8 +441,9 @@ ObjectSearch MakeFaceCascadeSearch(const FaceCascadeOptions& options, const Para
 std::unique_ptr<FeatureMap> CreatePeopleFeature(const ParamBlock& params, const FeatureSetup&) {
   const ObjectChannelOptions channel = ReadChannelOptions(params, ObjectChannelOptions());
   // The model first: it sets the defaults of the box shares (ForModel).
-  HogPeopleOptions hog = HogPeopleOptions::ForModel(
-      params.GetChoice("model", HogPeopleOptions().model, HogPeopleOptions::Models()));
+  HogPeopleOptions hog;
+  ReadFields(params, {FieldNamed(HogPeopleOptions::Fields(), "model")}, &hog);
+  hog = HogPeopleOptions::ForModel(hog.model);
   ReadFields(params, HogPeopleOptions::Fields(), &hog);
   const std::string error = hog.Check();
   if (!error.empty()) params.FailCheck(error);
@@ -449,13 +451,18 @@ std::unique_ptr<FeatureMap> CreatePeopleFeature(const ParamBlock& params, const 
       channel, HogPeopleGeometry(hog), "person", MakeHogPeopleSearch(hog)));
 }
 
-std::unique_ptr<FeatureMap> CreateFacesFeature(const ParamBlock& params,
-                                               const FeatureSetup& setup) {
+ObjectChannelOptions FacesChannelDefaults() {
   ObjectChannelOptions defaults;
   defaults.min_height = 16;
-  const ObjectChannelOptions channel = ReadChannelOptions(params, defaults);
+  return defaults;
+}
+
+std::unique_ptr<FeatureMap> CreateFacesFeature(const ParamBlock& params,
+                                               const FeatureSetup& setup) {
+  const ObjectChannelOptions channel = ReadChannelOptions(params, FacesChannelDefaults());
   FaceCascadeOptions cascade;
-  const std::string model = params.GetString("model", kDefaultFaceCascade);
+  ReadFields(params, FaceCascadeOptions::Fields(), &cascade);
+  const std::string model = cascade.model;
   if (model.empty()) params.Fail("model", "must not be empty");
   cascade.model = setup.FindPath(model);
   if (cascade.model.empty()) {
@@ -463,7 +470,6 @@ std::unique_ptr<FeatureMap> CreateFacesFeature(const ParamBlock& params,
         fs::path(model).is_absolute() ? "" : " (looked in " + setup.PlacesSearched() + ")";
     params.Fail("model", "no such file: " + model + places + "; " + kOpencvDataHint);
   }
-  ReadFields(params, FaceCascadeOptions::Fields(), &cascade);
   const std::string error = cascade.Check();
   if (!error.empty()) params.FailCheck(error);
   DetectorGeometry geometry;

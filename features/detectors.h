@@ -76,18 +76,19 @@ struct HogPeopleOptions {
   static HogPeopleOptions ForModel(const std::string& model);
 };
 
+// The default model of `faces`: the frontal-face Haar cascade of Debian's opencv-data.
+inline constexpr const char* kDefaultFaceCascade =
+    "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
+
 // The cascade classifier of the `faces` channel.
 struct FaceCascadeOptions {
-  std::string model;       // the cascade file (resolved)
+  // The cascade file; the feature resolves a relative one (FeatureSetup::FindPath).
+  std::string model = kDefaultFaceCascade;
   int min_neighbours = 3;  // a detection needs more than this many overlapping hits
   double scale = 1.1;      // step between pyramid levels
   std::string Check() const;
   static const OptionFields<FaceCascadeOptions>& Fields();
 };
-
-// The default model of `faces`: the frontal-face Haar cascade of Debian's opencv-data.
-inline constexpr const char* kDefaultFaceCascade =
-    "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
 
 // What the gate needs to know about a detector: its window, and the height of the object
 // filling it (the window's height times the share of it the object takes).
@@ -175,8 +176,10 @@ ObjectSearch MakeFaceCascadeSearch(const FaceCascadeOptions& options, const Para
 // HogPeopleOptions (`model`: default | daimler) under their names. Label "person".
 std::unique_ptr<FeatureMap> CreatePeopleFeature(const ParamBlock& params,
                                                 const FeatureSetup& setup);
-// Parameters: the fields of ObjectChannelOptions and of FaceCascadeOptions (`model`: a cascade
-// file, default kDefaultFaceCascade). Label "face".
+// The channel's defaults for faces, which are smaller than people: min_height 16.
+ObjectChannelOptions FacesChannelDefaults();
+
+// Parameters: the fields of ObjectChannelOptions and of FaceCascadeOptions. Label "face".
 std::unique_ptr<FeatureMap> CreateFacesFeature(const ParamBlock& params, const FeatureSetup& setup);
 
 }  // namespace attend

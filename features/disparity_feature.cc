@@ -28,6 +28,13 @@ class DisparityFeature : public FeatureMap {
 
 }  // namespace
 
+const OptionFields<DisparityFeatureOptions>& DisparityFeatureOptions::Fields() {
+  static const OptionFields<DisparityFeatureOptions> fields = {
+      {"per_region", &DisparityFeatureOptions::per_region,
+       "each BIP colour region takes the mean disparity of its pixels"}};
+  return fields;
+}
+
 const std::vector<std::string>& DisparityOptionKeys() {
   static const std::vector<std::string> keys = FieldKeys(DisparityOptions::Fields());
   return keys;
@@ -41,11 +48,14 @@ DisparityOptions ReadDisparityOptions(const ParamBlock& block, DisparityOptions 
 }
 
 std::unique_ptr<FeatureMap> CreateDisparityFeature(const ParamBlock& params, const FeatureSetup&) {
-  const DisparityOptions options = ReadDisparityOptions(params);
+  DisparityFeatureOptions options;
+  options.disparity = ReadDisparityOptions(params);
   // The map is divided by D - 1.
-  if (options.max_disparity < 2) params.Fail("max_disparity", "must be >= 2 for the feature");
-  const bool per_region = params.GetBool("per_region", false);
-  return std::make_unique<DisparityFeature>(options, per_region);
+  if (options.disparity.max_disparity < 2) {
+    params.Fail("max_disparity", "must be >= 2 for the feature");
+  }
+  ReadFields(params, DisparityFeatureOptions::Fields(), &options);
+  return std::make_unique<DisparityFeature>(options.disparity, options.per_region);
 }
 
 }  // namespace attend

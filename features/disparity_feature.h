@@ -23,7 +23,15 @@ const std::vector<std::string>& DisparityOptionKeys();
 // caller (CheckNoUnknownKeys).
 DisparityOptions ReadDisparityOptions(const ParamBlock& block, DisparityOptions options = {});
 
-// Parameters: max_disparity (D), window, subpixel, left_right_check, lr_tolerance, per_region.
+// The `disparity` feature's parameters: the estimator's, and its own.
+struct DisparityFeatureOptions {
+  DisparityOptions disparity;  // its keys: DisparityOptions::Fields()
+  bool per_region = false;     // each BIP colour region takes the mean disparity of its pixels
+  // The feature's own keys.
+  static const OptionFields<DisparityFeatureOptions>& Fields();
+};
+
+// Parameters: DisparityOptions::Fields() and DisparityFeatureOptions::Fields().
 std::unique_ptr<FeatureMap> CreateDisparityFeature(const ParamBlock& params,
                                                    const FeatureSetup& setup);
 

@@ -13,12 +13,20 @@
 // The version changes whenever what a plugin sees changes in a way that breaks binary
 // compatibility: FeatureMap and SequenceStart (features/feature_map.h), FeatureRegistry,
 // FeatureSetup, the FrameContext interface (features/frame_context.h), Segmentation,
-// RegionStats and RegionGraph (pyramid/regions.h), SkinModel (colour/skin_model.h),
-// CylinderColour (colour/colour.h), DisparityOptions (stereo/disparity.h), ParamBlock
-// (config/param_block.h) and Range (util/range.h). Nothing of the pyramid or the pipeline is in that list.
+// RegionStats and RegionAdjacency (pyramid/regions.h), SkinModel (colour/skin_model.h),
+// CylinderColour (colour/colour.h), DisparityOptions (stereo/disparity.h), NormalisationRegistry
+// (saliency/normalisation.h), ParamBlock (config/param_block.h), the field tables
+// (util/option_fields.h, config/read_fields.h) and Range (util/range.h). Nothing of the pyramid
+// or the pipeline is in that list.
 // Version 2: the context became an interface, and FeatureMap got BeginSequence and
 // EndSequence. Version 3: the context gives the disparity. Version 4: the context gives where
 // attention looks (AttentionRegions), and a FeatureMap may report detections (Detection).
+// Version 5: the region adjacency became plain vectors (RegionAdjacency, no Boost in the plugin
+// API), and every normalisation is in one registry (FeatureRegistry::normalisations()).
+//
+// A plugin reads its parameters as the built-in features do: an options struct with a field
+// table, read with ReadFields (config/read_fields.h; examples/temporal_change). The
+// ParamBlock getters (GetInt, GetDouble, ...) stay part of the ABI, for plugins built before.
 #pragma once
 
 #include "features/feature_map.h"

@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
+#include "config/read_fields.h"
 #include "io/skin_files.h"
+#include "util/enum_table.h"
 
 namespace attend {
 
@@ -74,6 +76,23 @@ void SkinDistanceMap(const cv::Mat& tsl, const SkinModel& model, cv::Mat* out) {
       value[x] = a * dt * dt + b2 * dt * ds + c * ds * ds;
     }
   }
+}
+
+namespace {
+
+constexpr EnumTable<SkinOutput, 2> kSkinOutputs = {
+    {{{SkinOutput::kBinary, "binary"}, {SkinOutput::kSoft, "soft"}}}};
+
+}  // namespace
+
+const OptionFields<SkinFeatureOptions>& SkinFeatureOptions::Fields() {
+  using O = SkinFeatureOptions;
+  static const OptionFields<SkinFeatureOptions> fields = {
+      {"output", EnumField<&O::output, kSkinOutputs>(),
+       "binary: 1 where d^2 < T_s (the thesis); soft: max(0, 1 - sqrt(d^2 / T_s))"},
+      {"model", &O::model, "the skin model file (attend skin-train makes one)"},
+      {"per_region", &O::per_region, "each BIP colour region takes the mean of its pixels"}};
+  return fields;
 }
 
 const OptionFields<SkinRegionOptions>& SkinRegionOptions::Fields() {
@@ -207,12 +226,10 @@ void AverageOverRegions(const Segmentation& segmentation, cv::Mat* map) {
 }
 
 std::unique_ptr<FeatureMap> CreateSkinFeature(const ParamBlock& params, const FeatureSetup& setup) {
-  const std::string output = params.GetChoice("output", "binary", {"binary", "soft"});
-  const std::string path =
-      setup.ResolvePath(params, "model", params.GetString("model", "configs/skin_tsl.yaml"));
-  const bool per_region = params.GetBool("per_region", false);
-  return std::make_unique<SkinFeature>(
-      LoadSkinModel(path), output == "soft" ? SkinOutput::kSoft : SkinOutput::kBinary, per_region);
+  SkinFeatureOptions options;
+  ReadFields(params, SkinFeatureOptions::Fields(), &options);
+  const std::string path = setup.ResolvePath(params, "model", options.model);
+  return std::make_unique<SkinFeature>(LoadSkinModel(path), options.output, options.per_region);
 }
 
 }  // namespace attend

@@ -19,6 +19,14 @@ namespace attend {
 
 enum class SkinOutput { kBinary, kSoft };
 
+// The `skin` feature's parameters.
+struct SkinFeatureOptions {
+  SkinOutput output = SkinOutput::kBinary;
+  std::string model = "configs/skin_tsl.yaml";  // resolved by FeatureSetup::ResolvePath
+  bool per_region = false;  // each BIP colour region takes the mean of its pixels' values
+  static const OptionFields<SkinFeatureOptions>& Fields();
+};
+
 // The skin map of a TSL image (CV_32FC3, colour/colour.h) as CV_32FC1.
 void SkinMap(const cv::Mat& tsl, const SkinModel& model, SkinOutput output, cv::Mat* out);
 // The same map from the image's SkinDistanceMap for `model` (`distance`, which `out` may be).
@@ -79,8 +87,7 @@ SkinRegionVerdict JudgeSkinRegionTsl(const cv::Mat& mask, const cv::Mat& tsl,
 // Each region's mean of `map` painted over its pixels (0 outside the mask).
 void AverageOverRegions(const Segmentation& segmentation, cv::Mat* map);
 
-// Parameters: `model` (a model file, default configs/skin_tsl.yaml), `output` (binary | soft),
-// `per_region` (bool, default false).
+// Parameters: SkinFeatureOptions::Fields().
 std::unique_ptr<FeatureMap> CreateSkinFeature(const ParamBlock& params, const FeatureSetup& setup);
 
 }  // namespace attend

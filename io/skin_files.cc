@@ -18,6 +18,7 @@
 
 #include "colour/colour.h"
 #include "config/param_block.h"
+#include "config/read_fields.h"
 #include "io/image_file.h"
 #include "util/error.h"
 #include "util/output_folder.h"
@@ -45,17 +46,48 @@ std::string ExplainRule(const std::string& rule) {
   return rule.empty() ? "not recorded" : rule;
 }
 
-// Reads a non-negative integer written as a YAML scalar (ParamBlock reads ints only).
-uint64_t GetCount(const ParamBlock& block, const std::string& key, uint64_t max) {
-  const std::string text = block.GetString(key, "0");
-  uint64_t value = 0;
-  const auto [end, status] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (status != std::errc() || end != text.data() + text.size() || value > max) {
-    block.Fail(key, "expected an integer in [0, " + std::to_string(max) + "], got '" + text + "'");
-  }
-  return value;
+// The keys of a model file: the model's, then its `training:` block's.
+const OptionFields<SkinModel>& ModelFields() {
+  static const OptionFields<SkinModel> fields = {
+      {"mean",
+       NumbersMember<SkinModel>{
+           [](const SkinModel& m) { return std::vector<double>{m.mean.x(), m.mean.y()}; },
+           [](SkinModel* m, const std::vector<double>& v) { m->mean = Eigen::Vector2d(v[0], v[1]); }, 2},
+       Range::Any(), "the mean TSL chrominance (T, S) of skin"},
+      {"covariance",
+       NumbersMember<SkinModel>{
+           [](const SkinModel& m) {
+             const Eigen::Matrix2d& c = m.covariance;
+             return std::vector<double>{c(0, 0), c(0, 1), c(1, 0), c(1, 1)};
+           },
+           [](SkinModel* m, const std::vector<double>& v) {
+             m->covariance << v[0], v[1], v[2], v[3];
+           },
+           4},
+       Range::Any(), "its covariance, row by row"},
+      {"threshold", &SkinModel::threshold, Range::Any(),
+       "T_s: skin where the squared Mahalanobis distance is below this"}};
+  return fields;
 }
 
+const OptionFields<SkinModel::Provenance>& ProvenanceFields() {
+  using P = SkinModel::Provenance;
+  const Range rate = Range::Closed(0.0, 1.0);
+  static const OptionFields<P> fields = {
+      {"command", &P::command, "the skin-train invocation"},
+      {"data", &P::data, "the training data as given to skin-train"},
+      {"rule", &P::rule, "how the threshold was chosen"},
+      {"skin_samples", &P::skin_samples, Range::Any(), "skin samples of the training split"},
+      {"nonskin_samples", &P::nonskin_samples, Range::Any(), "other samples of it"},
+      {"holdout_fraction", &P::holdout_fraction, Range{0.0, 1.0, false, true},
+       "the share held out"},
+      {"seed", &P::seed, Range::Any(), "the split's seed"},
+      {"training_tpr", &P::training_tpr, rate, "true positive rate on the training split"},
+      {"training_fpr", &P::training_fpr, rate, "false positive rate on it"},
+      {"holdout_tpr", &P::holdout_tpr, rate, "true positive rate on the held-out split"},
+      {"holdout_fpr", &P::holdout_fpr, rate, "false positive rate on it"}};
+  return fields;
+}
 
 // One line of text for a message: at most 60 characters, unprintable bytes shown as '?'.
 std::string Excerpt(const char* begin, const char* end) {
@@ -74,35 +106,13 @@ bool IsBlank(char c) { return c == ' ' || c == '\t'; }
 SkinModel LoadSkinModel(const std::string& path) {
   const ParamBlock block = ParamBlock::LoadFile(path);
   SkinModel model;
-  const std::vector<double> mean = block.GetDoubles("mean", {}, Range::Any(), 2);
-  const std::vector<double> covariance = block.GetDoubles("covariance", {}, Range::Any(), 4);
-  model.threshold = block.GetDouble("threshold", 0.0);
-
-  const ParamBlock training = block.Child("training");
-  SkinModel::Provenance& provenance = model.provenance;
-  provenance.command = training.GetString("command", "");
-  provenance.data = training.GetString("data", "");
-  provenance.rule = training.GetString("rule", "");
-  constexpr uint64_t kMaxCount = std::numeric_limits<int64_t>::max();
-  provenance.skin_samples = static_cast<int64_t>(GetCount(training, "skin_samples", kMaxCount));
-  provenance.nonskin_samples =
-      static_cast<int64_t>(GetCount(training, "nonskin_samples", kMaxCount));
-  provenance.holdout_fraction =
-      training.GetDouble("holdout_fraction", 0.0, {0.0, 1.0, false, true});
-  provenance.seed = GetCount(training, "seed", std::numeric_limits<uint64_t>::max());
-  const Range rate = Range::Closed(0.0, 1.0);
-  provenance.training_tpr = training.GetDouble("training_tpr", -1.0, rate);
-  provenance.training_fpr = training.GetDouble("training_fpr", -1.0, rate);
-  provenance.holdout_tpr = training.GetDouble("holdout_tpr", -1.0, rate);
-  provenance.holdout_fpr = training.GetDouble("holdout_fpr", -1.0, rate);
-  training.CheckNoUnknownKeys();
+  ReadFields(block, ModelFields(), &model);
+  ReadSection(block, "training", ProvenanceFields(), &model.provenance);
   block.CheckNoUnknownKeys();
 
   for (const char* key : {"mean", "covariance", "threshold"}) {
     if (!block.Has(key)) block.Fail(key, "required key is missing");
   }
-  model.mean = Eigen::Vector2d(mean[0], mean[1]);
-  model.covariance << covariance[0], covariance[1], covariance[2], covariance[3];
   const SkinModelProblem problem = FindSkinModelProblem(model);
   if (!problem.key.empty()) block.Fail(problem.key, problem.message);
   return model;

@@ -262,8 +262,15 @@ class Writer {
   void Emit(const std::string& value) { out_ << YAML::DoubleQuoted << value; }
   void Emit(bool value) { out_ << YAML::TrueFalseBool << value; }
   void Emit(int value) { out_ << value; }
+  void Emit(std::int64_t value) { out_ << value; }
+  void Emit(std::uint64_t value) { out_ << value; }
   void Emit(double value) { out_ << value; }
   void Emit(float value) { out_ << static_cast<double>(value); }
+  void Emit(const std::vector<double>& values) {
+    out_ << YAML::Flow << YAML::BeginSeq;
+    for (const double value : values) out_ << value;
+    out_ << YAML::EndSeq;
+  }
   void Emit(const std::vector<std::string>& values) {
     out_ << YAML::Flow << YAML::BeginSeq;
     for (const std::string& value : values) out_ << value;

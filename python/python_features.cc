@@ -6,8 +6,10 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "config/declared_options.h"
 #include "config/param_block.h"
 #include "features/builtin.h"
 #include "features/feature_map.h"
@@ -187,24 +189,26 @@ py::dict ReadDeclaredOptions(const std::string& name, const py::object& cls,
     throw PluginError("feature '" + name + "' (Python): its class's `options` must be a dict of "
                       "option names and defaults");
   }
+  // The class's options as a table built at run time, read in config/ like every other.
+  std::vector<DeclaredOption> table;
   for (const auto& [key_object, fallback] : declared.cast<py::dict>()) {
     const std::string key = py::str(key_object).cast<std::string>();
     if (py::isinstance<py::bool_>(fallback)) {
-      values[key_object] = params.GetBool(key, fallback.cast<bool>());
+      table.push_back({key, fallback.cast<bool>()});
     } else if (py::isinstance<py::int_>(fallback)) {
-      values[key_object] = params.GetInt(key, fallback.cast<int>());
+      table.push_back({key, fallback.cast<int>()});
     } else if (py::isinstance<py::float_>(fallback)) {
-      values[key_object] = params.GetDouble(key, fallback.cast<double>());
+      table.push_back({key, fallback.cast<double>()});
     } else if (py::isinstance<py::str>(fallback)) {
-      values[key_object] = params.GetString(key, fallback.cast<std::string>());
+      table.push_back({key, fallback.cast<std::string>()});
     } else if (py::isinstance<py::list>(fallback) || py::isinstance<py::tuple>(fallback)) {
       const py::sequence list = fallback.cast<py::sequence>();
       bool strings = list.size() > 0;
       for (const py::handle element : list) strings = strings && py::isinstance<py::str>(element);
       if (strings) {
-        values[key_object] = params.GetStrings(key, list.cast<std::vector<std::string>>());
+        table.push_back({key, list.cast<std::vector<std::string>>()});
       } else {
-        values[key_object] = params.GetDoubles(key, list.cast<std::vector<double>>());
+        table.push_back({key, list.cast<std::vector<double>>()});
       }
     } else {
       throw PluginError("feature '" + name + "' (Python): option '" + key +
@@ -212,6 +216,11 @@ py::dict ReadDeclaredOptions(const std::string& name, const py::object& cls,
                         py::str(py::type::of(fallback).attr("__name__")).cast<std::string>() +
                         "; options are bool, int, float, str or lists of numbers or strings");
     }
+  }
+  ReadDeclaredOptions(params, &table);
+  for (const DeclaredOption& option : table) {
+    std::visit([&](const auto& value) { values[py::str(option.key)] = py::cast(value); },
+               option.value);
   }
   return values;
 }

@@ -1,8 +1,14 @@
 // The one registry of normalisations: how a feature map (CV_32FC1, any scale) becomes a map in
-// [0, 1] before the maps are combined (SPEC 2.3). It holds the built-in ones (minmax and
-// local_maxima, saliency/saliency.h) and those a plugin library registers
+// [0, 1] before the maps are combined (SPEC 2.3). It holds the built-in ones (the table
+// BuiltinNormalisations below) and those a plugin library registers
 // (FeatureRegistry::AddNormalisation); `saliency.normalisation` and a feature's
 // `normalisation:` key name any of them.
+//
+// Adding a built-in normalisation:
+//   1. Write its function in saliency/normalisation.cc, with the signature of
+//      BuiltinNormalisation::normalise (its parameters, if any, are SaliencyOptions fields).
+//   2. Add its row {name, summary, function} to the table in BuiltinNormalisations().
+// The names of `saliency.normalisation`, NormaliseMap and the registry all come from that table.
 #pragma once
 
 #include <functional>
@@ -17,6 +23,18 @@ namespace attend {
 
 // A plugin's normalisation: `out` is CV_32FC1 of the map's size, with values in [0, 1].
 using MapNormalisation = std::function<void(const cv::Mat& map, cv::Mat* out)>;
+
+// A built-in normalisation: its name, a line for listings, and its function, which fills `out`
+// (CV_32FC1 of the map's size, [0, 1]) from `map` (CV_32FC1) with the saliency options'
+// parameters (local_maxima_window).
+struct BuiltinNormalisation {
+  const char* name;
+  const char* summary;
+  void (*normalise)(const cv::Mat& map, const SaliencyOptions& options, cv::Mat* out);
+};
+
+// The built-in normalisations, minmax (the default) first: the one list of them.
+const std::vector<BuiltinNormalisation>& BuiltinNormalisations();
 
 class NormalisationRegistry {
  public:

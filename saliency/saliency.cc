@@ -2,52 +2,18 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "saliency/normalisation.h"
 #include "util/enum_table.h"
 #include "util/error.h"
 
 namespace attend {
 
-namespace {
-
-// (1 - m)^2, m the mean value of the local maxima of `unit` (a [0, 1] map whose maximum is 1)
-// other than one plateau at the global maximum.
-float LocalMaximaFactor(const cv::Mat& unit, int window) {
-  cv::Mat dilated;
-  cv::dilate(unit, dilated, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(window, window)));
-  cv::Mat is_peak = unit == dilated;
-  // A plateau of zeros is not a peak: it is where the map has nothing.
-  is_peak &= unit > 0.f;
-  cv::Mat plateaus;
-  const int count = cv::connectedComponents(is_peak, plateaus, 8, CV_32S);
-  // Pixels of one plateau all equal: each equals the maximum of a window holding its
-  // neighbour, and the other way round. Take one value per plateau.
-  std::vector<float> values(count, -1.f);
-  for (int y = 0; y < unit.rows; ++y) {
-    const int* plateau = plateaus.ptr<int>(y);
-    const float* value = unit.ptr<float>(y);
-    for (int x = 0; x < unit.cols; ++x) {
-      if (plateau[x] > 0) values[plateau[x]] = value[x];
-    }
-  }
-  bool global_skipped = false;
-  double sum = 0.0;
-  int others = 0;
-  for (int i = 1; i < count; ++i) {
-    if (!global_skipped && values[i] >= 1.f) {
-      global_skipped = true;
-      continue;
-    }
-    sum += values[i];
-    ++others;
-  }
-  const double mean = others > 0 ? sum / others : 0.0;
-  return static_cast<float>((1.0 - mean) * (1.0 - mean));
-}
-
-}  // namespace
-
 const std::vector<std::string>& SaliencyOptions::Normalisations() {
-  static const std::vector<std::string> names = {"minmax", "local_maxima"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> built_in;
+    for (const BuiltinNormalisation& row : BuiltinNormalisations()) built_in.push_back(row.name);
+    return built_in;
+  }();
   return names;
 }
 
@@ -64,8 +30,8 @@ const OptionFields<SaliencyOptions>& SaliencyOptions::Fields() {
   using O = SaliencyOptions;
   static const OptionFields<SaliencyOptions> fields = {
       {"normalisation", &O::normalisation,
-       "each feature's normalisation unless it names its own: minmax, local_maxima or a "
-       "plugin's"},
+       "each feature's normalisation unless it names its own: a built-in one "
+       "(saliency/normalisation.h) or a plugin's"},
       {"local_maxima_window", &O::local_maxima_window, Range::Closed(3, 1001),
        "local_maxima: the odd window side, px"},
       {"blur", &O::blur, Range::Closed(0, 1),
@@ -83,18 +49,14 @@ std::string SaliencyOptions::Check() const {
 }
 
 void NormaliseMap(const cv::Mat& map, const SaliencyOptions& options, cv::Mat* out) {
-  CV_Assert(map.type() == CV_32FC1);
-  double low = 0.0, high = 0.0;
-  cv::minMaxLoc(map, &low, &high);
-  if (!(high > low)) {
-    out->create(map.size(), CV_32FC1);
-    out->setTo(0.f);
-    return;
+  const std::vector<BuiltinNormalisation>& table = BuiltinNormalisations();
+  // A name that is not built in (a plugin's, which the registry applies) normalises as minmax,
+  // the first row.
+  const BuiltinNormalisation* chosen = &table.front();
+  for (const BuiltinNormalisation& row : table) {
+    if (options.normalisation == row.name) chosen = &row;
   }
-  map.convertTo(*out, CV_32FC1, 1.0 / (high - low), -low / (high - low));
-  if (options.normalisation == "local_maxima") {
-    *out *= LocalMaximaFactor(*out, options.local_maxima_window);
-  }
+  chosen->normalise(map, options, out);
 }
 
 void CombineMaps(const std::vector<cv::Mat>& normalised, const std::vector<double>& weights,

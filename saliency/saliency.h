@@ -1,7 +1,7 @@
 // The saliency map (thesis 5.1.1.2, SPEC 2.3): every feature map is normalised to [0, 1],
 // multiplied by its weight, summed, and divided by the sum of weights.
 //
-// Normalisations:
+// The built-in normalisations (their table is saliency/normalisation.h):
 // - minmax (SPEC, default): (F - min) / (max - min) over the frame; a constant map becomes 0.
 // - local_maxima: Itti, Koch and Niebur's N(.) (PAMI 20(11), 1998): the min-max map times
 //   (1 - m)^2, with m the mean of the map's local maxima other than the global one. A map with
@@ -35,6 +35,7 @@ struct SaliencyOptions {
   // rather than only adding elsewhere; not in the thesis).
   SaliencyCombination combination = SaliencyCombination::kSum;
 
+  // The built-in normalisations' names (BuiltinNormalisations, saliency/normalisation.h).
   static const std::vector<std::string>& Normalisations();
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
@@ -42,7 +43,8 @@ struct SaliencyOptions {
   static const OptionFields<SaliencyOptions>& Fields();
 };
 
-// Normalises `map` (CV_32FC1) into `out` (CV_32FC1, [0, 1]).
+// Normalises `map` (CV_32FC1) into `out` (CV_32FC1, [0, 1]) by the built-in normalisation
+// `options.normalisation` (minmax for a name that is not built in).
 void NormaliseMap(const cv::Mat& map, const SaliencyOptions& options, cv::Mat* out);
 
 // sum_i weights[i] * normalised[i] / sum_i weights[i], CV_32FC1. No maps, or weights summing to

@@ -51,7 +51,7 @@ const char* SeedKindName(SeedKind seed);
 struct SelectOptions {
   float min_saliency = 0.2f;  // mean inhibited saliency of a candidate region, 0..1
   int min_area = 120;         // pixels, at the working size
-  int max_new = 2;            // targets started in one frame
+  int max_new = 2;            // select.max_new: its row in Fields() describes it
   int max_targets = 12;       // targets active at once
   // A colour region larger than this share of the image is background, never a target.
   float max_area_fraction = 0.2f;

@@ -555,7 +555,7 @@ const OptionFields<DisparityOptions>& DisparityOptions::Fields() {
       {"lr_tolerance", &O::lr_tolerance, Range::AtLeast(0), "the check's tolerance, px"},
       {"smoothness", EnumField<&O::smoothness, kSmoothness>(),
        "hard: the thesis's |d(x) - d(x-1)| <= 1; penalty: jumps at jump_penalty; sgm: "
-       "semi-global matching along eight paths"},
+       "semi-global matching along sgm_paths paths"},
       {"jump_penalty", &O::jump_penalty, Range::AtLeast(0),
        "penalty: the cost of a jump, ZNCC units"},
       {"sgm_p1", &O::sgm_p1, Range::Closed(0, 16),

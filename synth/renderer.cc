@@ -286,6 +286,45 @@ std::vector<GtObject> GroundTruth(const Scene& scene, int frame,
   return objects;
 }
 
+// Object `o` of `scene` as the surface it is at `frame` (present in it): its pose, projected
+// size, blob waves and texture. `key` and `phases` are its texture key and blob phases.
+Surface ObjectSurface(const Scene& scene, const SceneObject& o, int frame, std::uint64_t key,
+                      const std::array<double, 2>& phases) {
+  const double focal_baseline = scene.focal_px * scene.baseline_m;
+  const PathKeyframe pose = InterpolatePath(o.path, frame);
+  Surface s;
+  s.id = o.id;
+  s.shape = o.shape;
+  s.cx = pose.x;
+  s.cy = pose.y;
+  if (o.oscillation.period > 0.0) {
+    const double wave = std::sin(kTwoPi * (frame / o.oscillation.period + o.oscillation.phase));
+    s.cx += o.oscillation.amplitude_x * wave;
+    s.cy += o.oscillation.amplitude_y * wave;
+  }
+  s.depth = pose.depth;
+  s.disparity = focal_baseline / pose.depth;
+  // Projected size f * size / Z: an approaching object grows.
+  s.half_w = 0.5 * scene.focal_px * o.width_m / pose.depth;
+  s.half_h = 0.5 * scene.focal_px * o.height_m / pose.depth;
+  s.extent_x = s.half_w;
+  s.extent_y = s.half_h;
+  if (o.shape == SynthShape::kBlob) {
+    s.lobes = o.blob.lobes;
+    s.amplitude = o.blob.amplitude;
+    const double cycle = kTwoPi * frame / o.blob.period;
+    s.wave1 = phases[0] + cycle;
+    s.wave2 = phases[1] - kSecondWaveSpeed * cycle;
+    s.extent_x *= 1.0 + s.amplitude;
+    s.extent_y *= 1.0 + s.amplitude;
+  }
+  s.lattice_per_px = pose.depth / (scene.focal_px * o.texture_cell_m);
+  s.key = key;
+  s.colour = o.colour;
+  s.texture = o.texture;
+  return s;
+}
+
 }  // namespace
 
 SceneRenderer::SceneRenderer(Scene scene) : scene_(std::move(scene)) {
@@ -326,38 +365,7 @@ RenderedFrame SceneRenderer::Render(int frame) const {
   for (size_t i = 0; i < scene_.objects.size(); ++i) {
     const SceneObject& o = scene_.objects[i];
     if (frame < o.entry || (o.exit >= 0 && frame > o.exit)) continue;
-    const PathKeyframe pose = InterpolatePath(o.path, frame);
-    Surface s;
-    s.id = o.id;
-    s.shape = o.shape;
-    s.cx = pose.x;
-    s.cy = pose.y;
-    if (o.oscillation.period > 0.0) {
-      const double wave = std::sin(kTwoPi * (frame / o.oscillation.period + o.oscillation.phase));
-      s.cx += o.oscillation.amplitude_x * wave;
-      s.cy += o.oscillation.amplitude_y * wave;
-    }
-    s.depth = pose.depth;
-    s.disparity = focal_baseline / pose.depth;
-    // Projected size f * size / Z: an approaching object grows.
-    s.half_w = 0.5 * scene_.focal_px * o.width_m / pose.depth;
-    s.half_h = 0.5 * scene_.focal_px * o.height_m / pose.depth;
-    s.extent_x = s.half_w;
-    s.extent_y = s.half_h;
-    if (o.shape == SynthShape::kBlob) {
-      s.lobes = o.blob.lobes;
-      s.amplitude = o.blob.amplitude;
-      const double cycle = kTwoPi * frame / o.blob.period;
-      s.wave1 = blob_phases_[i][0] + cycle;
-      s.wave2 = blob_phases_[i][1] - kSecondWaveSpeed * cycle;
-      s.extent_x *= 1.0 + s.amplitude;
-      s.extent_y *= 1.0 + s.amplitude;
-    }
-    s.lattice_per_px = pose.depth / (scene_.focal_px * o.texture_cell_m);
-    s.key = texture_keys_[i];
-    s.colour = o.colour;
-    s.texture = o.texture;
-    surfaces.push_back(s);
+    surfaces.push_back(ObjectSurface(scene_, o, frame, texture_keys_[i], blob_phases_[i]));
   }
   // Nearest first; at equal depth the object listed first in the scene is in front.
   std::stable_sort(surfaces.begin(), surfaces.end(),

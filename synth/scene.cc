@@ -5,28 +5,22 @@
 #include <initializer_list>
 #include <map>
 #include <sstream>
+#include <string_view>
 
 #include "config/param_block.h"
+#include "config/read_fields.h"
+#include "util/enum_table.h"
 #include "util/error.h"
 #include "util/limits.h"
 
 namespace attend {
 
-const char* SynthShapeName(SynthShape shape) {
-  switch (shape) {
-    case SynthShape::kRectangle:
-      return "rectangle";
-    case SynthShape::kEllipse:
-      return "ellipse";
-    case SynthShape::kTriangle:
-      return "triangle";
-    case SynthShape::kBlob:
-      return "blob";
-  }
-  return "unknown";
-}
-
 namespace {
+
+constexpr EnumTable<SynthShape, 4> kSynthShapes = {{{{SynthShape::kRectangle, "rectangle"},
+                                                     {SynthShape::kEllipse, "ellipse"},
+                                                     {SynthShape::kTriangle, "triangle"},
+                                                     {SynthShape::kBlob, "blob"}}}};
 
 constexpr int kMinImageSide = 16;
 constexpr int kMaxImageSide = 8192;
@@ -48,16 +42,16 @@ Range Coordinate() { return Range::Closed(-kLargest, kLargest); }
 bool IsPositive(double value) { return value > 0.0 && value <= kLargest; }
 bool IsCoordinate(double value) { return value >= -kLargest && value <= kLargest; }
 
-const std::vector<std::string>& ShapeNames() {
-  static const std::vector<std::string> names = {"rectangle", "ellipse", "triangle", "blob"};
-  return names;
+const std::vector<std::string>& Kinds() {
+  static const std::vector<std::string> kinds = {"object", "skin"};
+  return kinds;
 }
 
-SynthShape ShapeFromName(const std::string& name) {
-  if (name == "ellipse") return SynthShape::kEllipse;
-  if (name == "triangle") return SynthShape::kTriangle;
-  if (name == "blob") return SynthShape::kBlob;
-  return SynthShape::kRectangle;
+// An RGB colour read as [r, g, b], each in [0, 255].
+template <typename Owner, Rgb Owner::*kColour>
+NumbersMember<Owner> ColourMember() {
+  return {[](const Owner& o) { return std::vector<double>((o.*kColour).begin(), (o.*kColour).end()); },
+          [](Owner* o, const std::vector<double>& v) { o->*kColour = {v[0], v[1], v[2]}; }, 3};
 }
 
 std::string Number(double value) {
@@ -74,12 +68,6 @@ void RequirePresent(const ParamBlock& block, std::initializer_list<const char*> 
   }
 }
 
-Rgb ReadColour(const ParamBlock& block, const Rgb& default_value) {
-  const std::vector<double> rgb = block.GetDoubles(
-      "colour", {default_value[0], default_value[1], default_value[2]}, Range::Closed(0, 255), 3);
-  return {rgb[0], rgb[1], rgb[2]};
-}
-
 // The line of a block's key, for messages that point at an earlier definition.
 std::string LineOf(const ParamBlock& block, const std::string& key) {
   const std::string where = block.Where(key);
@@ -88,71 +76,28 @@ std::string LineOf(const ParamBlock& block, const std::string& key) {
 }
 
 std::vector<PathKeyframe> ReadPath(const ParamBlock& object, const Scene& scene) {
-  std::vector<PathKeyframe> path;
-  const std::vector<ParamBlock> keyframes = object.Children("path");
-  if (keyframes.empty()) {
-    object.Fail("path", "needs at least one keyframe {frame, x, y, depth}");
-  }
-  for (const ParamBlock& block : keyframes) {
-    PathKeyframe key;
-    key.frame = block.GetInt("frame", 0, Range::AtLeast(0));
-    key.x = block.GetDouble("x", 0.0, Coordinate());
-    key.y = block.GetDouble("y", 0.0, Coordinate());
-    key.depth = block.GetDouble("depth", 1.0, Positive());
-    block.CheckNoUnknownKeys();
-    RequirePresent(block, {"frame", "x", "y", "depth"});
-    if (key.depth >= scene.background.depth_m) {
-      block.Fail("depth", "depth " + Number(key.depth) +
-                              " m is not in front of the background (background.depth " +
-                              Number(scene.background.depth_m) + " m)");
-    }
-    if (!path.empty() && key.frame <= path.back().frame) {
-      block.Fail("frame", "keyframe frames must increase: " + std::to_string(key.frame) +
-                              " follows " + std::to_string(path.back().frame));
-    }
-    path.push_back(key);
-  }
+  std::vector<PathKeyframe> path = ReadList(
+      object, "path", PathKeyframe::Fields(), PathKeyframe(),
+      [&](const ParamBlock& block, const PathKeyframe& key, const std::vector<PathKeyframe>& before) {
+        RequirePresent(block, {"frame", "x", "y", "depth"});
+        if (key.depth >= scene.background.depth_m) {
+          block.Fail("depth", "depth " + Number(key.depth) +
+                                  " m is not in front of the background (background.depth " +
+                                  Number(scene.background.depth_m) + " m)");
+        }
+        if (!before.empty() && key.frame <= before.back().frame) {
+          block.Fail("frame", "keyframe frames must increase: " + std::to_string(key.frame) +
+                                  " follows " + std::to_string(before.back().frame));
+        }
+      });
+  if (path.empty()) object.Fail("path", "needs at least one keyframe {frame, x, y, depth}");
   return path;
-}
-
-Oscillation ReadOscillation(const ParamBlock& object) {
-  const ParamBlock block = object.Child("oscillation");
-  Oscillation oscillation;
-  const std::vector<double> amplitude = block.GetDoubles("amplitude", {0.0, 0.0}, Coordinate(), 2);
-  oscillation.amplitude_x = amplitude[0];
-  oscillation.amplitude_y = amplitude[1];
-  oscillation.period = block.GetDouble("period", 0.0, Positive());
-  oscillation.phase = block.GetDouble("phase", 0.0, Range{0.0, 1.0, false, true});
-  block.CheckNoUnknownKeys();
-  if (!block.Keys().empty()) RequirePresent(block, {"period"});
-  return oscillation;
-}
-
-BlobDeformation ReadBlob(const ParamBlock& object) {
-  const ParamBlock block = object.Child("blob");
-  BlobDeformation blob;
-  blob.lobes = block.GetInt("lobes", blob.lobes, Range::Closed(kMinLobes, kMaxLobes));
-  blob.amplitude =
-      block.GetDouble("amplitude", blob.amplitude, Range::Closed(0, kMaxBlobAmplitude));
-  blob.period = block.GetDouble("period", blob.period, Positive());
-  block.CheckNoUnknownKeys();
-  return blob;
 }
 
 SceneObject ReadObject(const ParamBlock& block, const Scene& scene) {
   SceneObject object;
-  object.id = block.GetInt("id", 0, Range::AtLeast(1));
-  object.name = block.GetString("name", "");
-  object.kind = block.GetChoice("kind", object.kind, {"object", "skin"});
-  object.shape = ShapeFromName(block.GetChoice("shape", "rectangle", ShapeNames()));
-  const std::vector<double> size = block.GetDoubles("size", {0.2, 0.2}, Positive(), 2);
-  object.width_m = size[0];
-  object.height_m = size[1];
-  object.colour = ReadColour(block, object.colour);
-  object.texture = block.GetDouble("texture", object.texture, Range::Closed(0, 255));
-  object.texture_cell_m = block.GetDouble("texture_cell", object.texture_cell_m, Positive());
-  object.entry = block.GetInt("entry", 0, Range::AtLeast(0));
-  object.exit = block.GetInt("exit", -1, Range::AtLeast(0));
+  object.name = "";  // unnamed: "object<id>" below
+  ReadFields(block, SceneObject::Fields(), &object);
   // Mark the nested blocks as known; they are read after the typo check of this block.
   block.Children("path");
   block.Child("oscillation");
@@ -167,8 +112,12 @@ SceneObject ReadObject(const ParamBlock& block, const Scene& scene) {
   if (object.name.empty()) object.name = "object" + std::to_string(object.id);
 
   object.path = ReadPath(block, scene);
-  object.oscillation = ReadOscillation(block);
-  if (object.shape == SynthShape::kBlob) object.blob = ReadBlob(block);
+  const ParamBlock oscillation =
+      ReadSection(block, "oscillation", Oscillation::Fields(), &object.oscillation);
+  if (!oscillation.Keys().empty()) RequirePresent(oscillation, {"period"});
+  if (object.shape == SynthShape::kBlob) {
+    ReadSection(block, "blob", BlobDeformation::Fields(), &object.blob);
+  }
   if (object.entry >= scene.frames) {
     block.Fail("entry", "frame " + std::to_string(object.entry) +
                             " is after the last frame of the scene (frames: " +
@@ -186,52 +135,27 @@ Scene ReadScene(const ParamBlock& root) {
   Scene scene;
   scene.source = source;
   const std::string stem = std::filesystem::path(source).stem().string();
-  scene.name = root.GetString("name", stem.empty() ? scene.name : stem);
+  if (!stem.empty()) scene.name = stem;
+  ReadFields(root, Scene::Fields(), &scene);
   if (scene.name.empty()) root.Fail("name", "must not be empty");
-  scene.width = root.GetInt("width", scene.width, Range::Closed(kMinImageSide, kMaxImageSide));
-  scene.height = root.GetInt("height", scene.height, Range::Closed(kMinImageSide, kMaxImageSide));
   if (static_cast<long>(scene.width) * scene.height > kMaxImagePixels) {
     root.Fail("height", "the image of " + std::to_string(scene.width) + " x " +
                             std::to_string(scene.height) + " pixels is larger than the " +
                             "renderer's limit of " + std::to_string(kMaxImagePixels) +
                             " pixels (3840 x 2160; docs/LIMITS.md)");
   }
-  scene.frames =
-      root.GetInt("frames", scene.frames, Range::Closed(1, kMaxFrameNumber + 1));
-  scene.fps = root.GetDouble("fps", scene.fps, Positive());
-  scene.seed = static_cast<std::uint64_t>(root.GetInt("seed", 1, Range::AtLeast(0)));
-
-  const ParamBlock camera = root.Child("camera");
-  scene.focal_px = camera.GetDouble("focal_px", scene.focal_px, Positive());
-  scene.baseline_m = camera.GetDouble("baseline_m", scene.baseline_m, Positive());
-  camera.CheckNoUnknownKeys();
-
-  const ParamBlock noise = root.Child("noise");
-  scene.noise_left = noise.GetDouble("left", scene.noise_left, Range::Closed(0, kMaxNoiseSigma));
-  scene.noise_right = noise.GetDouble("right", scene.noise_right, Range::Closed(0, kMaxNoiseSigma));
-  noise.CheckNoUnknownKeys();
-
-  const ParamBlock background = root.Child("background");
-  scene.background.depth_m = background.GetDouble("depth", scene.background.depth_m, Positive());
-  scene.background.colour = ReadColour(background, scene.background.colour);
-  scene.background.texture =
-      background.GetDouble("texture", scene.background.texture, Range::Closed(0, 255));
-  scene.background.texture_cell_m =
-      background.GetDouble("texture_cell", scene.background.texture_cell_m, Positive());
-  background.CheckNoUnknownKeys();
-
-  for (const ParamBlock& block : root.Children("brightness")) {
-    GainKeyframe key;
-    key.frame = block.GetInt("frame", 0, Range::AtLeast(0));
-    key.gain = block.GetDouble("gain", 1.0, Range::Closed(0, kMaxGain));
-    block.CheckNoUnknownKeys();
-    RequirePresent(block, {"frame", "gain"});
-    if (!scene.brightness.empty() && key.frame <= scene.brightness.back().frame) {
-      block.Fail("frame", "keyframe frames must increase: " + std::to_string(key.frame) +
-                              " follows " + std::to_string(scene.brightness.back().frame));
-    }
-    scene.brightness.push_back(key);
-  }
+  ReadSection(root, "camera", Scene::CameraFields(), &scene);
+  ReadSection(root, "noise", Scene::NoiseFields(), &scene);
+  ReadSection(root, "background", SceneBackground::Fields(), &scene.background);
+  scene.brightness = ReadList(
+      root, "brightness", GainKeyframe::Fields(), GainKeyframe(),
+      [](const ParamBlock& block, const GainKeyframe& key, const std::vector<GainKeyframe>& before) {
+        RequirePresent(block, {"frame", "gain"});
+        if (!before.empty() && key.frame <= before.back().frame) {
+          block.Fail("frame", "keyframe frames must increase: " + std::to_string(key.frame) +
+                                  " follows " + std::to_string(before.back().frame));
+        }
+      });
 
   const std::vector<ParamBlock> objects = root.Children("objects");
   root.CheckNoUnknownKeys();
@@ -253,6 +177,116 @@ Scene ReadScene(const ParamBlock& root) {
 }
 
 }  // namespace
+
+const char* SynthShapeName(SynthShape shape) {
+  const char* name = kSynthShapes.Name(shape);
+  return std::string_view(name) == "?" ? "unknown" : name;
+}
+
+const OptionFields<PathKeyframe>& PathKeyframe::Fields() {
+  using K = PathKeyframe;
+  static const OptionFields<K> fields = {
+      {"frame", &K::frame, Range::AtLeast(0), "the frame of the keyframe"},
+      {"x", &K::x, Coordinate(), "the centre's column in the left image, px"},
+      {"y", &K::y, Coordinate(), "the centre's row, px"},
+      {"depth", &K::depth, Positive(), "its depth, m, in front of the background"}};
+  return fields;
+}
+
+const OptionFields<GainKeyframe>& GainKeyframe::Fields() {
+  static const OptionFields<GainKeyframe> fields = {
+      {"frame", &GainKeyframe::frame, Range::AtLeast(0), "the frame of the keyframe"},
+      {"gain", &GainKeyframe::gain, Range::Closed(0, kMaxGain),
+       "the gain on every surface colour"}};
+  return fields;
+}
+
+const OptionFields<Oscillation>& Oscillation::Fields() {
+  using O = Oscillation;
+  static const OptionFields<O> fields = {
+      {"amplitude",
+       NumbersMember<O>{[](const O& o) { return std::vector<double>{o.amplitude_x, o.amplitude_y}; },
+                        [](O* o, const std::vector<double>& v) {
+                          o->amplitude_x = v[0];
+                          o->amplitude_y = v[1];
+                        },
+                        2},
+       Coordinate(), "[x, y] amplitude of the offset, px"},
+      {"period", &O::period, Positive(), "frames of one cycle (required with the block)"},
+      {"phase", &O::phase, Range{0.0, 1.0, false, true}, "fraction of a period at frame 0"}};
+  return fields;
+}
+
+const OptionFields<BlobDeformation>& BlobDeformation::Fields() {
+  using B = BlobDeformation;
+  static const OptionFields<B> fields = {
+      {"lobes", &B::lobes, Range::Closed(kMinLobes, kMaxLobes), "lobes of the first wave"},
+      {"amplitude", &B::amplitude, Range::Closed(0, kMaxBlobAmplitude),
+       "the radius varies by at most this share"},
+      {"period", &B::period, Positive(), "frames for one cycle of the first wave"}};
+  return fields;
+}
+
+const OptionFields<SceneObject>& SceneObject::Fields() {
+  using O = SceneObject;
+  static const OptionFields<O> fields = {
+      {"id", &O::id, Range::AtLeast(1), "the object's id in the id maps, unique (required)"},
+      {"name", &O::name, "for people reading the scene; default object<id>"},
+      {"kind", &O::kind, "the ground-truth kind", &Kinds},
+      {"shape", EnumField<&O::shape, kSynthShapes>(), "the outline"},
+      {"size",
+       NumbersMember<O>{[](const O& o) { return std::vector<double>{o.width_m, o.height_m}; },
+                        [](O* o, const std::vector<double>& v) {
+                          o->width_m = v[0];
+                          o->height_m = v[1];
+                        },
+                        2},
+       Positive(), "[width, height], m (required)"},
+      {"colour", ColourMember<O, &O::colour>(), Range::Closed(0, 255), "[r, g, b]"},
+      {"texture", &O::texture, Range::Closed(0, 255), "texture amplitude, grey levels"},
+      {"texture_cell", &O::texture_cell_m, Positive(), "texture lattice spacing, m"},
+      {"entry", &O::entry, Range::AtLeast(0), "first frame present"},
+      {"exit", &O::exit, Range::AtLeast(0), "last frame present; absent: to the end"}};
+  return fields;
+}
+
+const OptionFields<SceneBackground>& SceneBackground::Fields() {
+  using B = SceneBackground;
+  static const OptionFields<B> fields = {
+      {"depth", &B::depth_m, Positive(), "depth of the background plane, m"},
+      {"colour", ColourMember<B, &B::colour>(), Range::Closed(0, 255), "[r, g, b]"},
+      {"texture", &B::texture, Range::Closed(0, 255), "texture amplitude, grey levels"},
+      {"texture_cell", &B::texture_cell_m, Positive(), "texture lattice spacing, m"}};
+  return fields;
+}
+
+const OptionFields<Scene>& Scene::Fields() {
+  static const OptionFields<Scene> fields = {
+      {"name", &Scene::name, "the sequence's name; default the file's stem"},
+      {"width", &Scene::width, Range::Closed(kMinImageSide, kMaxImageSide), "image width, px"},
+      {"height", &Scene::height, Range::Closed(kMinImageSide, kMaxImageSide), "image height, px"},
+      {"frames", &Scene::frames, Range::Closed(1, kMaxFrameNumber + 1), "frames rendered"},
+      {"fps", &Scene::fps, Positive(), "frames a second"},
+      // Read as before through an int's range: seeds of up to 2^31 - 1.
+      {"seed", &Scene::seed, Range::Closed(0, 2147483647),
+       "textures, blob phases and noise derive from it"}};
+  return fields;
+}
+
+const OptionFields<Scene>& Scene::CameraFields() {
+  static const OptionFields<Scene> fields = {
+      {"focal_px", &Scene::focal_px, Positive(), "focal length, px"},
+      {"baseline_m", &Scene::baseline_m, Positive(), "stereo baseline, m"}};
+  return fields;
+}
+
+const OptionFields<Scene>& Scene::NoiseFields() {
+  static const OptionFields<Scene> fields = {
+      {"left", &Scene::noise_left, Range::Closed(0, kMaxNoiseSigma),
+       "Gaussian noise sigma of the left view, grey levels"},
+      {"right", &Scene::noise_right, Range::Closed(0, kMaxNoiseSigma), "same, right view"}};
+  return fields;
+}
 
 Scene ParseScene(const std::string& text, const std::string& source) {
   return ReadScene(ParamBlock::Parse(text, source));

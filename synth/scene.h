@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "util/option_fields.h"
+
 namespace attend {
 
 // An RGB colour, each channel in [0, 255].
@@ -24,12 +26,16 @@ struct PathKeyframe {
   double x = 0.0;
   double y = 0.0;
   double depth = 1.0;
+  // The keys of a `path` element (frame, x, y, depth): each required.
+  static const OptionFields<PathKeyframe>& Fields();
 };
 
 // The global gain that multiplies every surface colour at one frame.
 struct GainKeyframe {
   int frame = 0;
   double gain = 1.0;
+  // The keys of a `brightness` element (frame, gain): each required.
+  static const OptionFields<GainKeyframe>& Fields();
 };
 
 // A sinusoidal offset added to the path (a waving hand): amplitude * sin(2 pi (t / period +
@@ -39,6 +45,8 @@ struct Oscillation {
   double amplitude_y = 0.0;  // pixels
   double period = 0.0;       // frames; 0 means no oscillation
   double phase = 0.0;        // fraction of a period, [0, 1)
+  // The keys of an object's `oscillation` (amplitude [x, y], period, phase).
+  static const OptionFields<Oscillation>& Fields();
 };
 
 // The deformation of a blob: its radius at angle theta and frame t is the base ellipse's times
@@ -48,6 +56,8 @@ struct BlobDeformation {
   int lobes = 5;            // [2, 16]
   double amplitude = 0.25;  // [0, 0.6]
   double period = 40.0;     // frames for one cycle of the first wave, > 0
+  // The keys of an object's `blob`.
+  static const OptionFields<BlobDeformation>& Fields();
 };
 
 struct SceneObject {
@@ -65,6 +75,8 @@ struct SceneObject {
   BlobDeformation blob;  // used only when shape is kBlob
   int entry = 0;         // first frame present
   int exit = -1;         // last frame present (inclusive); -1: to the end
+  // The keys of an `objects` element, but for its nested path, oscillation and blob.
+  static const OptionFields<SceneObject>& Fields();
 };
 
 struct SceneBackground {
@@ -72,6 +84,8 @@ struct SceneBackground {
   Rgb colour = {128, 128, 128};
   double texture = 12.0;        // grey levels, [0, 255]
   double texture_cell_m = 0.1;  // metres, > 0
+  // The keys of `background`.
+  static const OptionFields<SceneBackground>& Fields();
 };
 
 struct Scene {
@@ -92,6 +106,11 @@ struct Scene {
 
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
+  // The top-level keys of a scene file (name, width, height, frames, fps, seed), and those of
+  // its `camera` and `noise` blocks, which set fields of the scene too.
+  static const OptionFields<Scene>& Fields();
+  static const OptionFields<Scene>& CameraFields();
+  static const OptionFields<Scene>& NoiseFields();
 };
 
 // Reads a scene file. Missing file, YAML errors, unknown keys (with the closest valid key),

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -37,11 +38,24 @@ struct EnumMember {
   const void* (*address)(const Options&);  // the member, to compare fields by where they live
 };
 
+// A fixed number of numbers kept in members of other types (an RGB array, a width and a
+// height, a 2x2 matrix): read and written as one list of `size` numbers.
+template <typename Options>
+struct NumbersMember {
+  std::vector<double> (*get)(const Options&);
+  void (*set)(Options*, const std::vector<double>&);
+  int size;
+};
+
 template <typename Options>
 struct OptionField {
-  using Member = std::variant<int Options::*, float Options::*, double Options::*, bool Options::*,
+  // 64-bit integers are counts and seeds: written as plain integers, read in [0, the range's
+  // upper bound] (ParamBlock::GetCount), or as an int when the range is an int's.
+  using Member = std::variant<int Options::*, std::int64_t Options::*, std::uint64_t Options::*,
+                              float Options::*, double Options::*, bool Options::*,
                               std::string Options::*, std::vector<std::string> Options::*,
-                              EnumMember<Options>>;
+                              std::vector<double> Options::*, EnumMember<Options>,
+                              NumbersMember<Options>>;
   // A numeric field, with its range.
   template <typename T,
             typename = std::enable_if_t<std::is_arithmetic_v<T> && !std::is_same_v<T, bool>>>
@@ -54,13 +68,21 @@ struct OptionField {
   OptionField(std::string_view name, T Options::*member, std::string_view doc,
               const std::vector<std::string>& (*choices)() = nullptr)
       : name(name), member(member), doc(doc), choices(choices) {}
+  // A list of numbers, each in `range`.
+  OptionField(std::string_view name, std::vector<double> Options::*member, Range range,
+              std::string_view doc)
+      : name(name), member(member), range(range), doc(doc) {}
+  // A fixed-size list of numbers kept in other members, each in `range`.
+  OptionField(std::string_view name, NumbersMember<Options> member, Range range,
+              std::string_view doc)
+      : name(name), member(member), range(range), doc(doc) {}
   // An enum field (EnumField below).
   OptionField(std::string_view name, EnumMember<Options> member, std::string_view doc)
       : name(name), member(member), doc(doc), choices(member.names) {}
 
   std::string_view name;  // the key, as the configuration and Check() spell it
   Member member;
-  Range range;           // numeric fields only
+  Range range;           // numeric fields and each number of a list
   std::string_view doc;  // one line: what the field does
   const std::vector<std::string>& (*choices)() = nullptr;
   // false for a field that code sets but a configuration does not name (a safety bound): it is
@@ -107,6 +129,43 @@ const void* AddressOf(const Options& options, T Options::*member) {
 template <typename Options>
 const void* AddressOf(const Options& options, const EnumMember<Options>& member) {
   return member.address(options);
+}
+template <typename Options>
+const void* AddressOf(const Options&, const NumbersMember<Options>&) {
+  return nullptr;
+}
+
+// The shortest text of a number field's value: a float as the float it is (0.2f as 0.2, not
+// 0.200000003), a 64-bit count in all its digits.
+template <typename T>
+std::string NumberText(T value) {
+  if constexpr (std::is_integral_v<T> && sizeof(T) == 8) {
+    return std::to_string(value);
+  } else if constexpr (std::is_same_v<T, float>) {
+    return ShortestFloat(value);
+  } else {
+    return ShortestNumber(static_cast<double>(value));
+  }
+}
+
+// "[2, 4, 8]".
+inline std::string NumbersText(const std::vector<double>& values) {
+  std::vector<std::string> texts;
+  for (const double value : values) texts.push_back(ShortestNumber(value));
+  return "[" + Join(texts, ", ") + "]";
+}
+
+// "" when each of `values` lies in the field's range; else "NAME each must be ..., got V".
+template <typename Options>
+std::string CheckNumbers(const OptionField<Options>& field, const std::vector<double>& values,
+                         std::string_view separator) {
+  for (const double value : values) {
+    if (!field.range.Contains(value)) {
+      return std::string(field.name) + std::string(separator) + "each " +
+             field.range.DescribeBreach(value) + ", got " + ShortestNumber(value);
+    }
+  }
+  return "";
 }
 
 }  // namespace internal
@@ -162,7 +221,11 @@ std::string CheckFieldRanges(const Options& options, const OptionFields<Options>
           error = std::string(field.name) + std::string(separator) + "must be one of " +
                   Join(names, ", ") + ", got '" + value + "'" + DidYouMean(value, names);
         }
+      } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+        error = internal::CheckNumbers(field, options.*member, separator);
       }
+    } else if constexpr (std::is_same_v<M, NumbersMember<Options>>) {
+      error = internal::CheckNumbers(field, member.get(options), separator);
     }
   });
   return error;
@@ -212,6 +275,8 @@ bool SameFields(const Options& a, const Options& b, const OptionFields<Options>&
     using M = std::remove_cvref_t<decltype(member)>;
     if constexpr (std::is_member_object_pointer_v<M>) {
       same = same && a.*member == b.*member;
+    } else if constexpr (std::is_same_v<M, NumbersMember<Options>>) {
+      same = same && member.get(a) == member.get(b);
     } else {
       same = same && member.get(a) == member.get(b);
     }
@@ -222,7 +287,7 @@ bool SameFields(const Options& a, const Options& b, const OptionFields<Options>&
 // One line a field for help texts: "  KEY  TYPE, RANGE or CHOICES, default VALUE: DOC".
 struct FieldDescription {
   std::string key;
-  std::string type;      // int, number, bool, text, list, or the choices "a|b|c"
+  std::string type;  // int, number, bool, text, list, numbers (a list), or the choices "a|b|c"
   std::string range;     // "" when none
   std::string fallback;  // the default, as the configuration spells it
   std::string doc;
@@ -246,16 +311,22 @@ std::vector<FieldDescription> DescribeFields(const OptionFields<Options>& fields
       } else if constexpr (std::is_arithmetic_v<T>) {
         line.type = std::is_integral_v<T> ? "int" : "number";
         line.range = field.range.Describe();
-        // A float's default as the float it is (0.2f, not 0.200000003).
-        line.fallback = std::is_same_v<T, float> ? ShortestFloat(static_cast<float>(value))
-                                                 : ShortestNumber(static_cast<double>(value));
+        line.fallback = internal::NumberText(value);
       } else if constexpr (std::is_same_v<T, std::string>) {
         line.type = field.choices ? Join(field.choices(), "|") : "text";
         line.fallback = "\"" + value + "\"";
+      } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+        line.type = "numbers";
+        line.range = field.range.Describe();
+        line.fallback = internal::NumbersText(value);
       } else {
         line.type = field.choices ? "list of " + Join(field.choices(), "|") : "list";
         line.fallback = "[" + Join(value, ", ") + "]";
       }
+    } else if constexpr (std::is_same_v<M, NumbersMember<Options>>) {
+      line.type = std::to_string(member.size) + " numbers";
+      line.range = field.range.Describe();
+      line.fallback = internal::NumbersText(member.get(defaults));
     } else {
       line.type = Join(member.names(), "|");
       line.fallback = member.get(defaults);

@@ -10,9 +10,22 @@
 //     - {name: temporal_change, weight: 1.0, window: 5}
 #include <opencv2/imgproc.hpp>
 
+#include "config/read_fields.h"
 #include "features/plugin_api.h"
 
 namespace {
+
+// The plugin's parameters, in a field table (util/option_fields.h): read with their ranges and
+// errors at their lines by attend::ReadFields, like the built-in features'.
+struct TemporalChangeOptions {
+  int window = 5;  // side of the box, px, odd
+  static const attend::OptionFields<TemporalChangeOptions>& Fields() {
+    static const attend::OptionFields<TemporalChangeOptions> fields = {
+        {"window", &TemporalChangeOptions::window, attend::Range::Closed(1, 101),
+         "side of the box the change is averaged over, px, odd"}};
+    return fields;
+  }
+};
 
 class TemporalChange : public attend::FeatureMap {
  public:
@@ -41,9 +54,10 @@ class TemporalChange : public attend::FeatureMap {
 
 std::unique_ptr<attend::FeatureMap> Create(const attend::ParamBlock& params,
                                            const attend::FeatureSetup&) {
-  const int window = params.GetInt("window", 5, attend::Range::Closed(1, 101));
-  if (window % 2 == 0) params.Fail("window", "must be odd");
-  return std::make_unique<TemporalChange>(window);
+  TemporalChangeOptions options;
+  attend::ReadFields(params, TemporalChangeOptions::Fields(), &options);
+  if (options.window % 2 == 0) params.Fail("window", "must be odd");
+  return std::make_unique<TemporalChange>(options.window);
 }
 
 void Register(attend::FeatureRegistry* registry) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "tests/support/error_message.h"
 #include "tests/support/temp_dir.h"
@@ -188,6 +189,54 @@ TEST(Range, DescribesTheBoundAValueBreaks) {
   // A float field's bounds, rounded to float: 0.01f is below 0.01.
   EXPECT_TRUE(Range::Closed(0.01, 1).RoundedToFloat().Contains(static_cast<float>(0.01)));
   EXPECT_FALSE(Range::Closed(0.01, 1).Contains(static_cast<float>(0.01)));
+}
+
+// A count of up to 64 bits, read as text: all of uint64's range, errors at the key's line.
+TEST(ParamBlock, ReadsCountsOfSixtyFourBits) {
+  const ParamBlock block =
+      ParamBlock::Parse("seed: 18446744073709551615\nn: 12\nbad: -3\nlist: [1]\n", "c.yaml");
+  EXPECT_EQ(block.GetCount("seed", 0, UINT64_MAX), UINT64_MAX);
+  EXPECT_EQ(block.GetCount("n", 0, 100), 12u);
+  EXPECT_EQ(block.GetCount("absent", 5, 100), 5u);
+  EXPECT_EQ(ConfigErrorOf([&] { block.GetCount("n", 0, 10); }),
+            "c.yaml:2: n: expected an integer in [0, 10], got '12'");
+  EXPECT_EQ(ConfigErrorOf([&] { block.GetCount("bad", 0, 10); }),
+            "c.yaml:3: bad: expected an integer in [0, 10], got '-3'");
+  EXPECT_EQ(ConfigErrorOf([&] { block.GetCount("list", 0, 10); }),
+            "c.yaml:4: list: expected an integer in [0, 10], got a list");
+}
+
+// Values passed on as YAML text (a sweep's --set values), each with where it was written.
+TEST(ParamBlock, GivesValuesAsFlowTextWithTheirLines) {
+  ParamBlock block = ParamBlock::Parse(
+      "grid:\n  a.b: [1, 2.5, {x: 1}]\n  c:\n    - [3, 4]\n    - text\nscalar: 7\n", "s.yaml");
+  const ParamBlock grid = block.Child("grid");
+  EXPECT_TRUE(grid.IsList("a.b"));
+  EXPECT_FALSE(grid.IsMap("a.b"));
+  EXPECT_FALSE(grid.IsList("missing"));
+  const std::vector<ParamBlock::Text> values = grid.ElementTexts("a.b");
+  ASSERT_EQ(values.size(), 3u);
+  EXPECT_EQ(values[0].text, "1");
+  EXPECT_EQ(values[1].text, "2.5");
+  EXPECT_EQ(values[2].text, "{x: 1}");
+  EXPECT_EQ(values[2].where, "s.yaml:2");
+  const std::vector<ParamBlock::Text> c = grid.ElementTexts("c");
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[0].text, "[3, 4]");
+  EXPECT_EQ(c[0].where, "s.yaml:4");
+  EXPECT_EQ(c[1].where, "s.yaml:5");
+  grid.CheckNoUnknownKeys();
+  EXPECT_EQ(block.ValueText("scalar").text, "7");
+  EXPECT_EQ(block.ValueText("scalar").where, "s.yaml:6");
+  EXPECT_EQ(ConfigErrorOf([&] { block.ElementTexts("scalar"); }),
+            "s.yaml:6: scalar: expected a list, got '7'");
+  EXPECT_NE(ConfigErrorOf([&] { block.ValueText("none"); }).find(": none: required key is missing"),
+            std::string::npos);
+  block.Override("scalar=[8, 9]");
+  const std::vector<ParamBlock::Text> set = block.ElementTexts("scalar");
+  ASSERT_EQ(set.size(), 2u);
+  EXPECT_EQ(set[1].text, "9");
+  EXPECT_EQ(set[1].where, "--set scalar=[8, 9]");
 }
 
 }  // namespace

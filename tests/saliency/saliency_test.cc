@@ -179,5 +179,35 @@ TEST(Saliency, BlurSpreadsAPeakAndKeepsItsHeight) {
   EXPECT_GT(map.at<float>(20, 22), 0.2f);  // exp(-1/2) x 0.8 two px away
 }
 
+// The built-in normalisations are one table: the option's names, the registry and NormaliseMap
+// all follow it.
+TEST(NormalisationRegistry, TheBuiltInOnesComeFromOneTable) {
+  const std::vector<BuiltinNormalisation>& table = BuiltinNormalisations();
+  ASSERT_GE(table.size(), 2u);
+  EXPECT_EQ(std::string(table.front().name), "minmax");  // the default comes first
+  const NormalisationRegistry registry;
+  std::vector<std::string> names;
+  for (const BuiltinNormalisation& row : table) {
+    names.push_back(row.name);
+    const NormalisationRegistry::Entry* entry = registry.Find(row.name);
+    ASSERT_NE(entry, nullptr) << row.name;
+    EXPECT_TRUE(entry->built_in);
+    EXPECT_EQ(entry->summary, row.summary);
+    // The registry's entry, NormaliseMap by name and the row's function give the same map.
+    const cv::Mat map = Row({1.f, 5.f, 2.f, 5.f, 0.f, 3.f});
+    SaliencyOptions options;
+    options.normalisation = row.name;
+    options.local_maxima_window = 3;
+    cv::Mat by_row, by_entry, by_name;
+    row.normalise(map, options, &by_row);
+    entry->normalise(map, options, &by_entry);
+    NormaliseMap(map, options, &by_name);
+    EXPECT_EQ(cv::norm(by_row, by_entry, cv::NORM_INF), 0.0) << row.name;
+    EXPECT_EQ(cv::norm(by_row, by_name, cv::NORM_INF), 0.0) << row.name;
+  }
+  EXPECT_EQ(SaliencyOptions::Normalisations(), names);
+  EXPECT_EQ(registry.Names(), names);
+}
+
 }  // namespace
 }  // namespace attend
