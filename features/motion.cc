@@ -31,6 +31,52 @@ void Sample(const cv::Mat& image, int stride, std::vector<float>* out) {
   if (out->empty()) out->push_back(image.at<float>(0, 0));
 }
 
+// The frame-wide part of a frame's change from its background, L = g B + o, and its noise.
+struct LightChange {
+  double gain = 1.0, offset = 0.0;
+  double noise = 0.0;  // the robust spread of the residual r = L - g B - o
+};
+
+// The light's change (the light, the camera's exposure) between the samples `background` and
+// `luminance` (Sample, same pixels): fitted by least squares, then again on the samples the
+// first fit explains (most of a frame does not move; what moves would bias the fit). `scratch`
+// is a buffer kept between frames.
+LightChange FitLightChange(const std::vector<float>& background,
+                           const std::vector<float>& luminance, const MotionOptions& options,
+                           std::vector<float>* scratch) {
+  std::vector<uint8_t> inlier(background.size(), 1);
+  double gain = 1.0, offset = 0.0, noise = 0.0;
+  std::vector<float>& sample = *scratch;
+  for (int pass = 0; pass < 2; ++pass) {
+    double n = 0, sb = 0, sl = 0, sbb = 0, sbl = 0;
+    for (size_t i = 0; i < inlier.size(); ++i) {
+      if (!inlier[i]) continue;
+      const double b = background[i], l = luminance[i];
+      n += 1, sb += b, sl += l, sbb += b * b, sbl += b * l;
+    }
+    if (n >= 2) {
+      const double variance = sbb - sb * sb / n;
+      gain = variance > 1e-6 * n ? (sbl - sb * sl / n) / variance : 1.0;
+      offset = (sl - gain * sb) / n;
+    }
+    // The residual's median (left-over offset) and robust spread (the sensor noise).
+    sample.resize(inlier.size());
+    for (size_t i = 0; i < inlier.size(); ++i) {
+      sample[i] = static_cast<float>(luminance[i] - gain * background[i] - offset);
+    }
+    std::vector<float> residuals = sample;
+    const float median = Median(&sample);
+    offset += median;
+    for (float& v : residuals) v -= median;
+    sample = residuals;
+    for (float& v : sample) v = std::abs(v);
+    noise = 1.4826 * Median(&sample);
+    const double bound = std::max(options.min_change, options.noise_factor * noise);
+    for (size_t i = 0; i < inlier.size(); ++i) inlier[i] = std::abs(residuals[i]) <= bound;
+  }
+  return {gain, offset, noise};
+}
+
 class MotionFeature final : public FeatureMap {
  public:
   explicit MotionFeature(const MotionOptions& options)
@@ -75,8 +121,6 @@ MotionDetector::MotionDetector(const MotionOptions& options) : options_(options)
   CV_Assert(error.empty());
 }
 
-// Longer than most on purpose: the per-pixel steps (luminance, change, the robust noise level,
-// the threshold and the box filter) share the detector's buffers in order, once a frame.
 void MotionDetector::Compute(int frame_index, const cv::Mat& bgr,
                              const Segmentation* segmentation, cv::Mat* out) {
   CV_Assert(bgr.type() == CV_8UC3 && !bgr.empty());
@@ -99,48 +143,18 @@ void MotionDetector::Compute(int frame_index, const cv::Mat& bgr,
     return;
   }
 
-  // The frame-wide part of the change, L = g B + o (the light, the camera's exposure), fitted
-  // by least squares on a regular sample of pixels, then again on the pixels the first fit
-  // explains (most of a frame does not move; what moves would bias the fit).
   constexpr int kStride = 3;
   Sample(background_, kStride, &background_sample_);
   Sample(luminance_, kStride, &luminance_sample_);
-  std::vector<uint8_t> inlier(background_sample_.size(), 1);
-  double gain = 1.0, offset = 0.0, noise = 0.0;
-  for (int pass = 0; pass < 2; ++pass) {
-    double n = 0, sb = 0, sl = 0, sbb = 0, sbl = 0;
-    for (size_t i = 0; i < inlier.size(); ++i) {
-      if (!inlier[i]) continue;
-      const double b = background_sample_[i], l = luminance_sample_[i];
-      n += 1, sb += b, sl += l, sbb += b * b, sbl += b * l;
-    }
-    if (n >= 2) {
-      const double variance = sbb - sb * sb / n;
-      gain = variance > 1e-6 * n ? (sbl - sb * sl / n) / variance : 1.0;
-      offset = (sl - gain * sb) / n;
-    }
-    // The residual's median (left-over offset) and robust spread (the sensor noise).
-    sample_.resize(inlier.size());
-    for (size_t i = 0; i < inlier.size(); ++i) {
-      sample_[i] = static_cast<float>(luminance_sample_[i] - gain * background_sample_[i] - offset);
-    }
-    std::vector<float> residuals = sample_;
-    const float median = Median(&sample_);
-    offset += median;
-    for (float& v : residuals) v -= median;
-    sample_ = residuals;
-    for (float& v : sample_) v = std::abs(v);
-    noise = 1.4826 * Median(&sample_);
-    const double bound = std::max(options_.min_change, options_.noise_factor * noise);
-    for (size_t i = 0; i < inlier.size(); ++i) inlier[i] = std::abs(residuals[i]) <= bound;
-  }
-  last_gain_ = gain;
-  last_offset_ = offset;
-  last_noise_ = noise;
-  const double floor = std::max(options_.min_change, options_.noise_factor * noise);
+  const LightChange light =
+      FitLightChange(background_sample_, luminance_sample_, options_, &sample_);
+  last_gain_ = light.gain;
+  last_offset_ = light.offset;
+  last_noise_ = light.noise;
+  const double floor = std::max(options_.min_change, options_.noise_factor * light.noise);
   // r = L - g B - o
-  cv::scaleAdd(background_, -gain, luminance_, residual_);
-  residual_ -= offset;
+  cv::scaleAdd(background_, -light.gain, luminance_, residual_);
+  residual_ -= light.offset;
   scratch_ = cv::abs(residual_);
   scratch_ -= floor;
   cv::max(scratch_, 0.0, scratch_);

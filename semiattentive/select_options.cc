@@ -1,0 +1,55 @@
+#include "semiattentive/select_options.h"
+
+#include "util/enum_table.h"
+
+namespace attend {
+
+namespace {
+
+constexpr EnumTable<SeedKind, 3> kSeedKinds = {{{
+    {SeedKind::kRegion, "region"},
+    {SeedKind::kObject, "object"},
+    {SeedKind::kDetection, "detection"},
+}}};
+
+}  // namespace
+
+const char* SeedKindName(SeedKind seed) { return kSeedKinds.Name(seed); }
+
+const OptionFields<SelectOptions>& SelectOptions::Fields() {
+  using O = SelectOptions;
+  static const OptionFields<SelectOptions> fields = {
+      {"min_saliency", &O::min_saliency, Range::Closed(0, 1),
+       "a candidate region's mean inhibited saliency at least this"},
+      {"min_area", &O::min_area, Range::Closed(1, 1e8), "a candidate's area at least this, px"},
+      {"max_new", &O::max_new, Range::Closed(1, 1000), "targets started in one frame"},
+      {"max_targets", &O::max_targets, Range::Closed(1, 1000), "targets active at once"},
+      {"max_area_fraction", &O::max_area_fraction, Range::Closed(0.001, 1),
+       "a colour region larger than this share of the image is background"},
+      {"max_inhibited_fraction", &O::max_inhibited_fraction, Range::Closed(0.001, 1),
+       "no new target while the inhibition would cover more of the image; 1: no bound"},
+      {"saliency_t_max", &O::saliency_t_max, Range::Closed(0.001, 1000),
+       "T_max of the BIP that segments the saliency map (saliency x 255)"},
+      {"seed", EnumField<&O::seed, kSeedKinds>(),
+       "what a candidate starts as: its colour region, the object around it, or a detection"},
+      {"seed_share", &O::seed_share, Range::Closed(0.01, 1),
+       "object/detection: a colour region joins the seed when this share of it lies inside"},
+      {"seed_level", &O::seed_level, Range::Closed(0.01, 1),
+       "object: the salient region is where saliency is at least this times the mean"},
+      {"detection_taken", &O::detection_taken, Range::Closed(0, 1),
+       "detection: a detection an active target covers by this share belongs to it"},
+      {"detected_only", &O::detected_only,
+       "detection: a candidate under no detection starts nothing"},
+      {"reanchor_min_iou", &O::reanchor_min_iou, Range::Closed(0, 1),
+       "a found target restarts on a detection overlapping it at least this (IoU); 0: never"},
+      {"reanchor_max_iou", &O::reanchor_max_iou, Range::Closed(0, 1), "... and below this IoU"},
+      {"reanchor_min_similarity", &O::reanchor_min_similarity, Range::Closed(0, 1),
+       "... and when the detection looks at least this like the target; 0: any look"},
+      {"group_min_speed", &O::group_min_speed, Range::Closed(0, 1000),
+       "object: motion grouping above this speed, px a frame; 0: off"},
+      {"group_flow_tolerance", &O::group_flow_tolerance, Range::Closed(0, 10),
+       "motion grouping: a region joins when its flow differs by at most this times the speed"}};
+  return fields;
+}
+
+}  // namespace attend

@@ -1,0 +1,78 @@
+// The `select` section of the configuration: how the attention stage chooses what to attend
+// next and what a new target starts from (thesis 5.1.2, SPEC 2.4). One struct, because one
+// section holds these keys; each group of fields below is read by one step of the stage:
+//   candidates (semiattentive/candidates.h)       min_saliency, min_area, saliency_t_max
+//   the selection (semiattentive/attention.cc)     max_new, max_targets, max_area_fraction,
+//                                                  max_inhibited_fraction
+//   seeds (semiattentive/seeds.h)                  seed, seed_share, seed_level,
+//                                                  detection_taken, detected_only
+//   recognition (semiattentive/recognition.h)      reanchor_min_iou, reanchor_max_iou,
+//                                                  reanchor_min_similarity
+//   motion grouping (semiattentive/motion_grouping.h)  group_min_speed, group_flow_tolerance
+// The release rules (semiattentive/release.h) also read min_area and max_area_fraction.
+#pragma once
+
+#include "util/option_fields.h"
+
+namespace attend {
+
+// What a candidate starts as (SelectOptions::seed).
+enum class SeedKind { kRegion, kObject, kDetection };
+// "region", "object", "detection" (the select.seed key).
+const char* SeedKindName(SeedKind seed);
+
+struct SelectOptions {
+  float min_saliency = 0.2f;  // mean inhibited saliency of a candidate region, 0..1
+  int min_area = 120;         // pixels, at the working size
+  int max_new = 2;            // select.max_new: its row in Fields() describes it
+  int max_targets = 12;       // targets active at once
+  // A colour region larger than this share of the image is background, never a target.
+  float max_area_fraction = 0.2f;
+  // No new target starts while the inhibition (with the new region) would cover more than
+  // this share of the image; 1: no bound (the thesis's).
+  float max_inhibited_fraction = 0.3f;
+  // T_max of the BIP that segments the saliency map, in saliency units times 255.
+  float saliency_t_max = 40.f;
+  // What a candidate starts as: "region", the colour region it overlaps most (thesis 5.1.2),
+  // or "object", that region together with every colour region of which at least
+  // `seed_share` lies inside the candidate's salient region (an object of several colours,
+  // such as a person's coat, trousers and head). The object's area is bounded as a region's.
+  // "detection": where the candidate's most salient pixel lies in a top-down channel's
+  // detection box (features/detectors.h), the colour regions of which at least `seed_share`
+  // lies inside that box (a whole person), and a candidate inside a detection that an active
+  // target already covers by `detection_taken` of its box is part of that target, not a new
+  // one; elsewhere as "object".
+  SeedKind seed = SeedKind::kRegion;
+  float detection_taken = 0.3f;
+  // "detection" only: a candidate under no detection starts nothing (the channels are told
+  // where it is, through the look regions, and recognise it in the next frames), so that
+  // every target is a recognised object; false: it starts as an "object" seed.
+  bool detected_only = false;
+  // Recognition keeps a target on its object: a found target whose box and a detection's
+  // overlap with IoU in [reanchor_min_iou, reanchor_max_iou) starts again from that
+  // detection's colour regions, under its own id (its tracker had slid off part of the
+  // object). 0: never.
+  float reanchor_min_iou = 0.f;
+  float reanchor_max_iou = 0.75f;
+  // ... and only when what the detection's seed looks like (ObjectAppearance::Similarity)
+  // is at least this like what the target looked like on its object: a target that slid
+  // onto the person beside it is not restarted on them (it is left as it is, unrecognised).
+  // 0: any look.
+  float reanchor_min_similarity = 0.f;
+  float seed_share = 0.5f;
+  // object: the candidate's salient region is the connected area around its most salient
+  // pixel where the inhibited saliency is at least this times the candidate's mean.
+  float seed_level = 0.5f;
+  // object: motion grouping. Where the proto-object moves at least this fast (px a frame, its
+  // regions' mean dense optical flow from the previous frame, OpenCV's DIS), the colour
+  // regions next to it that move alike join it, region by region outwards: a region whose mean
+  // flow differs from the proto-object's by at most group_flow_tolerance times its speed.
+  // 0: off (the thesis's stage has no motion).
+  float group_min_speed = 0.f;
+  float group_flow_tolerance = 0.5f;
+  // The fields (util/option_fields.h), for AttentionOptions::Check and the configuration's
+  // `select` section.
+  static const OptionFields<SelectOptions>& Fields();
+};
+
+}  // namespace attend
