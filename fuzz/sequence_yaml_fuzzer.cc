@@ -37,8 +37,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fuzz::WriteFile(SequenceFolder() + "/sequence.yaml", fuzz::ToString(data, size));
   fuzz::ExpectOnlyDocumentedErrors([&] {
     SequenceOptions options;
-    options.folder = SequenceFolder();
-    const std::unique_ptr<FrameSource> source = FrameSource::Open(options);
+    options.source.folder = SequenceFolder();
+    const std::unique_ptr<FrameSource> source = OpenFrameSource(options);
     StereoFrame frame;
     source->Next(&frame);
   });
