@@ -15,6 +15,7 @@
 
 #include "app/home.h"
 #include "app/render_scene.h"
+#include "app/run_attention.h"
 #include "config/param_block.h"
 #include "eval/fixation_data.h"
 #include "io/tracking_files.h"
@@ -638,6 +639,23 @@ std::string CellConfigYaml(const SweepPlan& plan, const SweepCell& cell) {
   return OptionsToYaml(LoadOptions(plan.config, CellSets(plan, cell)));
 }
 
+namespace {
+
+// The source (io/source_spec.h) of an input of command run; a scene runs on the sequence it
+// renders into.
+SourceSpec RunInputSource(const SweepInput& input) {
+  SourceSpec source;
+  if (input.kind == "sequence" || input.kind == "scene") source.folder = input.path;
+  if (input.kind == "left") source.left_video = input.path;
+  source.right_video = input.right;
+  if (input.kind == "side_by_side") source.side_by_side_video = input.path;
+  if (input.kind == "video") source.video = input.path;
+  if (input.kind == "images") source.images = input.path;
+  return source;
+}
+
+}  // namespace
+
 std::vector<std::vector<std::string>> CellCommands(const SweepPlan& plan, const SweepCell& cell,
                                                    const std::string& cell_dir) {
   const SweepInput& input = plan.inputs[cell.input];
@@ -653,11 +671,8 @@ std::vector<std::vector<std::string>> CellCommands(const SweepPlan& plan, const 
     case SweepCommand::kRun: {
       compute = {"run", "--config", plan.config};
       compute.insert(compute.end(), sets.begin(), sets.end());
-      const std::string flag = input.kind == "side_by_side" ? "--side-by-side"
-                               : input.kind == "scene"      ? "--sequence"
-                                                            : "--" + input.kind;
-      compute.insert(compute.end(), {flag, input.path});
-      if (!input.right.empty()) compute.insert(compute.end(), {"--right", input.right});
+      const std::vector<std::string> source = RunSourceArguments(RunInputSource(input));
+      compute.insert(compute.end(), source.begin(), source.end());
       if (!input.frames.empty()) compute.insert(compute.end(), {"--frames", input.frames});
       compute.insert(compute.end(), {"--out", out, "--overwrite", "--quiet"});
       score = {"eval", out};
