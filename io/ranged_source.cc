@@ -70,8 +70,8 @@ class RangedSource final : public FrameSource {
       // run keeps them; this one is an error, not a quiet end.
       if (reader_->Count() >= 0 && index < reader_->Count()) {
         throw InputError(what_ + ": ends at frame " + std::to_string(index) +
-                         ", but it announces " + std::to_string(reader_->Count()) +
-                         " frames (0.." + std::to_string(reader_->Count() - 1) +
+                         ", but it announces " + std::to_string(reader_->Count()) + " frames (0.." +
+                         std::to_string(reader_->Count() - 1) +
                          "); the file may be cut short (the frames before were read; if its "
                          "header miscounts, set sequence.last_frame)");
       }
@@ -96,7 +96,7 @@ class RangedSource final : public FrameSource {
   SequenceInfo info_;
   int stride_;
   int next_index_;
-  int last_index_;  // inclusive; -1 while the end is unknown
+  int last_index_;    // inclusive; -1 while the end is unknown
   std::string what_;  // the source, for messages
   bool finished_ = false;
   std::optional<NativeFrame> first_;

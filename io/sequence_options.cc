@@ -41,7 +41,8 @@ std::string SequenceOptions::Check() const {
            "), got " + std::to_string(last_frame);
   }
   if (resize != "native") {
-    for (const auto& [name, side] : {std::pair<const char*, int>{"width", width}, {"height", height}}) {
+    for (const auto& [name, side] :
+         {std::pair<const char*, int>{"width", width}, {"height", height}}) {
       const Range& range = RangeOf(Fields(), name);
       if (!range.Contains(side)) {
         return std::string(name) + " " + range.DescribeBreach(side) +

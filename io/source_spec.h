@@ -16,12 +16,12 @@ namespace attend {
 // The kinds of source, one for each way the fields below can be set.
 enum class SourceKind {
   kNone,
-  kFolder,        // folder
-  kVideoPair,     // left_video + right_video
-  kSideBySide,    // side_by_side_video
-  kVideo,         // video
-  kImages,        // images
-  kLive,          // camera or gst, with their right twins or live.side_by_side
+  kFolder,      // folder
+  kVideoPair,   // left_video + right_video
+  kSideBySide,  // side_by_side_video
+  kVideo,       // video
+  kImages,      // images
+  kLive,        // camera or gst, with their right twins or live.side_by_side
 };
 
 struct SourceSpec {

@@ -29,8 +29,7 @@ TEST(RunSourceArguments, GiveEachSourceInTheRunCommandsFlags) {
   live.camera = 0;
   live.gst_right = "videotestsrc";
   live.live.queue = 8;  // read settings have no flag
-  EXPECT_EQ(RunSourceArguments(live),
-            (Arguments{"--camera", "0", "--gst-right", "videotestsrc"}));
+  EXPECT_EQ(RunSourceArguments(live), (Arguments{"--camera", "0", "--gst-right", "videotestsrc"}));
   live.gst_right.clear();
   live.live.side_by_side = true;
   EXPECT_EQ(RunSourceArguments(live), (Arguments{"--camera", "0", "--side-by-side-live"}));

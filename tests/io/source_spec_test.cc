@@ -25,8 +25,7 @@ TEST(SourceSpec, KindFollowsTheFieldSet) {
               s->right_video = "b.avi";
             }),
             SourceKind::kVideoPair);
-  EXPECT_EQ(kind([](SourceSpec* s) { s->side_by_side_video = "s.avi"; }),
-            SourceKind::kSideBySide);
+  EXPECT_EQ(kind([](SourceSpec* s) { s->side_by_side_video = "s.avi"; }), SourceKind::kSideBySide);
   EXPECT_EQ(kind([](SourceSpec* s) { s->video = "m.avi"; }), SourceKind::kVideo);
   EXPECT_EQ(kind([](SourceSpec* s) { s->images = "img"; }), SourceKind::kImages);
   EXPECT_EQ(kind([](SourceSpec* s) { s->camera = 0; }), SourceKind::kLive);
