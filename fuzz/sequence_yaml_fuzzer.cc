@@ -1,6 +1,6 @@
 // SEQ/sequence.yaml, the description of a sequence folder (docs/SEQUENCES.md): the input is that
 // file of a temporary monocular sequence with one valid 16x12 frame, opened as `attend run
-// --sequence SEQ` opens it (FrameSource::Open).
+// --sequence SEQ` opens it (OpenFrameSource).
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>

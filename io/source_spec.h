@@ -57,8 +57,9 @@ struct SourceSpec {
   std::vector<std::string*> Paths();
 
   // Empty when valid (also when no source is set); otherwise names the keys and what is wrong.
-  // CheckKinds: one kind, a whole video pair, the field ranges; CheckLive: the live keys
-  // (CheckLiveSource). Check: both.
+  // CheckKinds: one kind, a whole video pair, the field ranges; CheckLive: the live section's
+  // ranges and the live keys' consistency. Check: both. SequenceOptions::Check runs its own
+  // ranges between the two, so that errors come in the order of the keys.
   std::string Check() const;
   std::string CheckKinds() const;
   std::string CheckLive() const;
