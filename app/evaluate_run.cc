@@ -166,10 +166,10 @@ nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::
   }
   std::string gt = gt_dir;
   if (gt.empty()) {
-    if (options.sequence.folder.empty()) {
+    if (options.sequence.source.folder.empty()) {
       throw ConfigError(run_dir + ": the run's source is not a sequence folder; give --gt");
     }
-    gt = (fs::path(options.sequence.folder) / "gt").string();
+    gt = (fs::path(options.sequence.source.folder) / "gt").string();
   }
   const fs::path objects = fs::path(gt) / "objects.csv";
   if (!fs::exists(objects)) throw InputError(objects.string() + ": no ground-truth objects");

@@ -13,30 +13,24 @@ AttendOptions ResolveRunOptions(const AttentionRunRequest& request) {
   const std::string config_path = request.config.empty() ? DefaultConfigPath() : request.config;
   AttendOptions options = LoadOptions(config_path, request.sets);
   SequenceOptions& sequence = options.sequence;
-  const RunSource& source = request.source;
+  const SourceSpec& source = request.source;
   if (!source.empty()) {
-    sequence.folder = source.folder;
-    sequence.left_video = source.left_video;
-    sequence.right_video = source.right_video;
-    sequence.side_by_side_video = source.side_by_side_video;
-    sequence.video = source.video;
-    sequence.images = source.images;
-    sequence.camera = source.camera;
-    sequence.camera_right = source.camera_right;
-    sequence.gst = source.gst;
-    sequence.gst_right = source.gst_right;
-    sequence.live.side_by_side = source.side_by_side_live;
+    // How a live source is read (queue, timeouts) stays the configuration's.
+    const LiveOptions live = sequence.source.live;
+    sequence.source = source;
+    sequence.source.live = live;
+    sequence.source.live.side_by_side = source.live.side_by_side;
   }
   // Alone, it applies to the configuration's live source.
-  if (source.side_by_side_live) sequence.live.side_by_side = true;
+  if (source.live.side_by_side) sequence.source.live.side_by_side = true;
   if (request.duration_s >= 0.0) {
-    if (!sequence.IsLive()) {
+    if (!sequence.source.IsLive()) {
       throw ConfigError("--duration bounds a live source (--camera, --gst, or the "
                         "configuration's sequence.camera or sequence.gst); the source is " +
-                        (sequence.SourceCount() == 0 ? std::string("the bundled sequence")
-                                                     : sequence.Describe()));
+                        (sequence.source.empty() ? std::string("the bundled sequence")
+                                                 : sequence.source.Describe()));
     }
-    sequence.live.duration_s = request.duration_s;
+    sequence.source.live.duration_s = request.duration_s;
   }
   if (!request.frames.empty()) {
     const FrameRange range =
@@ -44,18 +38,30 @@ AttendOptions ResolveRunOptions(const AttentionRunRequest& request) {
     sequence.first_frame = range.first;
     sequence.last_frame = range.last;
   }
-  if (sequence.SourceCount() == 0) sequence.folder = EnsureBundledSequence(request.quiet);
-  for (std::string* path : {&sequence.folder, &sequence.left_video, &sequence.right_video,
-                            &sequence.side_by_side_video, &sequence.video, &sequence.images}) {
+  if (sequence.source.empty()) sequence.source.folder = EnsureBundledSequence(request.quiet);
+  for (std::string* path : sequence.source.Paths()) {
     if (!path->empty()) *path = std::filesystem::absolute(*path).lexically_normal().string();
   }
   return options;
 }
 
-bool RunSource::empty() const {
-  return folder.empty() && left_video.empty() && right_video.empty() &&
-         side_by_side_video.empty() && video.empty() && images.empty() && camera < 0 &&
-         camera_right < 0 && gst.empty() && gst_right.empty();
+std::vector<std::string> RunSourceArguments(const SourceSpec& source) {
+  std::vector<std::string> arguments;
+  auto add = [&](const char* flag, const std::string& value) {
+    if (!value.empty()) arguments.insert(arguments.end(), {flag, value});
+  };
+  add("--sequence", source.folder);
+  add("--left", source.left_video);
+  add("--right", source.right_video);
+  add("--side-by-side", source.side_by_side_video);
+  add("--video", source.video);
+  add("--images", source.images);
+  if (source.camera >= 0) add("--camera", std::to_string(source.camera));
+  if (source.camera_right >= 0) add("--camera-right", std::to_string(source.camera_right));
+  add("--gst", source.gst);
+  add("--gst-right", source.gst_right);
+  if (source.live.side_by_side) arguments.push_back("--side-by-side-live");
+  return arguments;
 }
 
 bool ShippedFeatures(const AttentionRunRequest& request) {

@@ -10,34 +10,19 @@
 #include <string>
 #include <vector>
 
+#include "io/source_spec.h"
 #include "pipeline/run.h"
 
 namespace attend {
 
-// A source given beside the configuration (SequenceOptions: folder, left and right videos,
-// side-by-side video, video, images, a live camera or pipeline and its right twin): any of
-// them but right_video alone replaces the configuration's whole source.
-struct RunSource {
-  std::string folder;
-  std::string left_video;
-  std::string right_video;
-  std::string side_by_side_video;
-  std::string video;
-  std::string images;
-  int camera = -1;  // live (io/live_source.h); -1: none
-  int camera_right = -1;
-  std::string gst;
-  std::string gst_right;
-  bool side_by_side_live = false;  // live.side_by_side for the camera or gst given here
-
-  // Whether any source is given (then it replaces the configuration's).
-  bool empty() const;
-};
-
 struct AttentionRunRequest {
   std::string config;              // the configuration file; "": DefaultConfigPath()
   std::vector<std::string> sets;   // key=value overrides, as --set
-  RunSource source;
+  // A source given beside the configuration (io/source_spec.h): when any is set (SourceSpec's
+  // empty() is false) it replaces the configuration's whole source, but for the reading
+  // settings of its `live` (queue, timeout_s, duration_s), which stay the configuration's.
+  // live.side_by_side set alone applies to the configuration's live source.
+  SourceSpec source;
   std::string frames;              // FIRST:LAST over the configuration's range; "": as it is
   double duration_s = -1.0;        // live.duration_s (--duration); < 0: as the configuration says
   std::string out;                 // the run folder; "": output.dir, else one under runs/
@@ -50,6 +35,13 @@ struct AttentionRunRequest {
   // shipped configuration, ShippedFeatures).
   std::function<void(const std::string& feature)> on_left_out;
 };
+
+// The `attend run` arguments that give `source`, in the command's flags: {"--sequence", FOLDER},
+// {"--left", A, "--right", B}, {"--side-by-side", V}, {"--video", V}, {"--images", DIR},
+// {"--camera", "0", "--camera-right", "1"}, {"--gst", P}, ..., then "--side-by-side-live" when
+// live.side_by_side is set; none for no source. The reading settings of `live` have no flag (the
+// configuration holds them). A sweep's cells run their inputs with these.
+std::vector<std::string> RunSourceArguments(const SourceSpec& source);
 
 // Whether `request` runs the shipped list of features: no configuration of the user's own
 // (no --config, or --config naming the shipped configs/default.yaml itself) and no --set of

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <set>
 
+#include "app/run_attention.h"
 #include "util/error.h"
 #include "util/output_folder.h"
 #include "util/strings.h"
@@ -215,13 +216,19 @@ std::vector<SweepInput> ReadSweepInputs(const YamlDocument& document, SweepComma
   return read;
 }
 
+SourceSpec InputSource(const SweepInput& input) {
+  SourceSpec source;
+  if (input.kind == "sequence" || input.kind == "scene") source.folder = input.path;
+  if (input.kind == "left") source.left_video = input.path;
+  source.right_video = input.right;
+  if (input.kind == "side_by_side") source.side_by_side_video = input.path;
+  if (input.kind == "video") source.video = input.path;
+  if (input.kind == "images") source.images = input.path;
+  return source;
+}
+
 std::vector<std::string> SourceArguments(const SweepInput& input) {
-  const std::string flag = input.kind == "side_by_side" ? "--side-by-side"
-                           : input.kind == "scene"      ? "--sequence"
-                                                        : "--" + input.kind;
-  std::vector<std::string> words = {flag, input.path};
-  if (!input.right.empty()) words.insert(words.end(), {"--right", input.right});
-  return words;
+  return RunSourceArguments(InputSource(input));
 }
 
 std::string FileSafe(const std::string& text, std::size_t max_length) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "config/yaml_document.h"
+#include "io/source_spec.h"
 
 namespace attend {
 
@@ -38,8 +39,12 @@ struct SweepInput {
 std::vector<SweepInput> ReadSweepInputs(const YamlDocument& document, SweepCommand command,
                                         const std::string& dir);
 
+// The input's source as the run takes it (io/source_spec.h): a rendered scene is the sequence
+// folder it renders into; fixations inputs have none.
+SourceSpec InputSource(const SweepInput& input);
+
 // The words of `attend run` (and `attend track`) that name the input's source: `--sequence
-// PATH`, `--left PATH --right PATH`, ... A rendered scene is a sequence.
+// PATH`, `--left PATH --right PATH`, ... (RunSourceArguments of InputSource).
 std::vector<std::string> SourceArguments(const SweepInput& input);
 
 // Letters, digits and . _ = + - kept; any other run of bytes becomes one '-'; at most

@@ -33,12 +33,12 @@ std::unique_ptr<FrameSource> OpenTrackSource(const TrackRequest& request,
                      "sequence?); track a plain folder of images with --images " +
                      (fs::path(sequence) / "img").string());
   }
-  options->folder = request.images.empty() ? sequence : "";
-  options->images = request.images;
+  options->source.folder = request.images.empty() ? sequence : "";
+  options->source.images = request.images;
   options->first_frame = request.first_frame;
   options->last_frame = request.last_frame;
   options->resize = "native";
-  return FrameSource::Open(*options);
+  return OpenFrameSource(*options);
 }
 
 // The frame with each target's pixels tinted, its box (thick when found) and its ROI (thin), in
@@ -163,7 +163,8 @@ nlohmann::json TrackSequence(const TrackRequest& request,
   const std::unique_ptr<FrameSource> source = OpenTrackSource(request, &source_options);
   StereoFrame frame;
   if (!source->Next(&frame)) {
-    throw InputError(source_options.Describe() + ": no frame in the range " + request.range_text);
+    throw InputError(source_options.source.Describe() + ": no frame in the range " +
+                     request.range_text);
   }
   const int first_frame = frame.index;
 
@@ -215,7 +216,7 @@ nlohmann::json TrackSequence(const TrackRequest& request,
   }
   WriteTracksCsv(tracks_path, rows);
 
-  nlohmann::json summary = {{"source", source_options.Describe()},
+  nlohmann::json summary = {{"source", source_options.source.Describe()},
                                   {"out", request.out},
                                   {"tracker", tracker->name()},
                                   {"first_frame", first_frame},

@@ -126,9 +126,9 @@ struct Sequence {
 Sequence ReadSequence(const std::string& folder, int max_frames) {
   Sequence sequence;
   attend::SequenceOptions options;
-  options.folder = folder;
+  options.source.folder = folder;
   if (max_frames > 0) options.last_frame = max_frames - 1;
-  std::unique_ptr<attend::FrameSource> source = attend::FrameSource::Open(options);
+  std::unique_ptr<attend::FrameSource> source = attend::OpenFrameSource(options);
   const attend::SequenceInfo& info = source->info();
   sequence.name = fs::path(folder).filename().string();
   if (sequence.name.empty()) sequence.name = fs::path(folder).parent_path().filename().string();

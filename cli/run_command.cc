@@ -33,17 +33,7 @@ extern "C" void OnStopSignal(int signal) {
 
 struct RunArguments {
   std::string config;
-  std::string sequence;
-  std::string left;
-  std::string right;
-  std::string side_by_side;
-  std::string video;
-  std::string images;
-  int camera = -1;
-  int camera_right = -1;
-  std::string gst;
-  std::string gst_right;
-  bool side_by_side_live = false;
+  SourceSpec source;  // --sequence ... --gst-right, --side-by-side-live
   double duration = -1.0;
   std::string out;
   bool overwrite = false;
@@ -82,9 +72,7 @@ int Run(const RunArguments& args) {
   AttentionRunRequest request;
   request.config = args.config;
   request.sets = args.sets;
-  request.source = {args.sequence, args.left, args.right, args.side_by_side, args.video,
-                    args.images, args.camera, args.camera_right, args.gst, args.gst_right,
-                    args.side_by_side_live};
+  request.source = args.source;
   request.frames = args.frames;
   request.duration_s = args.duration;
   if (!args.quiet) {
@@ -138,34 +126,35 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
       "(disparity) out with a note.");
   run->add_option("--config", args->config,
                   "Configuration YAML (default: configs/default.yaml of the attend home)");
-  auto* seq = run->add_option("--sequence", args->sequence,
+  auto* seq = run->add_option("--sequence", args->source.folder,
                               "Sequence folder with left/ and right/ (or only left/)");
-  auto* left = run->add_option("--left", args->left, "Left video of a pair");
-  auto* right = run->add_option("--right", args->right, "Right video of a pair");
-  auto* sbs = run->add_option("--side-by-side", args->side_by_side, "Side-by-side stereo video");
-  auto* video = run->add_option("--video", args->video, "Monocular video");
+  auto* left = run->add_option("--left", args->source.left_video, "Left video of a pair");
+  auto* right = run->add_option("--right", args->source.right_video, "Right video of a pair");
+  auto* sbs = run->add_option("--side-by-side", args->source.side_by_side_video,
+                              "Side-by-side stereo video");
+  auto* video = run->add_option("--video", args->source.video, "Monocular video");
   auto* images = run->add_option(
-      "--images", args->images,
+      "--images", args->source.images,
       "Monocular plain folder of frames (.png .jpg .jpeg .ppm .pgm, sorted by name)");
-  auto* camera = run->add_option("--camera", args->camera,
+  auto* camera = run->add_option("--camera", args->source.camera,
                                  "Live V4L2 camera /dev/videoN (docs/LIVE.md)")
                      ->type_name("N")
                      ->check(CLI::Range(0, 4095));
   auto* camera_right =
-      run->add_option("--camera-right", args->camera_right,
+      run->add_option("--camera-right", args->source.camera_right,
                       "Right camera of a live stereo pair (with --camera or --gst)")
           ->type_name("M")
           ->check(CLI::Range(0, 4095));
   auto* gst = run->add_option(
-      "--gst", args->gst,
+      "--gst", args->source.gst,
       "Live GStreamer pipeline, read through OpenCV; it should end in an appsink (' ! "
       "videoconvert ! appsink' is appended when it names none): 'v4l2src ! videoconvert ! "
       "appsink', 'videotestsrc is-live=true'");
   gst->type_name("PIPELINE");
-  auto* gst_right = run->add_option("--gst-right", args->gst_right,
+  auto* gst_right = run->add_option("--gst-right", args->source.gst_right,
                                     "Right pipeline of a live stereo pair (with --camera or --gst)")
                         ->type_name("PIPELINE");
-  run->add_flag("--side-by-side-live", args->side_by_side_live,
+  run->add_flag("--side-by-side-live", args->source.live.side_by_side,
                 "The live source's frames hold the left view in their left half and the right "
                 "view in their right half (live.side_by_side)");
   run->add_option("--duration", args->duration,

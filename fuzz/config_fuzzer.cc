@@ -38,13 +38,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // The strings the writer may re-encode: file names must come back byte for byte, or a
     // run's config.yaml names another file than the one the run read.
     const std::pair<const char*, std::pair<const std::string*, const std::string*>> paths[] = {
-        {"sequence.folder", {&options.sequence.folder, &read_back.sequence.folder}},
-        {"sequence.left_video", {&options.sequence.left_video, &read_back.sequence.left_video}},
-        {"sequence.right_video", {&options.sequence.right_video, &read_back.sequence.right_video}},
+        {"sequence.folder", {&options.sequence.source.folder, &read_back.sequence.source.folder}},
+        {"sequence.left_video", {&options.sequence.source.left_video, &read_back.sequence.source.left_video}},
+        {"sequence.right_video", {&options.sequence.source.right_video, &read_back.sequence.source.right_video}},
         {"sequence.side_by_side_video",
-         {&options.sequence.side_by_side_video, &read_back.sequence.side_by_side_video}},
-        {"sequence.video", {&options.sequence.video, &read_back.sequence.video}},
-        {"sequence.images", {&options.sequence.images, &read_back.sequence.images}},
+         {&options.sequence.source.side_by_side_video, &read_back.sequence.source.side_by_side_video}},
+        {"sequence.video", {&options.sequence.source.video, &read_back.sequence.source.video}},
+        {"sequence.images", {&options.sequence.source.images, &read_back.sequence.source.images}},
         {"output.dir", {&options.output.dir, &read_back.output.dir}},
         {"select.skin_model", {&options.attention.skin_model, &read_back.attention.skin_model}}};
     for (const auto& [key, values] : paths) {

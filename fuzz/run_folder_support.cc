@@ -94,7 +94,7 @@ RunFiles ValidRunFiles(const std::string& sequence) {
     files.frames_jsonl += FrameRecordToJson(record) + "\n";
   }
   AttendOptions options;
-  options.sequence.folder = sequence;
+  options.sequence.source.folder = sequence;
   options.output.dump = {"overlay", "features", "saliency"};
   files.config_yaml = OptionsToYaml(options);
   const nlohmann::ordered_json size = {kRunWidth, kRunHeight};

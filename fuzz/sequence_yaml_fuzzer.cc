@@ -1,6 +1,6 @@
 // SEQ/sequence.yaml, the description of a sequence folder (docs/SEQUENCES.md): the input is that
 // file of a temporary monocular sequence with one valid 16x12 frame, opened as `attend run
-// --sequence SEQ` opens it (FrameSource::Open).
+// --sequence SEQ` opens it (OpenFrameSource).
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -37,8 +37,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fuzz::WriteFile(SequenceFolder() + "/sequence.yaml", fuzz::ToString(data, size));
   fuzz::ExpectOnlyDocumentedErrors([&] {
     SequenceOptions options;
-    options.folder = SequenceFolder();
-    const std::unique_ptr<FrameSource> source = FrameSource::Open(options);
+    options.source.folder = SequenceFolder();
+    const std::unique_ptr<FrameSource> source = OpenFrameSource(options);
     StereoFrame frame;
     source->Next(&frame);
   });

@@ -1,6 +1,6 @@
 // The `live:` section of the configuration (docs/LIVE.md): how a live source (a V4L2 camera or
-// a GStreamer pipeline, SequenceOptions::camera and gst) is read, and what a live run reports
-// about it. Kept apart from io/live_source.h so that io/sequence.h can hold it without seeing
+// a GStreamer pipeline, SourceSpec::camera and gst) is read, and what a live run reports
+// about it. Kept apart from io/live_source.h so that io/source_spec.h can hold it without seeing
 // the capture code.
 #pragma once
 
@@ -45,7 +45,7 @@ const char* LiveEndName(LiveEnd end);
 // What a live source reports about its capture. Frames are counted from the range's first
 // frame, stride applied: captured = handed out + dropped + unprocessed.
 struct LiveStatus {
-  std::string source;     // SequenceOptions::Describe()
+  std::string source;     // SourceSpec::Describe()
   int queue = 0;          // the queue's capacity (live.queue)
   int captured = 0;       // frames read from the source (of the range)
   int dropped = 0;        // the oldest frames dropped from a full queue: the loop was slower

@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include "io/native_frame.h"
+#include "io/working_size.h"
 #include "util/error.h"
 #include "util/opencv_extra.h"
 
@@ -29,30 +31,6 @@ std::string Seconds(double seconds) {
   std::ostringstream out;
   out << seconds << " s";
   return out.str();
-}
-
-// One view of a live source: a camera or a pipeline.
-struct LiveView {
-  int camera = -1;
-  std::string gst;
-  std::string key;  // the pipeline's key, for frame names: "gst" or "gst_right"
-
-  bool empty() const { return camera < 0 && gst.empty(); }
-  std::string Describe() const {
-    if (camera >= 0) return "camera " + std::to_string(camera);
-    return "GStreamer pipeline '" + gst + "'";
-  }
-  // What names its frames, as a file names a folder's: "/dev/video0#12", "gst#12".
-  std::string FrameStem() const {
-    return camera >= 0 ? "/dev/video" + std::to_string(camera) : key;
-  }
-  // Its part of the sequence name: "camera0", "gst".
-  std::string Name() const { return camera >= 0 ? "camera" + std::to_string(camera) : "gst"; }
-};
-
-LiveView LeftView(const SequenceOptions& options) { return {options.camera, options.gst, "gst"}; }
-LiveView RightView(const SequenceOptions& options) {
-  return {options.camera_right, options.gst_right, "gst_right"};
 }
 
 // Opens one view. Every failure is bad input naming the view, and comes within about a second:
@@ -139,33 +117,79 @@ void SetEnd(CaptureState* state, LiveEnd end, const std::string& why) {
   state->why = why;
 }
 
+// Opens the views, on the capture thread. When one cannot be opened the capture ends with its
+// error (kError) and false.
+bool OpenViews(CaptureState* state) {
+  try {
+    for (size_t i = 0; i < state->views.size(); ++i) {
+      OpenView(state->views[i], &state->captures[i]);
+    }
+    const double fps = state->captures[0]->Get(cv::CAP_PROP_FPS);
+    const std::lock_guard<std::mutex> lock(state->mutex);
+    state->opened = true;
+    if (fps > 0 && std::isfinite(fps)) state->fps = fps;
+    return true;
+  } catch (const std::exception& e) {
+    state->captures.clear();
+    const std::lock_guard<std::mutex> lock(state->mutex);
+    SetEnd(state, LiveEnd::kError, e.what());
+    state->finished = true;
+    state->changed.notify_all();
+    return false;
+  }
+}
+
+// Reads frame `index` from every view and, when it is one of the range, queues it (dropping
+// the oldest queued frame from a full queue); `first_time` is set by the first frame queued.
+// Returns the view whose stream ended, or the number of views when every view delivered.
+size_t CaptureFrame(CaptureState* state, int index, std::optional<Clock::time_point>* first_time) {
+  const size_t views = state->captures.size();
+  // Every view is grabbed before any is decoded, so that the two views of a pair are taken
+  // as close together in time as the sources allow.
+  for (size_t i = 0; i < views; ++i) {
+    if (!state->captures[i]->Grab()) return i;
+  }
+  const Clock::time_point time = Clock::now();
+  if (index < state->first_frame || (index - state->first_frame) % state->stride != 0) {
+    return views;
+  }
+  CapturedFrame frame;
+  frame.index = index;
+  frame.time = time;
+  for (size_t i = 0; i < views; ++i) {
+    cv::Mat image;
+    if (!state->captures[i]->Retrieve(&image) || image.empty()) return i;
+    // A buffer of its own: a backend that kept a reference to the one it decoded into (or
+    // lent its own memory) may write the next frame there.
+    const bool own = image.u != nullptr && image.u->refcount == 1;
+    frame.views.push_back(own ? image : image.clone());
+  }
+  if (!first_time->has_value()) *first_time = time;
+  const std::lock_guard<std::mutex> lock(state->mutex);
+  if (state->queue.size() >= state->capacity) {
+    state->queue.pop_front();
+    ++state->dropped;
+  }
+  state->queue.push_back(std::move(frame));
+  ++state->captured;
+  state->changed.notify_all();
+  return views;
+}
+
 // The capture thread: opens the views, then reads frames as they come and queues those of the
 // range, dropping the oldest queued frame when the queue is full. Opening is done here, not by
 // the source, because OpenCV's GStreamer backend waits without a timeout for a pipeline to
 // start, and one that parsed only in part never does: the source gives up after
 // live.timeout_s instead of hanging.
 void Capture(const std::shared_ptr<CaptureState>& state) {
-  const size_t views = state->captures.size();
+  if (!OpenViews(state.get())) return;
+  const size_t views = state->views.size();
   const std::string what = views == 2 ? state->views[0].Describe() + " + " +
                                             state->views[1].Describe()
                                       : state->views[0].Describe();
   LiveEnd end = LiveEnd::kRunning;
   std::string why;
   std::optional<Clock::time_point> first_time;
-  try {
-    for (size_t i = 0; i < views; ++i) OpenView(state->views[i], &state->captures[i]);
-    const double fps = state->captures[0]->Get(cv::CAP_PROP_FPS);
-    const std::lock_guard<std::mutex> lock(state->mutex);
-    state->opened = true;
-    if (fps > 0 && std::isfinite(fps)) state->fps = fps;
-  } catch (const std::exception& e) {
-    state->captures.clear();
-    const std::lock_guard<std::mutex> lock(state->mutex);
-    SetEnd(state.get(), LiveEnd::kError, e.what());
-    state->finished = true;
-    state->changed.notify_all();
-    return;
-  }
   try {
     for (int index = 0;; ++index) {
       {
@@ -182,41 +206,7 @@ void Capture(const std::shared_ptr<CaptureState>& state) {
         why = what + ": live.duration_s " + Seconds(state->duration_s) + " passed";
         break;
       }
-      // Every view is grabbed before any is decoded, so that the two views of a pair are taken
-      // as close together in time as the sources allow.
-      size_t ended = views;
-      for (size_t i = 0; i < views && ended == views; ++i) {
-        if (!state->captures[i]->Grab()) ended = i;
-      }
-      const Clock::time_point time = Clock::now();
-      if (ended == views && index >= state->first_frame &&
-          (index - state->first_frame) % state->stride == 0) {
-        CapturedFrame frame;
-        frame.index = index;
-        frame.time = time;
-        for (size_t i = 0; i < views && ended == views; ++i) {
-          cv::Mat image;
-          if (!state->captures[i]->Retrieve(&image) || image.empty()) {
-            ended = i;
-          } else {
-            // A buffer of its own: a backend that kept a reference to the one it decoded into
-            // (or lent its own memory) may write the next frame there.
-            const bool own = image.u != nullptr && image.u->refcount == 1;
-            frame.views.push_back(own ? image : image.clone());
-          }
-        }
-        if (ended == views) {
-          if (!first_time.has_value()) first_time = time;
-          const std::lock_guard<std::mutex> lock(state->mutex);
-          if (state->queue.size() >= state->capacity) {
-            state->queue.pop_front();
-            ++state->dropped;
-          }
-          state->queue.push_back(std::move(frame));
-          ++state->captured;
-          state->changed.notify_all();
-        }
-      }
+      const size_t ended = CaptureFrame(state.get(), index, &first_time);
       if (ended != views) {
         end = LiveEnd::kEndOfStream;
         why = state->views[ended].Describe() + ": end of stream after " + std::to_string(index) +
@@ -245,21 +235,21 @@ class LiveSource final : public FrameSource {
  public:
   explicit LiveSource(const SequenceOptions& options)
       : options_(options), state_(std::make_shared<CaptureState>()) {
-    const LiveView left = LeftView(options);
-    const LiveView right = RightView(options);
+    const LiveView left = LeftView(options.source);
+    const LiveView right = RightView(options.source);
     state_->views = {left};
     if (!right.empty()) state_->views.push_back(right);
     state_->captures.resize(state_->views.size());
     state_->first_frame = options.first_frame;
     state_->last_frame = options.last_frame;
     state_->stride = options.stride;
-    state_->capacity = static_cast<size_t>(options.live.queue);
-    state_->duration_s = options.live.duration_s;
+    state_->capacity = static_cast<size_t>(options.source.live.queue);
+    state_->duration_s = options.source.live.duration_s;
 
-    info_.stereo = !right.empty() || options.live.side_by_side;
+    info_.stereo = !right.empty() || options.source.live.side_by_side;
     info_.name = right.empty() ? left.Name() : left.Name() + "-" + right.Name();
     info_.frame_count = -1;  // drops make the count unknown ahead
-    what_ = options.Describe();
+    what_ = options.source.Describe();
     thread_ = std::thread(Capture, state_);
 
     // The views open and the first frame comes within the timeout, or the source is bad input.
@@ -268,7 +258,7 @@ class LiveSource final : public FrameSource {
     const bool arrived = state_->changed.wait_for(
         lock, Timeout(), [&] { return !state_->queue.empty() || state_->finished; });
     if (state_->queue.empty()) {
-      const std::string timeout = Seconds(options.live.timeout_s) + " (live.timeout_s)";
+      const std::string timeout = Seconds(options.source.live.timeout_s) + " (live.timeout_s)";
       std::string why;
       if (!arrived && !state_->opened) {
         why = what_ + ": did not start within " + timeout +
@@ -291,7 +281,7 @@ class LiveSource final : public FrameSource {
     if (state_->fps > 0) info_.fps = state_->fps;
     const CapturedFrame& first = state_->queue.front();
     cv::Size native = first.views[0].size();
-    if (options.live.side_by_side) native.width /= 2;
+    if (options.source.live.side_by_side) native.width /= 2;
     lock.unlock();
     SizeSequence(options, native, &info_);
   }
@@ -323,7 +313,7 @@ class LiveSource final : public FrameSource {
         if (now >= deadline) {
           done_ = true;
           SetEnd(state_.get(), LiveEnd::kTimeout,
-                 what_ + " delivered no frame for " + Seconds(options_.live.timeout_s) +
+                 what_ + " delivered no frame for " + Seconds(options_.source.live.timeout_s) +
                      " (live.timeout_s): it has stopped");
           lock.unlock();
           StopCapture();
@@ -347,7 +337,7 @@ class LiveSource final : public FrameSource {
   std::optional<LiveStatus> live_status() const override {
     LiveStatus status;
     status.source = what_;
-    status.queue = options_.live.queue;
+    status.queue = options_.source.live.queue;
     const std::lock_guard<std::mutex> lock(state_->mutex);
     status.captured = state_->captured;
     status.dropped = state_->dropped;
@@ -364,7 +354,7 @@ class LiveSource final : public FrameSource {
 
  private:
   std::chrono::duration<double> Timeout() const {
-    return std::chrono::duration<double>(options_.live.timeout_s);
+    return std::chrono::duration<double>(options_.source.live.timeout_s);
   }
 
   // Stops the capture thread and joins it. A thread blocked in a read of a stalled source
@@ -394,12 +384,8 @@ class LiveSource final : public FrameSource {
     }
     cv::Mat left = VideoFrameToBgr(captured.views[0], index, paths[0]);
     cv::Mat right;
-    if (options_.live.side_by_side) {
-      if (left.cols % 2 != 0) {
-        throw InputError("frame " + std::to_string(index) + " (" + paths[0] + "): width " +
-                         std::to_string(left.cols) +
-                         " is odd, so it cannot be split into equal left and right halves");
-      }
+    if (options_.source.live.side_by_side) {
+      CheckSideBySideWidth(left, index, paths[0]);
       const int half = left.cols / 2;
       right = left(cv::Rect(half, 0, half, left.rows));
       left = left(cv::Rect(0, 0, half, left.rows));
@@ -429,40 +415,6 @@ class LiveSource final : public FrameSource {
 
 }  // namespace
 
-const OptionFields<LiveOptions>& LiveOptions::Fields() {
-  using O = LiveOptions;
-  static const OptionFields<LiveOptions> fields = {
-      {"queue", &O::queue, Range::Closed(1, 64),
-       "frames held for the loop; when full the oldest is dropped"},
-      {"timeout_s", &O::timeout_s, Range::AboveUpTo(0, 3600),
-       "no frame for this long ends the run: the source has stopped, s"},
-      {"duration_s", &O::duration_s, Range::Closed(0, 1e7),
-       "stop capturing this long after the first frame; 0: no bound, s"},
-      {"side_by_side", &O::side_by_side,
-       "the live source holds the left view in its left half, the right in its right half"}};
-  return fields;
-}
-
-const char* LiveEndName(LiveEnd end) {
-  switch (end) {
-    case LiveEnd::kRunning:
-      return "running";
-    case LiveEnd::kEndOfStream:
-      return "end of stream";
-    case LiveEnd::kFrameRange:
-      return "frame range";
-    case LiveEnd::kDuration:
-      return "duration";
-    case LiveEnd::kTimeout:
-      return "timeout";
-    case LiveEnd::kStopped:
-      return "stopped";
-    case LiveEnd::kError:
-      return "error";
-  }
-  return "running";
-}
-
 std::string GstPipelineWithSink(const std::string& pipeline) {
   static const std::regex appsink("(^|[^A-Za-z0-9_-])appsink([^A-Za-z0-9_-]|$)");
   if (std::regex_search(pipeline, appsink)) return pipeline;
@@ -472,46 +424,6 @@ std::string GstPipelineWithSink(const std::string& pipeline) {
     trimmed.pop_back();
   }
   return trimmed + " ! videoconvert ! appsink";
-}
-
-std::string DescribeLiveSource(const SequenceOptions& options) {
-  const LiveView left = LeftView(options);
-  const LiveView right = RightView(options);
-  if (options.live.side_by_side) return "side-by-side " + left.Describe();
-  if (right.empty()) return left.Describe();
-  if (left.empty()) return "(no left view) + " + right.Describe();
-  return left.Describe() + " + " + right.Describe();
-}
-
-std::string CheckLiveSource(const SequenceOptions& options) {
-  const std::string ranges = CheckFieldRanges(options.live, LiveOptions::Fields());
-  if (!ranges.empty()) return "live." + ranges;
-  const LiveView left = LeftView(options);
-  const LiveView right = RightView(options);
-  if (options.camera >= 0 && !options.gst.empty()) {
-    return "camera and gst are both set; a live view is one camera or one pipeline";
-  }
-  if (options.camera_right >= 0 && !options.gst_right.empty()) {
-    return "camera_right and gst_right are both set; a live view is one camera or one pipeline";
-  }
-  if (!right.empty() && left.empty()) {
-    return std::string(options.camera_right >= 0 ? "camera_right" : "gst_right") +
-           " needs camera or gst for the left view";
-  }
-  if (options.camera >= 0 && options.camera == options.camera_right) {
-    return "camera and camera_right are the same device " + std::to_string(options.camera);
-  }
-  if (options.live.side_by_side && left.empty()) {
-    return "live.side_by_side needs a live source (camera or gst)";
-  }
-  if (options.live.side_by_side && !right.empty()) {
-    return "live.side_by_side reads both views from one source, so camera_right and gst_right "
-           "must not be set";
-  }
-  if (options.live.duration_s > 0 && !options.IsLive()) {
-    return "live.duration_s bounds a live source (camera or gst) only";
-  }
-  return "";
 }
 
 std::unique_ptr<FrameSource> OpenLiveSource(const SequenceOptions& options) {

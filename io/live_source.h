@@ -7,20 +7,22 @@
 // the loop always works on recent frames. A frame's index is its number among the frames read
 // from the source (0 the first), so dropped frames leave gaps; `first_frame`, `last_frame` and
 // `stride` pick among those numbers as they pick among a file's frames. Every cv::VideoCapture
-// of a live source is in live_source.cc.
+// of a live source is in live_source.cc; what the source is (its views, how it is described
+// and checked) is in io/source_spec.h.
 #pragma once
 
 #include <memory>
 #include <string>
 
-#include "io/sequence.h"
+#include "io/frame_source.h"
+#include "io/sequence_options.h"
 
 namespace attend {
 
-// Opens the live source of `options` (options.IsLive(), options.Check() empty), starts its
-// capture thread and waits for its first frame, which fixes the working size. A camera that does
-// not exist or cannot be opened, a pipeline that does not parse or cannot start, a first frame
-// that does not come within live.timeout_s: InputError naming the source.
+// Opens the live source of `options` (options.source.IsLive(), options.Check() empty), starts
+// its capture thread and waits for its first frame, which fixes the working size. A camera that
+// does not exist or cannot be opened, a pipeline that does not parse or cannot start, a first
+// frame that does not come within live.timeout_s: InputError naming the source.
 //
 // The source's Next() hands out the oldest queued frame, waiting for one; it returns false when
 // the source has ended (end of stream, the frame range's last frame, live.duration_s), when no
@@ -30,15 +32,6 @@ namespace attend {
 // thread and joins it; a thread still blocked in a read of a stalled source after a second is
 // left to finish on its own (OpenCV's GStreamer backend cannot interrupt a read).
 std::unique_ptr<FrameSource> OpenLiveSource(const SequenceOptions& options);
-
-// "camera 0", "GStreamer pipeline 'videotestsrc ! appsink'", "cameras 0 + 1",
-// "side-by-side camera 0", ...: the live source for messages and summary.json.
-std::string DescribeLiveSource(const SequenceOptions& options);
-
-// Empty when the live fields of `options` are consistent (a right view needs a left one, one
-// kind of source per view, side by side without a right view, live.duration_s only for a live
-// source); otherwise names the keys and what is wrong. Part of SequenceOptions::Check().
-std::string CheckLiveSource(const SequenceOptions& options);
 
 // `pipeline` as OpenCV's GStreamer backend needs it: unchanged when it names an appsink,
 // otherwise with " ! videoconvert ! appsink" appended, so that `videotestsrc` or

@@ -22,6 +22,7 @@ namespace {
 template <typename Visitor>
 void VisitSequence(AttendOptions* o, Visitor& v) {
   v.BeginSection("sequence");
+  v.Fields(&o->sequence.source, SourceSpec::Fields());
   v.Fields(&o->sequence, SequenceOptions::Fields());
   v.EndSection([o] { return o->sequence.Check(); });
 }
@@ -31,7 +32,7 @@ void VisitSequence(AttendOptions* o, Visitor& v) {
 template <typename Visitor>
 void VisitLive(AttendOptions* o, Visitor& v) {
   v.BeginSection("live");
-  v.Fields(&o->sequence.live, LiveOptions::Fields());
+  v.Fields(&o->sequence.source.live, LiveOptions::Fields());
   v.EndSection([o] { return o->sequence.Check(); });
 }
 

@@ -48,7 +48,7 @@ nlohmann::ordered_json SummaryJson(const RunSummary& summary, const SequenceInfo
                                           : nlohmann::ordered_json(summary.error)},
           {"sequence",
            {{"name", info.name},
-            {"source", request.options.sequence.Describe()},
+            {"source", request.options.sequence.source.Describe()},
             {"stereo", info.stereo},
             {"frames_in_range", info.frame_count},
             {"native_size", {info.native_size.width, info.native_size.height}},
@@ -194,12 +194,19 @@ struct Latencies {
   int count = 0;
 };
 
+// What a run gathers over its frames for its summary and scanpath.json.
+struct RunTotals {
+  StageTimes stages;  // the frames' timings, summed
+  Latencies latencies;
+  nlohmann::ordered_json scanpath = nlohmann::ordered_json::array();
+  Stopwatch wall;  // from the first frame's read on
+};
+
 // The next frame of `source` through the pipeline and the observers, its record appended to
-// the run folder and the scanpath, its timings to `totals` and its latency (live sources) to
-// `latencies`; false at the end of the source.
+// the run folder and the scanpath, its timings and its latency (live sources) to `totals`;
+// false at the end of the source.
 bool RunFrame(FrameSource* source, FramePipeline* pipeline,
-              const std::vector<RunObserver*>& observers, RunFolder* folder,
-              nlohmann::ordered_json* scanpath, StageTimes* totals, Latencies* latencies) {
+              const std::vector<RunObserver*>& observers, RunFolder* folder, RunTotals* totals) {
   FrameRecord record;
   Stopwatch stage;
   StereoFrame frame;
@@ -220,21 +227,85 @@ bool RunFrame(FrameSource* source, FramePipeline* pipeline,
     input.latency_ms = std::chrono::duration<double, std::milli>(
                            std::chrono::steady_clock::now() - frame.captured)
                            .count();
-    latencies->sum += input.latency_ms;
-    latencies->max = std::max(latencies->max, input.latency_ms);
-    ++latencies->count;
+    Latencies& latencies = totals->latencies;
+    latencies.sum += input.latency_ms;
+    latencies.max = std::max(latencies.max, input.latency_ms);
+    ++latencies.count;
   }
   folder->AppendFrame(input);
-  AppendScanpath(input, scanpath);
-  for (const auto& [name, ms] : record.timings.stages()) totals->Add(name, ms);
+  AppendScanpath(input, &totals->scanpath);
+  for (const auto& [name, ms] : record.timings.stages()) totals->stages.Add(name, ms);
   return true;
+}
+
+// The frames of `source`, one after the other, until its end or a stop request (then
+// `summary` says it was interrupted); what stops it otherwise is thrown.
+void RunFrames(const RunRequest& request, FrameSource* source, FramePipeline* pipeline,
+               const std::vector<RunObserver*>& observers, RunFolder* folder, RunTotals* totals,
+               RunSummary* summary) {
+  const SequenceInfo& info = source->info();
+  source->WatchStop(request.stop);
+  while (true) {
+    if (request.stop != nullptr && request.stop->load()) {
+      summary->interrupted = true;
+      return;
+    }
+    if (!RunFrame(source, pipeline, observers, folder, totals)) {
+      // A live source stops waiting for its next frame when the run is asked to stop.
+      if (request.stop != nullptr && request.stop->load()) summary->interrupted = true;
+      return;
+    }
+    ++summary->frames;
+    summary->targets_attended = pipeline->targets_attended();
+    if (request.on_progress) {
+      const double seconds = totals->wall.ElapsedMs() / 1000.0;
+      request.on_progress(
+          {summary->frames, info.frame_count, seconds > 0 ? summary->frames / seconds : 0.0});
+    }
+  }
+}
+
+// The features of the run: on a monocular source with the shipped configuration, those that
+// need stereo are left out of `options` (disabled there, so that RUN/config.yaml repeats the
+// run as it was made), named in `summary` and to the request's on_left_out.
+FeatureSetup SetUpFeatures(const RunRequest& request, const SequenceInfo& info,
+                           const FeatureRegistry& registry, AttendOptions* options,
+                           RunSummary* summary) {
+  FeatureSetup setup;
+  setup.home = request.home;
+  if (!info.stereo && request.stereo_features_optional) {
+    summary->left_out = LeaveOutStereoFeatures(registry, setup, &options->features);
+    if (request.on_left_out) {
+      for (const std::string& name : summary->left_out) request.on_left_out(name);
+    }
+  }
+  setup.stereo = info.stereo;
+  return setup;
+}
+
+// Fills the summary's timings, rates and live status from `totals`, and writes scanpath.json
+// and summary.json.
+void FinishRun(const RunRequest& request, const FrameSource& source, const RunTotals& totals,
+               const std::string& started, RunFolder* folder, RunSummary* summary) {
+  summary->wall_seconds = totals.wall.ElapsedMs() / 1000.0;
+  summary->fps = summary->wall_seconds > 0 ? summary->frames / summary->wall_seconds : 0.0;
+  for (const auto& [stage, ms] : totals.stages.stages()) {
+    summary->mean_ms.Add(stage, summary->frames > 0 ? ms / summary->frames : 0.0);
+  }
+  summary->live = source.live_status();
+  if (totals.latencies.count > 0) {
+    summary->mean_latency_ms = totals.latencies.sum / totals.latencies.count;
+    summary->max_latency_ms = totals.latencies.max;
+  }
+  folder->WriteJson("scanpath.json", totals.scanpath);
+  folder->WriteSummary(SummaryJson(*summary, source.info(), request, started));
 }
 
 }  // namespace
 
 RunSummary RunSequence(const RunRequest& request) {
   AttendOptions options = request.options;
-  std::unique_ptr<FrameSource> source = FrameSource::Open(options.sequence);
+  std::unique_ptr<FrameSource> source = OpenFrameSource(options.sequence);
   const SequenceInfo& info = source->info();
   // Everything that can reject the configuration runs before the run folder exists.
   if (options.threads > 0) cv::setNumThreads(options.threads);
@@ -243,23 +314,12 @@ RunSummary RunSequence(const RunRequest& request) {
   const int threads = options.threads > 0
                           ? options.threads
                           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  if (threads >= 2 && !options.sequence.IsLive()) {
+  if (threads >= 2 && !options.sequence.source.IsLive()) {
     source = ReadAhead(std::move(source));
   }
   const FeatureRegistry registry = LoadFeatureRegistry(options.plugins);
   RunSummary summary;
-  if (!info.stereo && request.stereo_features_optional) {
-    // Disabled in the options, so that RUN/config.yaml repeats the run as it was made.
-    FeatureSetup probe;
-    probe.home = request.home;
-    summary.left_out = LeaveOutStereoFeatures(registry, probe, &options.features);
-    if (request.on_left_out) {
-      for (const std::string& name : summary.left_out) request.on_left_out(name);
-    }
-  }
-  FeatureSetup setup;
-  setup.stereo = info.stereo;
-  setup.home = request.home;
+  const FeatureSetup setup = SetUpFeatures(request, info, registry, &options, &summary);
   FramePipeline pipeline(options, registry, setup);
 
   const std::string out_dir = request.out_dir.empty()
@@ -277,53 +337,16 @@ RunSummary RunSequence(const RunRequest& request) {
   observers.insert(observers.end(), request.observers.begin(), request.observers.end());
 
   summary.dir = folder.dir();
-  StageTimes totals;
-  Latencies latencies;
-  nlohmann::ordered_json scanpath = nlohmann::ordered_json::array();
-  const Stopwatch wall;
-  auto finish = [&] {
-    summary.wall_seconds = wall.ElapsedMs() / 1000.0;
-    summary.fps = summary.wall_seconds > 0 ? summary.frames / summary.wall_seconds : 0.0;
-    for (const auto& [stage, ms] : totals.stages()) {
-      summary.mean_ms.Add(stage, summary.frames > 0 ? ms / summary.frames : 0.0);
-    }
-    summary.live = source->live_status();
-    if (latencies.count > 0) {
-      summary.mean_latency_ms = latencies.sum / latencies.count;
-      summary.max_latency_ms = latencies.max;
-    }
-    folder.WriteJson("scanpath.json", scanpath);
-    folder.WriteSummary(SummaryJson(summary, info, request, started));
-  };
-
+  RunTotals totals;
   try {
     pipeline.BeginSequence({info.name, info.size, info.stereo, options.sequence.first_frame});
-    source->WatchStop(request.stop);
-    while (true) {
-      if (request.stop != nullptr && request.stop->load()) {
-        summary.interrupted = true;
-        break;
-      }
-      if (!RunFrame(source.get(), &pipeline, observers, &folder, &scanpath, &totals,
-                    &latencies)) {
-        // A live source stops waiting for its next frame when the run is asked to stop.
-        if (request.stop != nullptr && request.stop->load()) summary.interrupted = true;
-        break;
-      }
-      ++summary.frames;
-      summary.targets_attended = pipeline.targets_attended();
-      if (request.on_progress) {
-        const double seconds = wall.ElapsedMs() / 1000.0;
-        request.on_progress(
-            {summary.frames, info.frame_count, seconds > 0 ? summary.frames / seconds : 0.0});
-      }
-    }
+    RunFrames(request, source.get(), &pipeline, observers, &folder, &totals, &summary);
   } catch (const std::exception& e) {
     // Whatever stopped the loop, the frames done so far are kept and the summary says why.
     summary.interrupted = true;
     summary.error = e.what();
     try {
-      finish();
+      FinishRun(request, *source, totals, started, &folder, &summary);
     } catch (const std::exception& summary_error) {
       // The summary could not be written either (a full disk, most often): the message says
       // what stopped the run, what is kept and what is missing.
@@ -336,7 +359,7 @@ RunSummary RunSequence(const RunRequest& request) {
   }
   pipeline.EndSequence();
   try {
-    finish();
+    FinishRun(request, *source, totals, started, &folder, &summary);
   } catch (const std::exception& summary_error) {
     throw OutputError(std::string(summary_error.what()) + "; the run finished its " +
                       std::to_string(summary.frames) + " frames, all of them in " + summary.dir +

@@ -286,11 +286,19 @@ py::dict Run(const py::dict& source, const std::string& config,
   auto number = [&](const char* key) {
     return source.contains(key) && !source[key].is_none() ? source[key].cast<int>() : -1;
   };
-  request.source = {text("sequence"),           text("left_video"), text("right_video"),
-                    text("side_by_side_video"), text("video"),      text("images"),
-                    number("camera"),           number("camera_right"), text("gst"),
-                    text("gst_right"),
-                    source.contains("side_by_side_live") && source["side_by_side_live"].cast<bool>()};
+  SourceSpec& spec = request.source;
+  spec.folder = text("sequence");
+  spec.left_video = text("left_video");
+  spec.right_video = text("right_video");
+  spec.side_by_side_video = text("side_by_side_video");
+  spec.video = text("video");
+  spec.images = text("images");
+  spec.camera = number("camera");
+  spec.camera_right = number("camera_right");
+  spec.gst = text("gst");
+  spec.gst_right = text("gst_right");
+  spec.live.side_by_side =
+      source.contains("side_by_side_live") && source["side_by_side_live"].cast<bool>();
   request.frames = frames;
   request.duration_s = duration;
   request.out = out;

@@ -32,9 +32,9 @@ double SecondsSince(Clock::time_point start) {
 TEST(LiveSource, FramesArriveInOrderWithTheirCaptureTimes) {
   SKIP_WITHOUT_GSTREAMER();
   SequenceOptions options;
-  options.gst = testing::TestPipeline(10);
-  options.live.queue = 16;  // room for every frame: none is dropped
-  std::unique_ptr<FrameSource> source = FrameSource::Open(options);
+  options.source.gst = testing::TestPipeline(10);
+  options.source.live.queue = 16;  // room for every frame: none is dropped
+  std::unique_ptr<FrameSource> source = OpenFrameSource(options);
   const SequenceInfo& info = source->info();
   EXPECT_FALSE(info.stereo);
   EXPECT_EQ(info.native_size, cv::Size(160, 120));
@@ -71,9 +71,9 @@ TEST(LiveSource, ASlowReaderLosesTheOldestFramesAndCountsThem) {
   SKIP_WITHOUT_GSTREAMER();
   SequenceOptions options;
   // 300 frames a second, far faster than this reader, which takes 20 ms a frame.
-  options.gst = testing::TestPipeline(60, 160, 120, 300);
-  options.live.queue = 2;
-  std::unique_ptr<FrameSource> source = FrameSource::Open(options);
+  options.source.gst = testing::TestPipeline(60, 160, 120, 300);
+  options.source.live.queue = 2;
+  std::unique_ptr<FrameSource> source = OpenFrameSource(options);
   StereoFrame frame;
   std::vector<int> indices;
   while (source->Next(&frame)) {
@@ -100,10 +100,10 @@ TEST(LiveSource, ASlowReaderLosesTheOldestFramesAndCountsThem) {
 TEST(LiveSource, AStereoPairOfTwoPipelines) {
   SKIP_WITHOUT_GSTREAMER();
   SequenceOptions options;
-  options.gst = testing::TestPipeline(5);
-  options.gst_right = testing::TestPipeline(5);
-  options.live.queue = 8;
-  std::unique_ptr<FrameSource> source = FrameSource::Open(options);
+  options.source.gst = testing::TestPipeline(5);
+  options.source.gst_right = testing::TestPipeline(5);
+  options.source.live.queue = 8;
+  std::unique_ptr<FrameSource> source = OpenFrameSource(options);
   EXPECT_TRUE(source->info().stereo);
   EXPECT_EQ(source->info().name, "gst-gst");
   StereoFrame frame;
@@ -114,16 +114,16 @@ TEST(LiveSource, AStereoPairOfTwoPipelines) {
     ++frames;
   }
   EXPECT_EQ(frames, 5);
-  EXPECT_NE(DescribeLiveSource(options).find(" + GStreamer pipeline '"), std::string::npos);
+  EXPECT_NE(options.source.Describe().find(" + GStreamer pipeline '"), std::string::npos);
 }
 
 TEST(LiveSource, SideBySideFramesAreSplitIntoTheTwoViews) {
   SKIP_WITHOUT_GSTREAMER();
   SequenceOptions options;
-  options.gst = testing::TestPipeline(3, 320, 120);
-  options.live.side_by_side = true;
+  options.source.gst = testing::TestPipeline(3, 320, 120);
+  options.source.live.side_by_side = true;
   options.resize = "native";
-  std::unique_ptr<FrameSource> source = FrameSource::Open(options);
+  std::unique_ptr<FrameSource> source = OpenFrameSource(options);
   EXPECT_TRUE(source->info().stereo);
   EXPECT_EQ(source->info().native_size, cv::Size(160, 120));
   StereoFrame frame;
@@ -133,18 +133,18 @@ TEST(LiveSource, SideBySideFramesAreSplitIntoTheTwoViews) {
   EXPECT_TRUE(frame.left.isContinuous());
   EXPECT_TRUE(frame.right.isContinuous());
   EXPECT_EQ(frame.right_path, frame.left_path);
-  EXPECT_EQ(DescribeLiveSource(options).rfind("side-by-side GStreamer pipeline", 0), 0u);
+  EXPECT_EQ(options.source.Describe().rfind("side-by-side GStreamer pipeline", 0), 0u);
 }
 
 TEST(LiveSource, TheFrameRangeAndStrideCountTheFramesRead) {
   SKIP_WITHOUT_GSTREAMER();
   SequenceOptions options;
-  options.gst = testing::TestPipeline(-1);  // endless: the range ends it
+  options.source.gst = testing::TestPipeline(-1);  // endless: the range ends it
   options.first_frame = 2;
   options.last_frame = 8;
   options.stride = 3;
-  options.live.queue = 8;
-  std::unique_ptr<FrameSource> source = FrameSource::Open(options);
+  options.source.live.queue = 8;
+  std::unique_ptr<FrameSource> source = OpenFrameSource(options);
   StereoFrame frame;
   std::vector<int> indices;
   while (source->Next(&frame)) indices.push_back(frame.index);
@@ -156,11 +156,11 @@ TEST(LiveSource, TheFrameRangeAndStrideCountTheFramesRead) {
 TEST(LiveSource, DurationEndsTheCapture) {
   SKIP_WITHOUT_GSTREAMER();
   SequenceOptions options;
-  options.gst = testing::TestPipeline(-1);
-  options.live.duration_s = 0.5;
-  options.live.queue = 64;
+  options.source.gst = testing::TestPipeline(-1);
+  options.source.live.duration_s = 0.5;
+  options.source.live.queue = 64;
   const Clock::time_point start = Clock::now();
-  std::unique_ptr<FrameSource> source = FrameSource::Open(options);
+  std::unique_ptr<FrameSource> source = OpenFrameSource(options);
   StereoFrame frame;
   int frames = 0;
   while (source->Next(&frame)) ++frames;
@@ -174,12 +174,12 @@ TEST(LiveSource, DurationEndsTheCapture) {
 TEST(LiveSource, ASourceThatStopsDeliveringEndsAfterTheTimeout) {
   SKIP_WITHOUT_GSTREAMER();
   SequenceOptions options;
-  options.gst = testing::StallingPipeline(3);
-  options.live.timeout_s = 0.5;
-  options.live.queue = 4;
+  options.source.gst = testing::StallingPipeline(3);
+  options.source.live.timeout_s = 0.5;
+  options.source.live.queue = 4;
   const Clock::time_point start = Clock::now();
   {
-    std::unique_ptr<FrameSource> source = FrameSource::Open(options);
+    std::unique_ptr<FrameSource> source = OpenFrameSource(options);
     StereoFrame frame;
     for (int i = 0; i < 3; ++i) ASSERT_TRUE(source->Next(&frame));
     const Clock::time_point waited = Clock::now();
@@ -197,9 +197,9 @@ TEST(LiveSource, ASourceThatStopsDeliveringEndsAfterTheTimeout) {
 TEST(LiveSource, TheStopFlagEndsTheWaitForAFrame) {
   SKIP_WITHOUT_GSTREAMER();
   SequenceOptions options;
-  options.gst = testing::StallingPipeline(1);
-  options.live.timeout_s = 60;
-  std::unique_ptr<FrameSource> source = FrameSource::Open(options);
+  options.source.gst = testing::StallingPipeline(1);
+  options.source.live.timeout_s = 60;
+  std::unique_ptr<FrameSource> source = OpenFrameSource(options);
   std::atomic<bool> stop = false;
   source->WatchStop(&stop);
   StereoFrame frame;
@@ -221,10 +221,10 @@ TEST(LiveSource, APipelineThatDoesNotParseIsBadInputAtOnce) {
        {"videotestsrc ! nosuchelement ! appsink", "videotestsrc ! appsink ! ("}) {
     SCOPED_TRACE(pipeline);
     SequenceOptions options;
-    options.gst = pipeline;
+    options.source.gst = pipeline;
     const Clock::time_point start = Clock::now();
     try {
-      FrameSource::Open(options);
+      OpenFrameSource(options);
       ADD_FAILURE() << "opened";
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("GStreamer pipeline '" + pipeline +
@@ -239,12 +239,12 @@ TEST(LiveSource, APipelineThatDoesNotParseIsBadInputAtOnce) {
 TEST(LiveSource, AFirstFrameThatDoesNotComeIsBadInput) {
   SKIP_WITHOUT_GSTREAMER();
   SequenceOptions options;
-  options.gst = testing::StallingPipeline(1);
+  options.source.gst = testing::StallingPipeline(1);
   options.first_frame = 1;  // the stalling pipeline has no second frame
-  options.live.timeout_s = 0.5;
+  options.source.live.timeout_s = 0.5;
   const Clock::time_point start = Clock::now();
   try {
-    FrameSource::Open(options);
+    OpenFrameSource(options);
     ADD_FAILURE() << "opened";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("no frame within 0.5 s (live.timeout_s)"),
@@ -259,11 +259,11 @@ TEST(LiveSource, APipelineThatNeverStartsIsBadInputAfterTheTimeout) {
   // GStreamer makes what it can of this (no element "this") and OpenCV then waits for ever for
   // it to play; the source gives up after live.timeout_s.
   SequenceOptions options;
-  options.gst = "this is not a pipeline";
-  options.live.timeout_s = 1;
+  options.source.gst = "this is not a pipeline";
+  options.source.live.timeout_s = 1;
   const Clock::time_point start = Clock::now();
   try {
-    FrameSource::Open(options);
+    OpenFrameSource(options);
     ADD_FAILURE() << "opened";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("GStreamer pipeline 'this is not a pipeline': did not "
@@ -277,10 +277,10 @@ TEST(LiveSource, APipelineThatNeverStartsIsBadInputAfterTheTimeout) {
 TEST(LiveSource, ACameraThatDoesNotExistIsBadInputAtOnce) {
   // No GStreamer needed: V4L2.
   SequenceOptions options;
-  options.camera = 97;
+  options.source.camera = 97;
   const Clock::time_point start = Clock::now();
   try {
-    FrameSource::Open(options);
+    OpenFrameSource(options);
     ADD_FAILURE() << "opened";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("camera 97: no such device /dev/video97"),
@@ -296,47 +296,47 @@ TEST(LiveSource, InconsistentLiveKeysAreRefused) {
     change(&options);
     return options.Check();
   };
-  EXPECT_EQ(problem([](SequenceOptions* o) { o->camera = 0; }), "");
-  EXPECT_EQ(problem([](SequenceOptions* o) { o->gst = "v4l2src"; o->camera_right = 1; }), "");
-  EXPECT_NE(problem([](SequenceOptions* o) { o->camera_right = 1; })
+  EXPECT_EQ(problem([](SequenceOptions* o) { o->source.camera = 0; }), "");
+  EXPECT_EQ(problem([](SequenceOptions* o) { o->source.gst = "v4l2src"; o->source.camera_right = 1; }), "");
+  EXPECT_NE(problem([](SequenceOptions* o) { o->source.camera_right = 1; })
                 .find("camera_right needs camera or gst for the left view"),
             std::string::npos);
   EXPECT_NE(problem([](SequenceOptions* o) {
-              o->camera = 0;
-              o->gst = "v4l2src";
+              o->source.camera = 0;
+              o->source.gst = "v4l2src";
             }).find("camera and gst are both set"),
             std::string::npos);
   EXPECT_NE(problem([](SequenceOptions* o) {
-              o->camera = 0;
-              o->camera_right = 0;
+              o->source.camera = 0;
+              o->source.camera_right = 0;
             }).find("the same device 0"),
             std::string::npos);
   EXPECT_NE(problem([](SequenceOptions* o) {
-              o->gst = "a";
-              o->gst_right = "b";
-              o->live.side_by_side = true;
+              o->source.gst = "a";
+              o->source.gst_right = "b";
+              o->source.live.side_by_side = true;
             }).find("live.side_by_side reads both views from one source"),
             std::string::npos);
   EXPECT_NE(problem([](SequenceOptions* o) {
-              o->video = "v.avi";
-              o->live.duration_s = 3;
+              o->source.video = "v.avi";
+              o->source.live.duration_s = 3;
             }).find("live.duration_s bounds a live source"),
             std::string::npos);
   EXPECT_NE(problem([](SequenceOptions* o) {
-              o->video = "v.avi";
-              o->camera = 0;
+              o->source.video = "v.avi";
+              o->source.camera = 0;
             }).find("at most one source"),
             std::string::npos);
   EXPECT_NE(problem([](SequenceOptions* o) {
-              o->camera = 0;
-              o->live.queue = 0;
+              o->source.camera = 0;
+              o->source.live.queue = 0;
             }).find("live.queue"),
             std::string::npos);
   SequenceOptions pair;
-  pair.camera = 0;
-  pair.camera_right = 1;
-  EXPECT_EQ(pair.SourceCount(), 1);
-  EXPECT_EQ(pair.Describe(), "camera 0 + camera 1");
+  pair.source.camera = 0;
+  pair.source.camera_right = 1;
+  EXPECT_EQ(pair.source.SourceCount(), 1);
+  EXPECT_EQ(pair.source.Describe(), "camera 0 + camera 1");
 }
 
 TEST(LiveSource, AnAppsinkIsAppendedToAPipelineWithoutOne) {

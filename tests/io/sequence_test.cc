@@ -66,7 +66,7 @@ void ExpectColour(const cv::Mat& image, const cv::Scalar& expected, double toler
 
 SequenceOptions FolderOptions(const std::string& folder, const std::string& resize = "native") {
   SequenceOptions options;
-  options.folder = folder;
+  options.source.folder = folder;
   options.resize = resize;
   return options;
 }
@@ -79,7 +79,7 @@ TEST(SequenceOptions, DefaultsAreValid) {
   // is what needs one.
   SequenceOptions options;
   EXPECT_EQ(options.Check(), "");
-  options.folder = "seq";
+  options.source.folder = "seq";
   EXPECT_EQ(options.Check(), "");
   EXPECT_EQ(options.width, 320);
   EXPECT_EQ(options.height, 240);
@@ -92,7 +92,7 @@ TEST(SequenceOptions, DefaultsAreValid) {
 TEST(SequenceOptions, CheckNamesTheFieldAndConstraint) {
   const auto problem = [](auto change) {
     SequenceOptions options;
-    options.folder = "seq";
+    options.source.folder = "seq";
     change(&options);
     return options.Check();
   };
@@ -125,50 +125,51 @@ TEST(SequenceOptions, CheckNamesTheFieldAndConstraint) {
       typo.find("resize must be one of fit, stretch, native, got 'fitt' (did you mean 'fit'?)"),
       std::string::npos)
       << typo;
-  EXPECT_NE(problem([](SequenceOptions* o) { o->video = "v.avi"; }).find("at most one source"),
-            std::string::npos);
+  EXPECT_NE(
+      problem([](SequenceOptions* o) { o->source.video = "v.avi"; }).find("at most one source"),
+      std::string::npos);
   SequenceOptions half_pair;
-  half_pair.left_video = "a.avi";
+  half_pair.source.left_video = "a.avi";
   EXPECT_NE(half_pair.Check().find("right_video must be set"), std::string::npos);
 }
 
 TEST(SequenceOptions, DescribeNamesTheSource) {
   SequenceOptions options;
-  EXPECT_EQ(options.Describe(), "no source");
-  options.folder = "data/seq";
-  EXPECT_EQ(options.Describe(), "folder data/seq");
+  EXPECT_EQ(options.source.Describe(), "no source");
+  options.source.folder = "data/seq";
+  EXPECT_EQ(options.source.Describe(), "folder data/seq");
   options = {};
-  options.left_video = "a.avi";
-  options.right_video = "b.avi";
-  EXPECT_EQ(options.Describe(), "videos a.avi + b.avi");
+  options.source.left_video = "a.avi";
+  options.source.right_video = "b.avi";
+  EXPECT_EQ(options.source.Describe(), "videos a.avi + b.avi");
   options = {};
-  options.side_by_side_video = "s.avi";
-  EXPECT_EQ(options.Describe(), "side-by-side video s.avi");
+  options.source.side_by_side_video = "s.avi";
+  EXPECT_EQ(options.source.Describe(), "side-by-side video s.avi");
   options = {};
-  options.video = "m.avi";
-  EXPECT_EQ(options.Describe(), "video m.avi");
+  options.source.video = "m.avi";
+  EXPECT_EQ(options.source.Describe(), "video m.avi");
   options = {};
-  options.images = "otb/Dog1/img";
-  EXPECT_EQ(options.Describe(), "images otb/Dog1/img");
+  options.source.images = "otb/Dog1/img";
+  EXPECT_EQ(options.source.Describe(), "images otb/Dog1/img");
 }
 
 TEST(SequenceOptions, ImagesIsOneSourceAmongOthers) {
   SequenceOptions options;
-  options.images = "img";
-  EXPECT_EQ(options.SourceCount(), 1);
+  options.source.images = "img";
+  EXPECT_EQ(options.source.SourceCount(), 1);
   EXPECT_EQ(options.Check(), "");
-  options.folder = "seq";
-  EXPECT_EQ(options.SourceCount(), 2);
+  options.source.folder = "seq";
+  EXPECT_EQ(options.source.SourceCount(), 2);
   EXPECT_NE(options.Check().find("at most one source may be set"), std::string::npos);
 }
 
 TEST(Sequence, InvalidOptionsOrNoSourceAreAConfigurationError) {
   SequenceOptions options;
-  std::string message = ErrorOf<ConfigError>([&] { FrameSource::Open(options); });
+  std::string message = ErrorOf<ConfigError>([&] { OpenFrameSource(options); });
   EXPECT_NE(message.find("no sequence source is set"), std::string::npos) << message;
-  options.folder = "seq";
+  options.source.folder = "seq";
   options.stride = 0;
-  message = ErrorOf<ConfigError>([&] { FrameSource::Open(options); });
+  message = ErrorOf<ConfigError>([&] { OpenFrameSource(options); });
   EXPECT_NE(message.find("stride must be >= 1"), std::string::npos) << message;
 }
 
@@ -178,7 +179,7 @@ TEST(Sequence, InvalidOptionsOrNoSourceAreAConfigurationError) {
 TEST(Sequence, StereoFolderDeliversEveryFrameInOrder) {
   testing::TempDir dir;
   const std::string folder = WriteFolder(dir, 4, {40, 30}, /*stereo=*/true);
-  auto source = FrameSource::Open(FolderOptions(folder));
+  auto source = OpenFrameSource(FolderOptions(folder));
   const SequenceInfo& info = source->info();
   EXPECT_TRUE(info.stereo);
   EXPECT_EQ(info.frame_count, 4);
@@ -208,7 +209,7 @@ TEST(Sequence, StereoFolderDeliversEveryFrameInOrder) {
 TEST(Sequence, MonocularFolderHasNoRightView) {
   testing::TempDir dir;
   const std::string folder = WriteFolder(dir, 3, {20, 10}, /*stereo=*/false);
-  auto source = FrameSource::Open(FolderOptions(folder));
+  auto source = OpenFrameSource(FolderOptions(folder));
   EXPECT_FALSE(source->info().stereo);
   EXPECT_EQ(source->info().frame_count, 3);
   StereoFrame frame;
@@ -236,7 +237,7 @@ TEST(Sequence, FramesAreMatchedBySortedNameAndOnlyImageExtensionsCount) {
   dir.Write("left/notes.txt", "not a frame");
   dir.Write("left/f00.bmp", "not matched either");
   fs::create_directories(dir.path() / "left" / "sub.png");  // a folder, not a frame
-  auto source = FrameSource::Open(FolderOptions(dir.path().string()));
+  auto source = OpenFrameSource(FolderOptions(dir.path().string()));
   EXPECT_FALSE(source->info().stereo);
   EXPECT_EQ(source->info().frame_count, 5);
   const std::vector<std::string> expected_files = {"f10.png", "f20.ppm", "f30.PNG", "f40.Jpeg",
@@ -257,7 +258,7 @@ TEST(Sequence, FramesAreMatchedBySortedNameAndOnlyImageExtensionsCount) {
 
 SequenceOptions ImagesOptions(const std::string& folder) {
   SequenceOptions options;
-  options.images = folder;
+  options.source.images = folder;
   options.resize = "native";
   return options;
 }
@@ -282,7 +283,7 @@ TEST(Sequence, ImageFolderIsMonocularWithFramesInSortedNameOrder) {
   const std::string folder = (dir.path() / "img").string();
   SequenceOptions options = ImagesOptions(folder);
   options.first_frame = 1;
-  auto source = FrameSource::Open(options);
+  auto source = OpenFrameSource(options);
   const SequenceInfo& info = source->info();
   EXPECT_FALSE(info.stereo);
   EXPECT_EQ(info.frame_count, 4);
@@ -315,7 +316,7 @@ TEST(Sequence, ImageFolderIsScaledToTheWorkingSize) {
   WriteImage((dir.path() / "a.png").string(), Uniform({640, 480}, Colour(1, 0)));
   SequenceOptions options = ImagesOptions(dir.path().string());
   options.resize = "fit";
-  auto source = FrameSource::Open(options);
+  auto source = OpenFrameSource(options);
   EXPECT_EQ(source->info().native_size, cv::Size(640, 480));
   EXPECT_EQ(source->info().size, cv::Size(320, 240));
   EXPECT_DOUBLE_EQ(source->info().scale_x, 0.5);
@@ -328,17 +329,17 @@ TEST(Sequence, ImageFolderIsScaledToTheWorkingSize) {
 TEST(Sequence, BadImageFoldersAndFramesAreBadInput) {
   testing::TempDir dir;
   const std::string missing = (dir.path() / "nope").string();
-  std::string message = ErrorOf<InputError>([&] { FrameSource::Open(ImagesOptions(missing)); });
+  std::string message = ErrorOf<InputError>([&] { OpenFrameSource(ImagesOptions(missing)); });
   EXPECT_NE(message.find("images " + missing + ": no such folder"), std::string::npos) << message;
 
   const std::string file = dir.Write("plain.txt", "x");
-  message = ErrorOf<InputError>([&] { FrameSource::Open(ImagesOptions(file)); });
+  message = ErrorOf<InputError>([&] { OpenFrameSource(ImagesOptions(file)); });
   EXPECT_NE(message.find("not a folder"), std::string::npos) << message;
 
   fs::create_directories(dir.path() / "empty");
   dir.Write("empty/readme.txt", "no frames here");
   const std::string empty = (dir.path() / "empty").string();
-  message = ErrorOf<InputError>([&] { FrameSource::Open(ImagesOptions(empty)); });
+  message = ErrorOf<InputError>([&] { OpenFrameSource(ImagesOptions(empty)); });
   EXPECT_NE(message.find("images " + empty + ": no frames (expected files ending in .png"),
             std::string::npos)
       << message;
@@ -349,7 +350,7 @@ TEST(Sequence, BadImageFoldersAndFramesAreBadInput) {
   dir.Write("bad/2.png", "not a png");
   WriteImage(bad + "/3.png", Uniform({8, 6}, Colour(2, 0)));
   WriteImage(bad + "/4.png", Uniform({9, 6}, Colour(3, 0)));
-  auto source = FrameSource::Open(ImagesOptions(bad));
+  auto source = OpenFrameSource(ImagesOptions(bad));
   StereoFrame frame;
   ASSERT_TRUE(source->Next(&frame));
   message = ErrorOf<InputError>([&] { source->Next(&frame); });
@@ -372,7 +373,7 @@ TEST(Sequence, GreyAndSixteenBitImagesBecomeEightBitBgr) {
   WriteImage((dir.path() / "left" / "000001.png").string(), cv::Mat(size, CV_16UC1, 0x4D7F));
   WriteImage((dir.path() / "left" / "000002.png").string(),
              cv::Mat(size, CV_16UC3, cv::Scalar(0x0A00, 0x1400, 0xFFFF)));
-  auto source = FrameSource::Open(FolderOptions(dir.path().string()));
+  auto source = OpenFrameSource(FolderOptions(dir.path().string()));
   StereoFrame frame;
   ASSERT_TRUE(source->Next(&frame));
   ExpectColour(frame.left, cv::Scalar(77, 77, 77));
@@ -402,7 +403,7 @@ TEST(Sequence, RangeAndStrideSelectSourceIndices) {
     options.first_frame = c.first;
     options.last_frame = c.last;
     options.stride = c.stride;
-    auto source = FrameSource::Open(options);
+    auto source = OpenFrameSource(options);
     EXPECT_EQ(source->info().frame_count, static_cast<int>(c.expected.size()))
         << c.first << ":" << c.last << "/" << c.stride;
     StereoFrame frame;
@@ -422,7 +423,7 @@ TEST(Sequence, RangeStartingBeyondTheLastFrameIsBadInput) {
   const std::string folder = WriteFolder(dir, 3, {8, 6}, /*stereo=*/true);
   SequenceOptions options = FolderOptions(folder);
   options.first_frame = 3;
-  const std::string message = ErrorOf<InputError>([&] { FrameSource::Open(options); });
+  const std::string message = ErrorOf<InputError>([&] { OpenFrameSource(options); });
   EXPECT_NE(message.find("starts at frame 3 but the source has 3 frames (0..2)"), std::string::npos)
       << message;
   EXPECT_NE(message.find(folder), std::string::npos) << message;
@@ -450,7 +451,7 @@ TEST(Sequence, ResizeModesGiveTheWorkingSizeAndScale) {
     SequenceOptions options = FolderOptions(folder, c.resize);
     options.width = c.width;
     options.height = c.height;
-    auto source = FrameSource::Open(options);
+    auto source = OpenFrameSource(options);
     const SequenceInfo& info = source->info();
     SCOPED_TRACE(c.resize + " " + std::to_string(c.width) + "x" + std::to_string(c.height));
     EXPECT_EQ(info.native_size, cv::Size(64, 48));
@@ -472,7 +473,7 @@ TEST(Sequence, ResizeModesGiveTheWorkingSizeAndScale) {
 TEST(Sequence, FitKeepsTheAspectRatioOfWideFrames) {
   testing::TempDir dir;
   const std::string folder = WriteFolder(dir, 1, {128, 72}, /*stereo=*/false);  // 16:9
-  auto source = FrameSource::Open(FolderOptions(folder, "fit"));  // default box 320x240
+  auto source = OpenFrameSource(FolderOptions(folder, "fit"));  // default box 320x240
   EXPECT_EQ(source->info().size, cv::Size(320, 180));
   EXPECT_DOUBLE_EQ(source->info().scale_x, 2.5);
   EXPECT_DOUBLE_EQ(source->info().scale_y, 2.5);
@@ -489,7 +490,7 @@ TEST(Sequence, ShrinkingAveragesAndEnlargingInterpolates) {
   options.width = 4;
   options.height = 2;
   StereoFrame frame;
-  auto shrink = FrameSource::Open(options);
+  auto shrink = OpenFrameSource(options);
   ASSERT_TRUE(shrink->Next(&frame));
   ExpectColour(frame.left, cv::Scalar::all(60));
 
@@ -501,7 +502,7 @@ TEST(Sequence, ShrinkingAveragesAndEnlargingInterpolates) {
   options = FolderOptions(dir2.path().string(), "stretch");
   options.width = 8;
   options.height = 2;
-  auto enlarge = FrameSource::Open(options);
+  auto enlarge = OpenFrameSource(options);
   ASSERT_TRUE(enlarge->Next(&frame));
   ASSERT_EQ(frame.left.size(), cv::Size(8, 2));
   EXPECT_EQ(frame.left.at<cv::Vec3b>(0, 0)[0], 0);
@@ -523,7 +524,7 @@ TEST(Sequence, SequenceYamlSetsNameFpsAndCalibration) {
   dir.Write("sequence.yaml",
             "name: corridor\nfps: 12.5\nfocal_px: 410.25\nbaseline_m: 0.12\n"
             "generator: {tool: attend synth, seed: 7}\nframes: 2\n");
-  auto source = FrameSource::Open(FolderOptions(folder));
+  auto source = OpenFrameSource(FolderOptions(folder));
   const SequenceInfo& info = source->info();
   EXPECT_EQ(info.name, "corridor");
   EXPECT_DOUBLE_EQ(info.fps, 12.5);
@@ -549,7 +550,7 @@ TEST(Sequence, BadSequenceYamlIsBadInputWithItsLine) {
   for (const Case& c : cases) {
     dir.Write("sequence.yaml", c.text);
     try {
-      FrameSource::Open(FolderOptions(folder));
+      OpenFrameSource(FolderOptions(folder));
       ADD_FAILURE() << "no error for " << c.text;
     } catch (const InputError& e) {
       EXPECT_EQ(e.status(), ExitStatus::kBadInput);
@@ -564,24 +565,24 @@ TEST(Sequence, BadSequenceYamlIsBadInputWithItsLine) {
 TEST(Sequence, MissingOrEmptyFoldersAreBadInput) {
   testing::TempDir dir;
   const std::string missing = (dir.path() / "nope").string();
-  std::string message = ErrorOf<InputError>([&] { FrameSource::Open(FolderOptions(missing)); });
+  std::string message = ErrorOf<InputError>([&] { OpenFrameSource(FolderOptions(missing)); });
   EXPECT_NE(message.find("folder " + missing + ": no such folder"), std::string::npos) << message;
 
   fs::create_directories(dir.path() / "noleft" / "right");
   message = ErrorOf<InputError>(
-      [&] { FrameSource::Open(FolderOptions((dir.path() / "noleft").string())); });
+      [&] { OpenFrameSource(FolderOptions((dir.path() / "noleft").string())); });
   EXPECT_NE(message.find("no left/ folder"), std::string::npos) << message;
 
   fs::create_directories(dir.path() / "empty" / "left");
   dir.Write("empty/left/readme.txt", "no frames here");
   message = ErrorOf<InputError>(
-      [&] { FrameSource::Open(FolderOptions((dir.path() / "empty").string())); });
+      [&] { OpenFrameSource(FolderOptions((dir.path() / "empty").string())); });
   EXPECT_NE(message.find("no frames in " + (dir.path() / "empty" / "left").string()),
             std::string::npos)
       << message;
 
   const std::string file = dir.Write("plain.txt", "x");
-  message = ErrorOf<InputError>([&] { FrameSource::Open(FolderOptions(file)); });
+  message = ErrorOf<InputError>([&] { OpenFrameSource(FolderOptions(file)); });
   EXPECT_NE(message.find("not a folder"), std::string::npos) << message;
 }
 
@@ -590,7 +591,7 @@ TEST(Sequence, LeftAndRightCountsThatDifferAreBadInput) {
   const std::string folder = WriteFolder(dir, 5, {8, 6}, /*stereo=*/true);
   fs::remove(FramePath(dir, "right", 4));
   const std::string message =
-      ErrorOf<InputError>([&] { FrameSource::Open(FolderOptions(folder)); });
+      ErrorOf<InputError>([&] { OpenFrameSource(FolderOptions(folder)); });
   EXPECT_NE(message.find("folder " + folder + ": left/ has 5 frames but right/ has 4"),
             std::string::npos)
       << message;
@@ -601,7 +602,7 @@ TEST(Sequence, LeftAndRightSizesThatDifferAreBadInput) {
   const std::string folder = WriteFolder(dir, 4, {8, 6}, /*stereo=*/true);
   // Frame 0: found when opening.
   WriteImage(FramePath(dir, "right", 0), Uniform({9, 6}, Colour(0, 1)));
-  std::string message = ErrorOf<InputError>([&] { FrameSource::Open(FolderOptions(folder)); });
+  std::string message = ErrorOf<InputError>([&] { OpenFrameSource(FolderOptions(folder)); });
   EXPECT_NE(message.find("frame 0 (" + FramePath(dir, "right", 0) +
                          "): size 9x6 differs from the left image's 8x6"),
             std::string::npos)
@@ -610,7 +611,7 @@ TEST(Sequence, LeftAndRightSizesThatDifferAreBadInput) {
   // Frame 2: found when it is reached.
   WriteImage(FramePath(dir, "right", 0), Uniform({8, 6}, Colour(0, 1)));
   WriteImage(FramePath(dir, "right", 2), Uniform({8, 7}, Colour(2, 1)));
-  auto source = FrameSource::Open(FolderOptions(folder));
+  auto source = OpenFrameSource(FolderOptions(folder));
   StereoFrame frame;
   ASSERT_TRUE(source->Next(&frame));
   ASSERT_TRUE(source->Next(&frame));
@@ -627,7 +628,7 @@ TEST(Sequence, FrameWhoseSizeDiffersFromTheFirstIsBadInputWhenReached) {
   SequenceOptions options = FolderOptions(folder, "fit");
   options.width = 4;
   options.height = 3;
-  auto source = FrameSource::Open(options);
+  auto source = OpenFrameSource(options);
   StereoFrame frame;
   ASSERT_TRUE(source->Next(&frame));
   ASSERT_TRUE(source->Next(&frame));
@@ -644,7 +645,7 @@ TEST(Sequence, CorruptFrameInTheMiddleComesAfterTheGoodOnes) {
   const std::string folder = WriteFolder(dir, 5, {8, 6}, /*stereo=*/true);
   const std::string bad = FramePath(dir, "right", 2);
   { std::ofstream(bad, std::ios::trunc) << "this is not a PNG file"; }
-  auto source = FrameSource::Open(FolderOptions(folder));
+  auto source = OpenFrameSource(FolderOptions(folder));
   std::vector<StereoFrame> delivered(2);
   ASSERT_TRUE(source->Next(&delivered[0]));
   ASSERT_TRUE(source->Next(&delivered[1]));
@@ -675,7 +676,7 @@ TEST(Sequence, ReadAheadGivesTheSameFramesAndErrorsInOrder) {
   const std::string folder = WriteFolder(dir, 5, {8, 6}, /*stereo=*/true);
   const std::string bad = FramePath(dir, "left", 2);
   { std::ofstream(bad, std::ios::trunc) << "this is not a PNG file"; }
-  auto source = ReadAhead(FrameSource::Open(FolderOptions(folder)));
+  auto source = ReadAhead(OpenFrameSource(FolderOptions(folder)));
   EXPECT_EQ(source->info().frame_count, 5);
   EXPECT_TRUE(source->info().stereo);
   StereoFrame frame;
@@ -747,7 +748,7 @@ TEST(Sequence, CorruptFirstFrameIsReportedByOpen) {
   SequenceOptions options = FolderOptions(folder);
   options.first_frame = 1;
   { std::ofstream(FramePath(dir, "left", 1), std::ios::trunc) << "garbage"; }
-  const std::string message = ErrorOf<InputError>([&] { FrameSource::Open(options); });
+  const std::string message = ErrorOf<InputError>([&] { OpenFrameSource(options); });
   EXPECT_NE(message.find("frame 1 (" + FramePath(dir, "left", 1) + ")"), std::string::npos)
       << message;
 }
@@ -792,11 +793,11 @@ TEST(Sequence, PairOfVideosWithStride) {
   ATTEND_WRITE_VIDEO_OR_SKIP(left, VideoFrames(5, {32, 24}, 0));
   ATTEND_WRITE_VIDEO_OR_SKIP(right, VideoFrames(5, {32, 24}, 1));
   SequenceOptions options;
-  options.left_video = left;
-  options.right_video = right;
+  options.source.left_video = left;
+  options.source.right_video = right;
   options.resize = "native";
   options.stride = 2;
-  auto source = FrameSource::Open(options);
+  auto source = OpenFrameSource(options);
   const SequenceInfo& info = source->info();
   EXPECT_TRUE(info.stereo);
   EXPECT_EQ(info.name, "cam_left");
@@ -826,9 +827,9 @@ TEST(Sequence, PairOfVideosWithDifferentLengthsIsBadInput) {
   ATTEND_WRITE_VIDEO_OR_SKIP(left, VideoFrames(4, {32, 24}, 0));
   ATTEND_WRITE_VIDEO_OR_SKIP(right, VideoFrames(3, {32, 24}, 1));
   SequenceOptions options;
-  options.left_video = left;
-  options.right_video = right;
-  const std::string message = ErrorOf<InputError>([&] { FrameSource::Open(options); });
+  options.source.left_video = left;
+  options.source.right_video = right;
+  const std::string message = ErrorOf<InputError>([&] { OpenFrameSource(options); });
   EXPECT_NE(message.find("the left video has 4 frames but the right video has 3"),
             std::string::npos)
       << message;
@@ -846,10 +847,10 @@ TEST(Sequence, SideBySideVideoIsSplitIntoHalves) {
   }
   ATTEND_WRITE_VIDEO_OR_SKIP(path, frames);
   SequenceOptions options;
-  options.side_by_side_video = path;
+  options.source.side_by_side_video = path;
   options.width = 16;
   options.height = 16;
-  auto source = FrameSource::Open(options);
+  auto source = OpenFrameSource(options);
   const SequenceInfo& info = source->info();
   EXPECT_TRUE(info.stereo);
   EXPECT_EQ(info.name, "sbs");
@@ -880,12 +881,12 @@ TEST(Sequence, SideBySideVideoOfOddWidthIsBadInput) {
     WriteImage(dir.File(name), Uniform({63, 20}, Colour(i, 0)));
   }
   SequenceOptions options;
-  options.side_by_side_video = dir.File("sbs_%03d.png");
-  cv::VideoCapture probe(options.side_by_side_video);
+  options.source.side_by_side_video = dir.File("sbs_%03d.png");
+  cv::VideoCapture probe(options.source.side_by_side_video);
   if (!probe.isOpened()) GTEST_SKIP() << "this OpenCV build cannot read image-sequence patterns";
   probe.release();
-  const std::string message = ErrorOf<InputError>([&] { FrameSource::Open(options); });
-  EXPECT_NE(message.find("frame 0 (" + options.side_by_side_video +
+  const std::string message = ErrorOf<InputError>([&] { OpenFrameSource(options); });
+  EXPECT_NE(message.find("frame 0 (" + options.source.side_by_side_video +
                          "#0): width 63 is odd, so it cannot be split"),
             std::string::npos)
       << message;
@@ -896,11 +897,11 @@ TEST(Sequence, MonocularVideoWithRange) {
   const std::string path = dir.File("walk.avi");
   ATTEND_WRITE_VIDEO_OR_SKIP(path, VideoFrames(6, {32, 24}, 0));
   SequenceOptions options;
-  options.video = path;
+  options.source.video = path;
   options.resize = "native";
   options.first_frame = 1;
   options.last_frame = 3;
-  auto source = FrameSource::Open(options);
+  auto source = OpenFrameSource(options);
   EXPECT_FALSE(source->info().stereo);
   EXPECT_EQ(source->info().name, "walk");
   EXPECT_EQ(source->info().frame_count, 3);
@@ -916,7 +917,7 @@ TEST(Sequence, MonocularVideoWithRange) {
 
   options.first_frame = 6;
   options.last_frame = -1;
-  const std::string message = ErrorOf<InputError>([&] { FrameSource::Open(options); });
+  const std::string message = ErrorOf<InputError>([&] { OpenFrameSource(options); });
   EXPECT_NE(message.find("starts at frame 6 but the source has 6 frames"), std::string::npos)
       << message;
 }
@@ -936,9 +937,9 @@ TEST(Sequence, AVideoCutShortIsBadInputAtTheFrameWhereItEnds) {
   ATTEND_WRITE_VIDEO_OR_SKIP(path, frames);
   fs::resize_file(path, fs::file_size(path) / 2);
   SequenceOptions options;
-  options.video = path;
+  options.source.video = path;
   options.resize = "native";
-  auto source = FrameSource::Open(options);
+  auto source = OpenFrameSource(options);
   EXPECT_EQ(source->info().frame_count, 20);
   StereoFrame frame;
   int delivered = 0;
@@ -953,7 +954,7 @@ TEST(Sequence, AVideoCutShortIsBadInputAtTheFrameWhereItEnds) {
       << message;
   // A range that stops before the cut reads to its end without an error.
   options.last_frame = delivered - 1;
-  source = FrameSource::Open(options);
+  source = OpenFrameSource(options);
   int read = 0;
   while (source->Next(&frame)) ++read;
   EXPECT_EQ(read, delivered);
@@ -962,16 +963,16 @@ TEST(Sequence, AVideoCutShortIsBadInputAtTheFrameWhereItEnds) {
 TEST(Sequence, VideosThatCannotBeOpenedAreBadInput) {
   testing::TempDir dir;
   SequenceOptions options;
-  options.video = dir.File("missing.avi");
-  std::string message = ErrorOf<InputError>([&] { FrameSource::Open(options); });
-  EXPECT_NE(message.find("video " + options.video + ": no such file"), std::string::npos)
+  options.source.video = dir.File("missing.avi");
+  std::string message = ErrorOf<InputError>([&] { OpenFrameSource(options); });
+  EXPECT_NE(message.find("video " + options.source.video + ": no such file"), std::string::npos)
       << message;
 
   options = {};
-  options.left_video = dir.Write("text.avi", "this is not a video");
-  options.right_video = dir.File("missing.avi");
-  message = ErrorOf<InputError>([&] { FrameSource::Open(options); });
-  EXPECT_NE(message.find("video " + options.left_video + ": cannot be opened"), std::string::npos)
+  options.source.left_video = dir.Write("text.avi", "this is not a video");
+  options.source.right_video = dir.File("missing.avi");
+  message = ErrorOf<InputError>([&] { OpenFrameSource(options); });
+  EXPECT_NE(message.find("video " + options.source.left_video + ": cannot be opened"), std::string::npos)
       << message;
 }
 

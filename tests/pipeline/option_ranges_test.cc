@@ -80,8 +80,10 @@ void ExpectRangesAppliedBothWays(const std::string& prefix, const OptionFields<O
 TEST(OptionRanges, EveryRangedKeyIsRefusedOutsideItsRangeByTheFileAndByCheck) {
   ExpectRangesAppliedBothWays<SequenceOptions, SequenceOptions>(
       "sequence.", SequenceOptions::Fields(), [](SequenceOptions* o) { return o; });
+  ExpectRangesAppliedBothWays<SourceSpec, SequenceOptions>(
+      "sequence.", SourceSpec::Fields(), [](SequenceOptions* o) { return &o->source; });
   ExpectRangesAppliedBothWays<LiveOptions, SequenceOptions>(
-      "live.", LiveOptions::Fields(), [](SequenceOptions* o) { return &o->live; });
+      "live.", LiveOptions::Fields(), [](SequenceOptions* o) { return &o->source.live; });
   ExpectRangesAppliedBothWays<SegmentationOptions, SegmentationOptions>(
       "segmentation.", SegmentationOptions::Fields(), [](SegmentationOptions* o) { return o; });
   ExpectRangesAppliedBothWays<SaliencyOptions, SaliencyOptions>(

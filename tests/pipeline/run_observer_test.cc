@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 RunRequest Request(const testing::TempDir& dir, int frames) {
   RunRequest request;
   request.home = testing::ProjectRoot();
-  request.options.sequence.folder = testing::MakeFolderSequence(dir.File("seq"), frames, 32, 24);
+  request.options.sequence.source.folder = testing::MakeFolderSequence(dir.File("seq"), frames, 32, 24);
   request.options.sequence.resize = "native";
   request.options.output.dump = {"overlay"};
   request.out_dir = dir.File("run");

@@ -33,7 +33,7 @@ nlohmann::json ReadJson(const std::string& path) {
 RunRequest TinyRequest(const testing::TempDir& dir, int frames) {
   RunRequest request;
   request.home = testing::ProjectRoot();
-  request.options.sequence.folder = testing::MakeFolderSequence(dir.File("seq"), frames, 32, 24);
+  request.options.sequence.source.folder = testing::MakeFolderSequence(dir.File("seq"), frames, 32, 24);
   request.options.sequence.resize = "native";
   request.out_dir = dir.File("run");
   return request;
@@ -123,7 +123,7 @@ TEST(RunSequence, BadSourceFailsBeforeCreatingTheRunFolder) {
   testing::TempDir dir;
   RunRequest request;
   request.home = testing::ProjectRoot();
-  request.options.sequence.folder = dir.File("missing");
+  request.options.sequence.source.folder = dir.File("missing");
   request.out_dir = dir.File("run");
   EXPECT_THROW(RunSequence(request), InputError);
   EXPECT_FALSE(fs::exists(dir.File("run")));
@@ -135,7 +135,7 @@ TEST(RunSequence, DisparityOnAMonocularSourceIsAConfigurationError) {
   request.home = testing::ProjectRoot();
   request.options = ReadOptions(ParamBlock::Parse(
       "features:\n  - {name: colour_contrast}\n  - {name: disparity}\n", "c.yaml"));
-  request.options.sequence.folder = testing::MakeFolderSequence(dir.File("mono"), 2, 48, 32, false);
+  request.options.sequence.source.folder = testing::MakeFolderSequence(dir.File("mono"), 2, 48, 32, false);
   request.out_dir = dir.File("run");
   try {
     RunSequence(request);
@@ -158,7 +158,7 @@ TEST(RunSequence, UnknownFeatureIsAConfigurationErrorBeforeTheRunFolder) {
   request.home = testing::ProjectRoot();
   request.options = ReadOptions(ParamBlock::Parse(
       "features:\n  - {name: colour_contrast}\n  - {name: disparty}\n", "c.yaml"));
-  request.options.sequence.folder = testing::MakeFolderSequence(dir.File("mono"), 2, 16, 16, false);
+  request.options.sequence.source.folder = testing::MakeFolderSequence(dir.File("mono"), 2, 16, 16, false);
   request.out_dir = dir.File("run");
   try {
     RunSequence(request);

@@ -1,0 +1,21 @@
+// Sources of image files (docs/SEQUENCES.md): a sequence folder SEQ with SEQ/left/*,
+// SEQ/right/* (stereo; monocular without right/) and an optional SEQ/sequence.yaml, and a plain
+// folder of frames DIR/* (monocular, for example an OTB sequence's img/).
+#pragma once
+
+#include <memory>
+
+#include "io/frame_source.h"
+#include "io/sequence_options.h"
+
+namespace attend {
+
+// The sequence folder options.source.folder. InputError when it is missing, has no left/ or no
+// frames, when left/ and right/ differ in count or in the names of their frames, or when its
+// sequence.yaml is bad.
+std::unique_ptr<FrameSource> OpenFolderSource(const SequenceOptions& options);
+
+// The plain folder options.source.images. InputError when it is missing or holds no frames.
+std::unique_ptr<FrameSource> OpenImageFolderSource(const SequenceOptions& options);
+
+}  // namespace attend
