@@ -158,7 +158,7 @@ struct Active {
 
 // The stage's state across frames and its per-frame scratch.
 struct AttentionStage::Impl {
-  Impl(const AttentionOptions& options, SkinModel skin_model);
+  Impl(const AttentionOptions& options, SkinModel skin_model, BipPool* pool);
 
   // What Select is given, for its steps.
   struct Frame {
@@ -295,11 +295,14 @@ struct AttentionStage::Impl {
   std::vector<cv::Point2f> region_flow_;
 };
 
-AttentionStage::Impl::Impl(const AttentionOptions& options, SkinModel skin_model)
-    : options_(options), skin_model_(std::move(skin_model)), files_(options.memory) {
+AttentionStage::Impl::Impl(const AttentionOptions& options, SkinModel skin_model, BipPool* pool)
+    : options_(options),
+      skin_model_(std::move(skin_model)),
+      saliency_builder_(BipOptions{}, pool),
+      files_(options.memory) {
   const std::string error = options_.Check();
   if (!error.empty()) throw ConfigError(error);
-  tracker_ = TargetTracker::Create(options_.tracker);
+  tracker_ = TargetTracker::Create(options_.tracker, pool);
   // OpenCV's DIS flow is in the optional OpenCV module (util/opencv_extra.h): loaded now, so
   // that a missing module is reported before the run starts.
   if (options_.select.group_min_speed > 0.f) {
@@ -1005,8 +1008,8 @@ ReleaseReason AttentionStage::Impl::WhyReleased(const AttendedTarget& target, in
   return ReleaseReason::kNone;
 }
 
-AttentionStage::AttentionStage(const AttentionOptions& options, SkinModel skin_model)
-    : impl_(std::make_unique<Impl>(options, std::move(skin_model))) {}
+AttentionStage::AttentionStage(const AttentionOptions& options, SkinModel skin_model, BipPool* pool)
+    : impl_(std::make_unique<Impl>(options, std::move(skin_model), pool)) {}
 
 AttentionStage::~AttentionStage() = default;
 

@@ -9,7 +9,7 @@ namespace {
 
 class BipTargetTracker final : public TargetTracker {
  public:
-  explicit BipTargetTracker(const TrackerOptions& options) : tracker_(options) {}
+  BipTargetTracker(const TrackerOptions& options, BipPool* pool) : tracker_(options, pool) {}
 
   int StartFromBox(const cv::Mat& frame, const cv::Rect& box, TrackSimilarity similarity,
                    const cv::Mat& skin) override {
@@ -40,8 +40,9 @@ class BipTargetTracker final : public TargetTracker {
 
 }  // namespace
 
-std::unique_ptr<TargetTracker> CreateBipTracker(const TargetTrackerOptions& options) {
-  return std::make_unique<BipTargetTracker>(options.bip);
+std::unique_ptr<TargetTracker> CreateBipTracker(const TargetTrackerOptions& options,
+                                                BipPool* pool) {
+  return std::make_unique<BipTargetTracker>(options.bip, pool);
 }
 
 }  // namespace attend

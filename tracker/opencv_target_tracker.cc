@@ -143,11 +143,12 @@ class OpenCvTargetTracker final : public TargetTracker {
 
 }  // namespace
 
-std::unique_ptr<TargetTracker> CreateKcfTracker(const TargetTrackerOptions& options) {
+// The OpenCV kinds build no pyramid: they take no pool.
+std::unique_ptr<TargetTracker> CreateKcfTracker(const TargetTrackerOptions& options, BipPool*) {
   return std::make_unique<OpenCvTargetTracker>(TrackerKind::kKcf, options.opencv);
 }
 
-std::unique_ptr<TargetTracker> CreateCsrtTracker(const TargetTrackerOptions& options) {
+std::unique_ptr<TargetTracker> CreateCsrtTracker(const TargetTrackerOptions& options, BipPool*) {
   return std::make_unique<OpenCvTargetTracker>(TrackerKind::kCsrt, options.opencv);
 }
 

@@ -230,7 +230,7 @@ void MultiTracker::Impl::ReleasePyramids() {
 
 Hierarchy& MultiTracker::Impl::Pyramid(TrackSimilarity similarity, size_t index) {
   auto& pool = hierarchies[similarity == TrackSimilarity::kSkin ? 1 : 0];
-  while (pool.size() <= index) pool.push_back(std::make_unique<Hierarchy>());
+  while (pool.size() <= index) pool.push_back(std::make_unique<Hierarchy>(this->pool));
   return *pool[index];
 }
 
@@ -792,8 +792,8 @@ int MultiTracker::Impl::Start(const cv::Mat& frame, const cv::Mat& skin, TrackSi
   return targets.back().id;
 }
 
-MultiTracker::MultiTracker(TrackerOptions options)
-    : options_(options), impl_(std::make_unique<Impl>(options)) {
+MultiTracker::MultiTracker(TrackerOptions options, BipPool* pool)
+    : options_(options), impl_(std::make_unique<Impl>(options, pool)) {
   const std::string error = options_.Check();
   if (!error.empty()) throw ConfigError("tracker: " + error);
 }

@@ -52,6 +52,7 @@ struct Hierarchy {
   cv::Size size;
   BipBuilder builder;
   const Bip* bip = nullptr;
+  explicit Hierarchy(BipPool* pool) : builder(BipOptions{}, pool) {}
   std::vector<std::vector<int32_t>> region;  // per level, per vertex id: root index, -1 none
   int regions = 0;
 
@@ -215,6 +216,8 @@ struct MultiTracker::Impl {
   };
 
   TrackerOptions options;
+  std::unique_ptr<BipPool> own_pool;  // when the tracker was given none
+  BipPool* pool;                      // of the pyramids and the segmenter
   std::vector<Target> targets;
   int next_id = 1;
   // Pyramids of the current frame, colour and skin: one per group of ROIs (see Track()).
@@ -238,7 +241,11 @@ struct MultiTracker::Impl {
   mutable std::vector<int> region_inside_, region_all_;  // BoundTarget's counts
   mutable std::vector<float> fg_, bg_;                   // LearnDistinct's histograms
 
-  explicit Impl(const TrackerOptions& o) : options(o) {}
+  Impl(const TrackerOptions& o, BipPool* p)
+      : options(o),
+        own_pool(p == nullptr ? std::make_unique<BipPool>() : nullptr),
+        pool(p != nullptr ? p : own_pool.get()),
+        segmenter(SegmentationOptions{}, pool) {}
 
   // Joins group b into group a (a < b): their crops and spans, and the targets' group numbers.
   void Merge(size_t a, size_t b, std::vector<cv::Rect>* groups, std::vector<cv::Rect>* spans);

@@ -8,8 +8,9 @@
 
 namespace attend {
 
-std::unique_ptr<TargetTracker> CreateBipTracker(const TargetTrackerOptions& options);
-std::unique_ptr<TargetTracker> CreateKcfTracker(const TargetTrackerOptions& options);
-std::unique_ptr<TargetTracker> CreateCsrtTracker(const TargetTrackerOptions& options);
+std::unique_ptr<TargetTracker> CreateBipTracker(const TargetTrackerOptions& options, BipPool* pool);
+std::unique_ptr<TargetTracker> CreateKcfTracker(const TargetTrackerOptions& options, BipPool* pool);
+std::unique_ptr<TargetTracker> CreateCsrtTracker(const TargetTrackerOptions& options,
+                                                 BipPool* pool);
 
 }  // namespace attend
