@@ -75,10 +75,12 @@ void SegmentImages(const SegmentRequest& request,
                       (error ? " (" + error.message() + ")" : std::string()));
   }
 
-  Segmenter segmenter(request.options);
+  // One pool for the command's pyramids (pyramid/bip.h).
+  BipPool pool;
+  Segmenter segmenter(request.options, &pool);
   // Windows for the shift variance have their own size; a second segmenter keeps the first
   // one's buffers sized for whole images.
-  Segmenter window_segmenter(request.options);
+  Segmenter window_segmenter(request.options, &pool);
   Segmentation window_segmentation;
   const SegmentFunction segment_window = [&](const cv::Mat& bgr, cv::Mat* labels) {
     window_segmenter.Segment(bgr, &window_segmentation);

@@ -552,6 +552,8 @@ void ParamBlock::CheckNoUnknownKeys() const {
   }
 }
 
+void ParamBlock::Accept(const std::string& key) const { Lookup(*state_, key); }
+
 std::vector<std::string> ParamBlock::KnownKeys() const { return state_->known(); }
 
 YAML::Node NodeOf(const ParamBlock& block) { return block.state()->node; }

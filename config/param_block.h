@@ -94,6 +94,9 @@ class ParamBlock {
   // Throws ConfigError for the first key present that no getter asked for, naming it, its
   // line and the closest key that was asked for.
   void CheckNoUnknownKeys() const;
+  // Records `key` as known whatever it holds, without reading it: a note for people that
+  // attend never reads (a sequence.yaml's `generator`).
+  void Accept(const std::string& key) const;
 
   // Keys that getters asked for, in the order asked (present or not).
   std::vector<std::string> KnownKeys() const;

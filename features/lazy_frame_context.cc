@@ -9,8 +9,8 @@
 
 namespace attend {
 
-LazyFrameContext::LazyFrameContext(const SegmentationOptions& segmentation)
-    : segmenter_(segmentation) {}
+LazyFrameContext::LazyFrameContext(const SegmentationOptions& segmentation, BipPool* pool)
+    : segmenter_(segmentation, pool) {}
 
 void LazyFrameContext::Reset(int frame_index, const cv::Mat& left, const cv::Mat& right) {
   ATTEND_CHECK(!left.empty() && left.type() == CV_8UC3) << "the left image must be 8-bit BGR";

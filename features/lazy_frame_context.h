@@ -22,7 +22,8 @@ namespace attend {
 
 class LazyFrameContext final : public FrameContext {
  public:
-  explicit LazyFrameContext(const SegmentationOptions& segmentation = {});
+  // `pool`: the segmentation's pyramid pool (pyramid/bip.h); nullptr: its own.
+  explicit LazyFrameContext(const SegmentationOptions& segmentation = {}, BipPool* pool = nullptr);
 
   // Starts a frame: `left` (and `right`, empty when monocular) are 8-bit BGR images of the
   // same size. The images are referenced, not copied; they must outlive the frame.

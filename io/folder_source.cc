@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "config/param_block.h"
+#include "config/read_fields.h"
 #include "io/frame_files.h"
 #include "io/ranged_source.h"
 #include "util/error.h"
@@ -26,27 +27,42 @@ std::string FolderStem(const std::string& folder) {
   return path.filename().string();
 }
 
-// Asking for a key records it as known even when the value is not a scalar, so this accepts
-// any value; the keys it is used for are notes for people, never read by attend.
-void AcceptAnyValue(const ParamBlock& block, const std::string& key) {
-  try {
-    block.GetString(key, "");
-  } catch (const ConfigError&) {
+// The keys of SEQ/sequence.yaml that attend reads (docs/SEQUENCES.md).
+struct SequenceFile {
+  std::string name;
+  double fps = 25.0;
+  double focal_px = 0.0;
+  double baseline_m = 0.0;
+
+  static const OptionFields<SequenceFile>& Fields() {
+    using F = SequenceFile;
+    static const OptionFields<F> fields = {
+        {"name", &F::name, "the sequence's name; the folder's when absent"},
+        {"fps", &F::fps, Range::Above(0), "frames a second"},
+        {"focal_px", &F::focal_px, Range::AtLeast(0), "the focal length, pixels; 0 unknown"},
+        {"baseline_m", &F::baseline_m, Range::AtLeast(0),
+         "the stereo baseline, metres; 0 unknown"}};
+    return fields;
   }
-}
+};
 
 // SEQ/sequence.yaml describes the data, so any problem in it is bad input (exit status 3),
-// reported with the file and line that ParamBlock gives.
+// reported with the file and line that ParamBlock gives. `generator` and `frames` are notes
+// for people, never read.
 void ReadSequenceYaml(const std::string& path, SequenceInfo* info) {
   try {
     const ParamBlock block = ParamBlock::LoadFile(path);
-    info->name = block.GetString("name", info->name);
-    if (info->name.empty()) block.Fail("name", "must not be empty");
-    info->fps = block.GetDouble("fps", info->fps, Range::Above(0));
-    info->focal_px = block.GetDouble("focal_px", 0.0, Range::AtLeast(0));
-    info->baseline_m = block.GetDouble("baseline_m", 0.0, Range::AtLeast(0));
-    AcceptAnyValue(block, "generator");
-    AcceptAnyValue(block, "frames");
+    SequenceFile file;
+    file.name = info->name;
+    file.fps = info->fps;
+    ReadFields(block, SequenceFile::Fields(), &file);
+    if (file.name.empty()) block.Fail("name", "must not be empty");
+    info->name = file.name;
+    info->fps = file.fps;
+    info->focal_px = file.focal_px;
+    info->baseline_m = file.baseline_m;
+    block.Accept("generator");
+    block.Accept("frames");
     block.CheckNoUnknownKeys();
   } catch (const ConfigError& e) {
     throw InputError(e.what());

@@ -96,12 +96,14 @@ SaliencyStage MakeSaliencyStage(const AttendOptions& options, const FeatureRegis
 }  // namespace
 
 FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry& registry,
-                             const FeatureSetup& setup)
+                             const FeatureSetup& setup, ExecutionContext* execution)
     : options_(options),
-      context_(options.segmentation),
+      threads_(execution->threads()),
+      context_(options.segmentation, execution->Shared<BipPool>()),
       features_(options.features, registry, setup),
       saliency_(MakeSaliencyStage(options, registry)),
-      attention_(options.attention, LoadAttentionSkinModel(options.attention.skin_model, setup)) {
+      attention_(options.attention, LoadAttentionSkinModel(options.attention.skin_model, setup),
+                 execution->Shared<BipPool>()) {
   // The run's disparity (FrameContext::disparity_options) is the `disparity` feature's.
   for (const FeatureSpec& spec : options.features) {
     if (spec.enabled && spec.name == "disparity") {
@@ -123,7 +125,7 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
   // features do not depend on the targets, so with more than one thread the two run side by
   // side; both only read the frame context. Errors are rethrown in a fixed order.
   stage.Restart();
-  if (options_.threads == 1) {
+  if (threads_ == 1) {
     attention_.Track(frame.left, context_.SkinDistance(attention_.skin_model()), &tracked_,
                      context_.Cylinder());
     stage.Restart();

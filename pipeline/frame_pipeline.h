@@ -9,11 +9,12 @@
 #include "features/feature_map.h"
 #include "features/feature_set.h"
 #include "features/lazy_frame_context.h"
+#include "io/frame_record.h"
 #include "io/sequence.h"
 #include "pipeline/attend_options.h"
-#include "io/frame_record.h"
 #include "saliency/saliency_stage.h"
 #include "semiattentive/attention.h"
+#include "util/execution_context.h"
 
 namespace attend {
 
@@ -33,9 +34,11 @@ std::vector<std::string> LeaveOutStereoFeatures(const FeatureRegistry& registry,
 
 class FramePipeline {
  public:
-  // Creates the feature plugins (ConfigError for unknown names or bad parameters).
+  // Creates the feature plugins (ConfigError for unknown names or bad parameters). `execution`
+  // (util/execution_context.h), the caller's, must outlive the pipeline: its threads say whether
+  // the tracking runs beside the features, and its BipPool serves every pyramid of a frame.
   FramePipeline(const AttendOptions& options, const FeatureRegistry& registry,
-                const FeatureSetup& setup);
+                const FeatureSetup& setup, ExecutionContext* execution);
 
   // Runs the stages of SPEC 1 on `frame` and fills `record` (targets, new ids) and its times:
   // `segment` (colour conversion and BIP segmentation), `track` (the existing targets),
@@ -71,6 +74,7 @@ class FramePipeline {
   void RecordTargets(FrameRecord* record) const;
 
   const AttendOptions options_;
+  const int threads_;  // the execution context's
   LazyFrameContext context_;
   FeatureSet features_;
   SaliencyStage saliency_;

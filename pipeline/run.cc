@@ -7,9 +7,7 @@
 #include <iomanip>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <opencv2/core/utility.hpp>
 #include <sstream>
-#include <thread>
 
 #include "io/sequence.h"
 #include "pipeline/frame_pipeline.h"
@@ -308,19 +306,17 @@ RunSummary RunSequence(const RunRequest& request) {
   std::unique_ptr<FrameSource> source = OpenFrameSource(options.sequence);
   const SequenceInfo& info = source->info();
   // Everything that can reject the configuration runs before the run folder exists.
-  if (options.threads > 0) cv::setNumThreads(options.threads);
+  ExecutionContext execution(options.threads);
+  const ScopedOpenCvThreads opencv_threads(execution);
   // With a second core the next frame is read and decoded while this one is worked on (1.3 of
   // the 13 ms a frame of the bundled scene at 320x240 on one core; docs/PERFORMANCE.md).
-  const int threads = options.threads > 0
-                          ? options.threads
-                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  if (threads >= 2 && !options.sequence.source.IsLive()) {
+  if (execution.threads() >= 2 && !options.sequence.source.IsLive()) {
     source = ReadAhead(std::move(source));
   }
   const FeatureRegistry registry = LoadFeatureRegistry(options.plugins);
   RunSummary summary;
   const FeatureSetup setup = SetUpFeatures(request, info, registry, &options, &summary);
-  FramePipeline pipeline(options, registry, setup);
+  FramePipeline pipeline(options, registry, setup, &execution);
 
   const std::string out_dir = request.out_dir.empty()
                                   ? DefaultRunFolder("runs", request.config_path, info.name)

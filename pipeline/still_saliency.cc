@@ -23,7 +23,10 @@ cv::Mat ToImageSize(const cv::Mat& map, cv::Size size) {
 
 StillSaliency::StillSaliency(const AttendOptions& options, const std::string& home,
                              std::vector<std::string>* dropped)
-    : options_(options), home_(home), registry_(LoadFeatureRegistry(options_.plugins)) {
+    : options_(options),
+      home_(home),
+      registry_(LoadFeatureRegistry(options_.plugins)),
+      execution_(std::make_unique<ExecutionContext>(options.threads)) {
   FeatureSetup setup;
   setup.home = home_;
   const std::vector<std::string> left_out =
@@ -31,7 +34,7 @@ StillSaliency::StillSaliency(const AttendOptions& options, const std::string& ho
   if (dropped != nullptr) dropped->insert(dropped->end(), left_out.begin(), left_out.end());
   // Every other problem of the configuration shows here, before any image is read.
   setup.stereo = false;
-  FramePipeline check(options_, registry_, setup);
+  FramePipeline check(options_, registry_, setup, execution_.get());
 }
 
 StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features, int scanpath_steps) const {
@@ -40,7 +43,7 @@ StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features, int sca
   FeatureSetup setup;
   setup.stereo = false;
   setup.home = home_;
-  FramePipeline pipeline(options_, registry_, setup);
+  FramePipeline pipeline(options_, registry_, setup, execution_.get());
 
   StillMaps maps;
   maps.image_size = bgr.size();

@@ -4,12 +4,14 @@
 // next. Features that need stereo are left out. Maps come back at the image's own size.
 #pragma once
 
+#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
 #include "features/feature_map.h"
 #include "pipeline/attend_options.h"
+#include "util/execution_context.h"
 
 namespace attend {
 
@@ -41,6 +43,8 @@ class StillSaliency {
   AttendOptions options_;
   std::string home_;
   FeatureRegistry registry_;  // built-in features and plugins, loaded once
+  // The images' pipelines': one pool for all of them (threads as options_.threads).
+  std::unique_ptr<ExecutionContext> execution_;
 };
 
 }  // namespace attend

@@ -121,22 +121,20 @@ class Bip {
 // The working buffers of a build (and of labelling its roots), needed only while it runs.
 struct BipScratch;
 
-// Buffers shared by every pyramid of the process (docs/PYRAMID.md, "Memory"). The pyramids
-// of a frame (its segmentation, the trackers', the saliency segmentation) are built one after
-// another, or two at a time with a second thread, so they need not each keep their own: a
-// build borrows a scratch for as long as it runs, and a BipBuilder borrows the levels its
-// pyramid lives in from its Build() until its Release(). Idle buffers are kept for the next
-// build (so a stream of frames allocates nothing after the first), lent to the build they fit
-// best, and the pool keeps only a few idle level sets. Thread-safe.
+// Buffers shared by the pyramids of a run (docs/PYRAMID.md, "Memory"). The pyramids of a frame
+// (its segmentation, the trackers', the saliency segmentation) are built one after another, or
+// two at a time with a second thread, so they need not each keep their own: a build borrows a
+// scratch for as long as it runs, and a BipBuilder borrows the levels its pyramid lives in from
+// its Build() until its Release(). Idle buffers are kept for the next build (so a stream of
+// frames allocates nothing after the first), lent to the build they fit best, and the pool
+// keeps only a few idle level sets. The run's pool is its ExecutionContext's
+// (util/execution_context.h), handed to the builders. Thread-safe.
 class BipPool {
  public:
   BipPool();
   ~BipPool();
   BipPool(const BipPool&) = delete;
   BipPool& operator=(const BipPool&) = delete;
-
-  // The pool of every BipBuilder that is not given another.
-  static BipPool& Shared();
 
   // Idle buffers, in bytes of capacity (what the pool holds beyond what is lent out).
   size_t IdleBytes() const;
@@ -164,13 +162,15 @@ class BipPool {
   std::vector<std::unique_ptr<Levels>> idle_levels_;
 };
 
-// Builds pyramids. Its buffers are borrowed from a BipPool (the shared one unless another is
-// given): the scratch while a build runs, the levels from Build() until Release() (or the
-// builder's end), so that builders used one after another share their memory and a stream of
-// frames allocates nothing after the first.
+// Builds pyramids. Its buffers are borrowed from a BipPool: the scratch while a build runs,
+// the levels from Build() until Release() (or the builder's end), so that builders used one
+// after another share their memory and a stream of frames allocates nothing after the first.
 class BipBuilder {
  public:
-  explicit BipBuilder(BipOptions options = {}, BipPool* pool = &BipPool::Shared());
+  // `pool`: the pool to borrow from, the caller's (a run's: its ExecutionContext's), which
+  // must outlive the builder; nullptr: a pool of the builder's own, as a builder used alone
+  // needs.
+  explicit BipBuilder(BipOptions options = {}, BipPool* pool = nullptr);
   ~BipBuilder();
   BipBuilder(const BipBuilder&) = delete;
   BipBuilder& operator=(const BipBuilder&) = delete;
@@ -202,11 +202,13 @@ class BipBuilder {
   void BuildAdjacency(int l);
   int NewVirtual(BipLevel* up);
   void Link(int l, int id, int parented, float parented_d2, int orphan, float orphan_d2, float t2);
-  // The range in adjacency_ of a vertex's explicit neighbours (empty when the level has none).
-  int AdjacencyBegin(int id) const;
-  int AdjacencyEnd(int id) const;
+  // The range in adjacency_ of a vertex's explicit neighbours (empty when the level has none);
+  // defined in pyramid/bip_internal.h.
+  inline int AdjacencyBegin(int id) const;
+  inline int AdjacencyEnd(int id) const;
 
   BipOptions options_;
+  std::unique_ptr<BipPool> own_pool_;  // when the builder was given none
   BipPool* pool_;
   std::unique_ptr<std::vector<BipLevel>> levels_;  // borrowed from pool_, or null
   Bip bip_;

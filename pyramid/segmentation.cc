@@ -119,10 +119,10 @@ struct Segmenter::Workspace {
   std::vector<RegionEdge> pairs;
 };
 
-Segmenter::Segmenter(SegmentationOptions options)
+Segmenter::Segmenter(SegmentationOptions options, BipPool* pool)
     : options_(options),
       policy_(options.t_max),
-      builder_(options.bip),
+      builder_(options.bip, pool),
       workspace_(std::make_unique<Workspace>()) {
   const std::string problem = options_.Check();
   ATTEND_CHECK(problem.empty()) << problem;

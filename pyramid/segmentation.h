@@ -36,12 +36,13 @@ struct SegmentationOptions {
   static const OptionFields<SegmentationOptions>& Fields();
 };
 
-// Segments images; keeps its scratch buffers between calls and borrows the pyramid's from the
-// shared BipPool, so one Segmenter per stream of frames allocates (almost) nothing after the
-// first frame.
+// Segments images; keeps its scratch buffers between calls and borrows the pyramid's from a
+// BipPool, so one Segmenter per stream of frames allocates (almost) nothing after the first
+// frame.
 class Segmenter {
  public:
-  explicit Segmenter(SegmentationOptions options = {});
+  // `pool`: the pyramid's pool, as for BipBuilder (pyramid/bip.h); nullptr: its own.
+  explicit Segmenter(SegmentationOptions options = {}, BipPool* pool = nullptr);
   ~Segmenter();
   Segmenter(const Segmenter&) = delete;
   Segmenter& operator=(const Segmenter&) = delete;
@@ -53,7 +54,7 @@ class Segmenter {
 
   // The pyramid of the last call, until ReleasePyramid().
   const Bip& bip() const { return builder_.bip(); }
-  // Gives the pyramid's levels back to the shared pool (pyramid/bip.h) for other builds; the
+  // Gives the pyramid's levels back to the pool (pyramid/bip.h) for other builds; the
   // segmentation made from it stays valid.
   void ReleasePyramid() { builder_.Release(); }
   const SegmentationOptions& options() const { return options_; }

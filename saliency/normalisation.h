@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "saliency/saliency.h"
+#include "saliency/saliency_options.h"
 
 namespace attend {
 

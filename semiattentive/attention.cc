@@ -36,7 +36,7 @@ const AttentionOptions& Checked(const AttentionOptions& options) {
 // The stage: its steps, each a unit of its own, and the state each keeps across frames. Its
 // methods compose the steps, in the order Select calls them.
 struct AttentionStage::Impl {
-  Impl(const AttentionOptions& options, SkinModel skin_model);
+  Impl(const AttentionOptions& options, SkinModel skin_model, BipPool* pool);
 
   // What Select is given, for its steps.
   struct Frame {
@@ -100,15 +100,15 @@ struct AttentionStage::Impl {
   std::vector<cv::Rect> look_regions_;
 };
 
-AttentionStage::Impl::Impl(const AttentionOptions& options, SkinModel skin_model)
+AttentionStage::Impl::Impl(const AttentionOptions& options, SkinModel skin_model, BipPool* pool)
     : options_(Checked(options)),
       skin_model_(std::move(skin_model)),
-      tracker_(TargetTracker::Create(options_.tracker)),
+      tracker_(TargetTracker::Create(options_.tracker, pool)),
       files_(options_.memory),
       inhibition_(options_.inhibition),
       release_(options_.select, options_.drop),
       recogniser_(options_.select, options_.drop, options_.label_overlap),
-      candidates_(options_.select),
+      candidates_(options_.select, pool),
       seeds_(options_.select) {
   if (options_.select.group_min_speed > 0.f) {
     grouping_ = std::make_unique<MotionGrouping>(options_.select.group_min_speed,
@@ -381,8 +381,8 @@ void AttentionStage::Impl::Forget(const FollowedTarget& followed) {
   files_.Remember(followed.File());
 }
 
-AttentionStage::AttentionStage(const AttentionOptions& options, SkinModel skin_model)
-    : impl_(std::make_unique<Impl>(options, std::move(skin_model))) {}
+AttentionStage::AttentionStage(const AttentionOptions& options, SkinModel skin_model, BipPool* pool)
+    : impl_(std::make_unique<Impl>(options, std::move(skin_model), pool)) {}
 
 AttentionStage::~AttentionStage() = default;
 

@@ -74,7 +74,9 @@ struct TrackedTargets {
 class AttentionStage {
  public:
   // `skin_model`: classifies pixels as skin for skin trackers and for choosing the similarity.
-  AttentionStage(const AttentionOptions& options, SkinModel skin_model);
+  // `pool`: the pool of its pyramids (the saliency segmentation's, the tracker's;
+  // pyramid/bip.h), which must outlive the stage; nullptr: pools of their own.
+  AttentionStage(const AttentionOptions& options, SkinModel skin_model, BipPool* pool = nullptr);
   ~AttentionStage();
 
   // The model whose SkinDistanceMap the steps below take (FrameContext::SkinDistance).

@@ -41,10 +41,11 @@ void Measure(const cv::Mat& inhibited, int count, Candidates* c) {
 
 }  // namespace
 
-CandidateFinder::CandidateFinder(const SelectOptions& options)
+CandidateFinder::CandidateFinder(const SelectOptions& options, BipPool* pool)
     : min_saliency_(options.min_saliency),
       min_area_(options.min_area),
-      t_max_(options.saliency_t_max) {}
+      t_max_(options.saliency_t_max),
+      builder_(BipOptions{}, pool) {}
 
 Candidates CandidateFinder::Find(const cv::Mat& inhibited) {
   Candidates c;

@@ -35,7 +35,9 @@ struct Candidates {
 // shared pool only while it segments.
 class CandidateFinder {
  public:
-  explicit CandidateFinder(const SelectOptions& options);
+  // `pool`: where the saliency map's pyramid borrows its levels (pyramid/bip.h); nullptr: a
+  // pool of its own.
+  explicit CandidateFinder(const SelectOptions& options, BipPool* pool = nullptr);
   // The candidates of `inhibited` (CV_32FC1, 0..1).
   Candidates Find(const cv::Mat& inhibited);
 

@@ -11,7 +11,7 @@ namespace {
 
 class BipTargetTracker final : public TargetTracker {
  public:
-  explicit BipTargetTracker(const TrackerOptions& options) : tracker_(options) {}
+  BipTargetTracker(const TrackerOptions& options, BipPool* pool) : tracker_(options, pool) {}
 
   int StartFromBox(const cv::Mat& frame, const cv::Rect& box, TrackSimilarity similarity,
                    const cv::Mat& skin) override {
@@ -50,8 +50,8 @@ std::vector<TrackerSetting> BipSettings(const TargetTrackerOptions& options) {
           {"occlusion", options.bip.occlusion}};
 }
 
-std::unique_ptr<TargetTracker> CreateBip(const TargetTrackerOptions& options) {
-  return std::make_unique<BipTargetTracker>(options.bip);
+std::unique_ptr<TargetTracker> CreateBip(const TargetTrackerOptions& options, BipPool* pool) {
+  return std::make_unique<BipTargetTracker>(options.bip, pool);
 }
 
 }  // namespace

@@ -148,12 +148,13 @@ std::string CheckOpenCv(const TargetTrackerOptions& options) { return options.op
 
 std::vector<TrackerSetting> NoSettings(const TargetTrackerOptions&) { return {}; }
 
-std::unique_ptr<TargetTracker> CreateKcf(const TargetTrackerOptions& options) {
+// The OpenCV kinds build no pyramid: they take no pool.
+std::unique_ptr<TargetTracker> CreateKcf(const TargetTrackerOptions& options, BipPool*) {
   return std::make_unique<OpenCvTargetTracker>(TrackerKind::kKcf, cvextra::TrackerType::kKcf,
                                                options.opencv);
 }
 
-std::unique_ptr<TargetTracker> CreateCsrt(const TargetTrackerOptions& options) {
+std::unique_ptr<TargetTracker> CreateCsrt(const TargetTrackerOptions& options, BipPool*) {
   return std::make_unique<OpenCvTargetTracker>(TrackerKind::kCsrt, cvextra::TrackerType::kCsrt,
                                                options.opencv);
 }

@@ -83,7 +83,7 @@ void RoiPyramids::Release() {
 
 Hierarchy& RoiPyramids::Pyramid(TrackSimilarity similarity, size_t index) {
   auto& pool = pools_[similarity == TrackSimilarity::kSkin ? 1 : 0];
-  while (pool.size() <= index) pool.push_back(std::make_unique<Hierarchy>());
+  while (pool.size() <= index) pool.push_back(std::make_unique<Hierarchy>(pool_));
   return *pool[index];
 }
 

@@ -23,6 +23,8 @@ inline constexpr int kAlignment = 1 << kMaxTemplateLevel;
 struct Hierarchy {
   cv::Point origin;  // the crop's top-left pixel in the frame, a multiple of kAlignment
   cv::Size size;
+  explicit Hierarchy(BipPool* pool) : builder(BipOptions{}, pool) {}
+
   BipBuilder builder;
   const Bip* bip = nullptr;
   std::vector<std::vector<int32_t>> region;  // per level, per vertex id: root index, -1 none
@@ -64,6 +66,9 @@ void BuildHierarchy(const cv::Mat& frame, const cv::Mat& skin, TrackSimilarity s
 // frame to frame.
 class RoiPyramids {
  public:
+  // `pool`: where the pyramids borrow their levels (pyramid/bip.h); it must outlive them.
+  explicit RoiPyramids(BipPool* pool) : pool_(pool) {}
+
   // Builds the pyramid over the union of `rois` (per target, empty for a target of another
   // similarity or outside the image) in parts, or whole when `in_parts` is false (the same
   // results; TrackerOptions::pyramid_parts). Returns the tallest part's number of levels, 0
@@ -82,6 +87,7 @@ class RoiPyramids {
   // Joins group b into group a (a < b): their crops and spans, and the targets' group numbers.
   void Merge(size_t a, size_t b, std::vector<cv::Rect>* groups, std::vector<cv::Rect>* spans);
 
+  BipPool* pool_;
   std::vector<std::unique_ptr<Hierarchy>> pools_[2];  // colour, skin
   std::vector<int> group_of_;  // per target: its part in the last Build, -1 for an empty ROI
   cv::Mat union_mask_;

@@ -78,10 +78,11 @@ int TargetTracker::StartFromRegion(const cv::Mat& frame, const cv::Mat& labels, 
   return StartFromMask(frame, mask, similarity, skin);
 }
 
-std::unique_ptr<TargetTracker> TargetTracker::Create(const TargetTrackerOptions& options) {
+std::unique_ptr<TargetTracker> TargetTracker::Create(const TargetTrackerOptions& options,
+                                                     BipPool* pool) {
   const std::string error = options.Check();
   if (!error.empty()) throw ConfigError("tracker." + error);
-  return TrackerKindOf(options.kind).create(options);
+  return TrackerKindOf(options.kind).create(options, pool);
 }
 
 }  // namespace attend

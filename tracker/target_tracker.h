@@ -115,7 +115,7 @@ struct TrackerKindInfo {
   const char* no_target;
   // The settings attend track's summary reports.
   std::vector<TrackerSetting> (*settings)(const TargetTrackerOptions& options);
-  std::unique_ptr<TargetTracker> (*create)(const TargetTrackerOptions& options);
+  std::unique_ptr<TargetTracker> (*create)(const TargetTrackerOptions& options, BipPool* pool);
 };
 // Every kind, one row each.
 const std::vector<TrackerKindInfo>& TrackerKinds();
@@ -124,7 +124,9 @@ const TrackerKindInfo& TrackerKindOf(TrackerKind kind);
 class TargetTracker {
  public:
   // A tracker of `options.kind`. ConfigError (util/error.h) when the options are not valid.
-  static std::unique_ptr<TargetTracker> Create(const TargetTrackerOptions& options);
+  // `pool`: the pyramids' pool of the kinds that build any (MultiTracker's); nullptr: their own.
+  static std::unique_ptr<TargetTracker> Create(const TargetTrackerOptions& options,
+                                               BipPool* pool = nullptr);
 
   virtual ~TargetTracker() = default;
   TargetTracker(const TargetTracker&) = delete;

@@ -34,7 +34,13 @@ std::unique_ptr<ModePolicy> MakeMode(const TrackerOptions& options) {
 }  // namespace
 
 struct MultiTracker::Impl {
-  explicit Impl(const TrackerOptions& o) : options(o), mode(MakeMode(o)) {}
+  Impl(const TrackerOptions& o, BipPool* p)
+      : options(o),
+        mode(MakeMode(o)),
+        own_pool(p == nullptr ? std::make_unique<BipPool>() : nullptr),
+        pool(p != nullptr ? p : own_pool.get()),
+        pyramids(pool),
+        segmenter(SegmentationOptions{}, pool) {}
 
   // Searches every target of each similarity in its part of that similarity's pyramid.
   void Track(const cv::Mat& frame, const cv::Mat& skin, const cv::Mat& cylinder,
@@ -44,6 +50,8 @@ struct MultiTracker::Impl {
 
   TrackerOptions options;
   std::unique_ptr<ModePolicy> mode;
+  std::unique_ptr<BipPool> own_pool;  // when the tracker was given none
+  BipPool* pool;                      // of the pyramids and the segmenter
   std::vector<Target> targets;
   int next_id = 1;
   RoiPyramids pyramids;
@@ -138,8 +146,8 @@ int MultiTracker::Impl::Start(const cv::Mat& frame, const cv::Mat& skin, TrackSi
   return targets.back().id;
 }
 
-MultiTracker::MultiTracker(TrackerOptions options)
-    : options_(options), impl_(std::make_unique<Impl>(options)) {
+MultiTracker::MultiTracker(TrackerOptions options, BipPool* pool)
+    : options_(options), impl_(std::make_unique<Impl>(options, pool)) {
   const std::string error = options_.Check();
   if (!error.empty()) throw ConfigError("tracker: " + error);
 }

@@ -22,10 +22,14 @@
 
 namespace attend {
 
+class BipPool;
+
 // Tracks any number of targets in one shared pyramid (4.3). Keeps its buffers between frames.
 class MultiTracker {
  public:
-  explicit MultiTracker(TrackerOptions options = {});
+  // `pool`: the pool of its pyramids and of its start segmenter (pyramid/bip.h), which must
+  // outlive the tracker; nullptr: a pool of its own.
+  explicit MultiTracker(TrackerOptions options = {}, BipPool* pool = nullptr);
   ~MultiTracker();
   MultiTracker(const MultiTracker&) = delete;
   MultiTracker& operator=(const MultiTracker&) = delete;

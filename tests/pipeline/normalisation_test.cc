@@ -42,11 +42,17 @@ FeatureRegistry WithConstantNormalisation(float value) {
   return registry;
 }
 
+// The tests' execution context (util/execution_context.h): one thread.
+ExecutionContext* Execution() {
+  static ExecutionContext execution(1);
+  return &execution;
+}
+
 TEST(Normalisation, AFeatureUsesTheNormalisationItsEntryNames) {
   const AttendOptions options = WithFeatures(
       "[{name: intensity_contrast, normalisation: constant}, "
       "{name: colour_contrast, normalisation: local_maxima}, {name: skin}]");
-  FramePipeline pipeline(options, WithConstantNormalisation(0.25f), MonocularSetup());
+  FramePipeline pipeline(options, WithConstantNormalisation(0.25f), MonocularSetup(), Execution());
   FrameRecord record;
   pipeline.Process(Frame(), &record);
   const cv::Mat& plugin = pipeline.normalised()[0];
@@ -69,15 +75,14 @@ TEST(Normalisation, AFeatureUsesTheNormalisationItsEntryNames) {
 TEST(Normalisation, SaliencyNormalisationMayNameAPluginsNormalisation) {
   AttendOptions options = WithFeatures("[{name: intensity_contrast}, {name: colour_contrast}]");
   options.saliency.normalisation = "constant";
-  FramePipeline pipeline(options, WithConstantNormalisation(0.5f), MonocularSetup());
+  FramePipeline pipeline(options, WithConstantNormalisation(0.5f), MonocularSetup(), Execution());
   FrameRecord record;
   pipeline.Process(Frame(), &record);
   for (const cv::Mat& map : pipeline.normalised()) EXPECT_EQ(cv::countNonZero(map != 0.5f), 0);
   EXPECT_NEAR(pipeline.saliency().at<float>(0, 0), 0.5f, 1e-6);
 
-  std::string message = testing::ConfigErrorOf([&] {
-    FramePipeline unknown(options, BuiltinFeatures(), MonocularSetup());
-  });
+  std::string message = testing::ConfigErrorOf(
+      [&] { FramePipeline unknown(options, BuiltinFeatures(), MonocularSetup(), Execution()); });
   EXPECT_NE(message.find("saliency.normalisation: unknown normalisation 'constant'"),
             std::string::npos)
       << message;
@@ -92,7 +97,7 @@ TEST(Normalisation, SaliencyNormalisationMayNameAPluginsNormalisation) {
 TEST(Normalisation, UnknownOrClashingNamesAndBrokenResultsAreConfigurationErrors) {
   std::string message = testing::ConfigErrorOf([] {
     FramePipeline pipeline(WithFeatures("[{name: intensity_contrast, normalisation: constnt}]"),
-                           WithConstantNormalisation(0.5f), MonocularSetup());
+                           WithConstantNormalisation(0.5f), MonocularSetup(), Execution());
   });
   EXPECT_NE(message.find("test.yaml:1"), std::string::npos) << message;
   EXPECT_NE(message.find("did you mean 'constant'"), std::string::npos) << message;
@@ -107,7 +112,7 @@ TEST(Normalisation, UnknownOrClashingNamesAndBrokenResultsAreConfigurationErrors
   EXPECT_NE(message.find("built in"), std::string::npos) << message;
 
   FramePipeline broken(WithFeatures("[{name: intensity_contrast, normalisation: constant}]"),
-                       WithConstantNormalisation(2.f), MonocularSetup());
+                       WithConstantNormalisation(2.f), MonocularSetup(), Execution());
   FrameRecord record;
   message = testing::ConfigErrorOf([&] { broken.Process(Frame(), &record); });
   EXPECT_NE(message.find("intensity_contrast"), std::string::npos) << message;

@@ -13,11 +13,17 @@ using testing::WithFeatures;
 
 FeatureSetup StereoSetup() { return testing::SetupFor(true); }
 
+// The tests' execution context (util/execution_context.h): one thread.
+ExecutionContext* Execution() {
+  static ExecutionContext execution(1);
+  return &execution;
+}
+
 TEST(RunDisparity, TheDisparityFeaturesEntryChoosesTheContextsOptions) {
   const FramePipeline pipeline(
       WithFeatures("[{name: intensity_contrast}, {name: disparity, max_disparity: 24, window: "
                    "9, smoothness: penalty}]"),
-      BuiltinFeatures(), StereoSetup());
+      BuiltinFeatures(), StereoSetup(), Execution());
   const DisparityOptions& options = pipeline.context().disparity_options();
   EXPECT_EQ(options.max_disparity, 24);
   EXPECT_EQ(options.window, 9);
@@ -29,7 +35,8 @@ TEST(RunDisparity, WithoutTheFeatureOrWithItDisabledTheOptionsAreTheDefaults) {
        {std::string("[{name: intensity_contrast}]"),
         std::string(
             "[{name: intensity_contrast}, {name: disparity, window: 9, enabled: false}]")}) {
-    const FramePipeline pipeline(WithFeatures(features), BuiltinFeatures(), StereoSetup());
+    const FramePipeline pipeline(WithFeatures(features), BuiltinFeatures(), StereoSetup(),
+                                 Execution());
     EXPECT_TRUE(pipeline.context().disparity_options() == DisparityOptions()) << features;
   }
 }

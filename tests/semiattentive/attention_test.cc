@@ -41,7 +41,8 @@ SceneRun RunScene(const std::string& scene_yaml, int frames, int threads = 1,
   FeatureSetup setup;
   setup.home = testing::ProjectRoot();
   options.attention.skin_model = setup.home + "/configs/skin_tsl.yaml";
-  FramePipeline pipeline(options, BuiltinFeatures(), setup);
+  ExecutionContext execution(threads);
+  FramePipeline pipeline(options, BuiltinFeatures(), setup, &execution);
   SceneRun run;
   for (int i = 0; i < frames; ++i) {
     const RenderedFrame rendered = renderer.Render(i);

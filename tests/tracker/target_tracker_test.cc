@@ -80,7 +80,7 @@ TEST(TargetTracker, EachKindsRowMakesItAndEveryBlockKeyHasAKind) {
   for (const TrackerKindInfo& info : TrackerKinds()) {
     TargetTrackerOptions options;
     options.kind = info.kind;
-    EXPECT_EQ(info.create(options)->kind(), info.kind) << info.name;
+    EXPECT_EQ(info.create(options, nullptr)->kind(), info.kind) << info.name;
     EXPECT_EQ(&TrackerKindOf(info.kind), &info);
   }
   const auto used = [](std::string_view key) {

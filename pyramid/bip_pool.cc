@@ -1,0 +1,124 @@
+// BipPool (pyramid/bip.h): the buffers that the pyramids built one after another share.
+#include <algorithm>
+#include <memory>
+#include <mutex>
+
+#include "pyramid/bip.h"
+#include "pyramid/bip_internal.h"
+
+namespace attend {
+
+size_t BipScratch::Bytes() const {
+  size_t bytes = CapacityBytes(adjacency_offsets_) + CapacityBytes(adjacency_) +
+                 CapacityBytes(son_offsets_) + CapacityBytes(sons_) + CapacityBytes(virtual_sons_) +
+                 CapacityBytes(stamp_) + CapacityBytes(cell_row_) + CapacityBytes(cell_col_) +
+                 CapacityBytes(row_orphans_) + CapacityBytes(linked_) + CapacityBytes(label_[0]) +
+                 CapacityBytes(label_[1]) + CapacityBytes(roots_);
+  for (const auto& plane : distance_) bytes += CapacityBytes(plane);
+  for (const auto& plane : planes_) bytes += CapacityBytes(plane);
+  return bytes;
+}
+
+namespace {
+
+// The pixels a level set has room for: the capacity of its base's Hom.
+size_t LevelCells(const std::vector<BipLevel>& levels) {
+  return levels.empty() ? 0 : levels[0].hom.capacity();
+}
+
+size_t LevelBytes(const std::vector<BipLevel>& levels) {
+  size_t bytes = 0;
+  for (const BipLevel& level : levels) {
+    bytes += CapacityBytes(level.hom) + CapacityBytes(level.feature) + CapacityBytes(level.area) +
+             CapacityBytes(level.parent) + CapacityBytes(level.edges);
+  }
+  return bytes;
+}
+
+}  // namespace
+
+BipPool::BipPool() = default;
+BipPool::~BipPool() = default;
+
+std::unique_ptr<BipScratch> BipPool::TakeScratch() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (!idle_scratch_.empty()) {
+      std::unique_ptr<BipScratch> scratch = std::move(idle_scratch_.back());
+      idle_scratch_.pop_back();
+      return scratch;
+    }
+  }
+  return std::make_unique<BipScratch>();
+}
+
+void BipPool::GiveScratch(std::unique_ptr<BipScratch> scratch) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  idle_scratch_.push_back(std::move(scratch));
+}
+
+std::unique_ptr<BipPool::Levels> BipPool::TakeLevels(size_t cells) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    // The smallest set with room, unless it is far larger than needed (a crop of a tracker
+    // would otherwise hold a whole frame's set); else the largest one without room, which
+    // grows; else a new one.
+    int fit = -1, grow = -1;
+    for (int i = 0; i < static_cast<int>(idle_levels_.size()); ++i) {
+      const size_t room = LevelCells(*idle_levels_[i]);
+      if (room >= cells) {
+        if (room <= 4 * cells + 4096 && (fit < 0 || room < LevelCells(*idle_levels_[fit]))) {
+          fit = i;
+        }
+      } else if (grow < 0 || room > LevelCells(*idle_levels_[grow])) {
+        grow = i;
+      }
+    }
+    const int chosen = fit >= 0 ? fit : grow;
+    if (chosen >= 0) {
+      std::unique_ptr<Levels> levels = std::move(idle_levels_[chosen]);
+      idle_levels_.erase(idle_levels_.begin() + chosen);
+      return levels;
+    }
+  }
+  return std::make_unique<Levels>();
+}
+
+void BipPool::GiveLevels(std::unique_ptr<Levels> levels) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (static_cast<int>(idle_levels_.size()) < kMaxIdleLevelSets) {
+    idle_levels_.push_back(std::move(levels));
+    return;
+  }
+  // Keep the larger sets: they are the costly ones to make again.
+  auto smallest = std::min_element(
+      idle_levels_.begin(), idle_levels_.end(),
+      [](const auto& a, const auto& b) { return LevelCells(*a) < LevelCells(*b); });
+  if (LevelCells(**smallest) < LevelCells(*levels)) *smallest = std::move(levels);
+}
+
+size_t BipPool::IdleBytes() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  size_t bytes = 0;
+  for (const auto& scratch : idle_scratch_) bytes += scratch->Bytes();
+  for (const auto& levels : idle_levels_) bytes += LevelBytes(*levels);
+  return bytes;
+}
+
+int BipPool::IdleScratches() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<int>(idle_scratch_.size());
+}
+
+int BipPool::IdleLevelSets() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<int>(idle_levels_.size());
+}
+
+void BipPool::Clear() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  idle_scratch_.clear();
+  idle_levels_.clear();
+}
+
+}  // namespace attend
