@@ -38,6 +38,8 @@ std::vector<FieldDescription> FacesKeys() {
 
 }  // namespace
 
+// The built-in features' table. Adding a feature: CONTRIBUTING.md, "A feature map" (its file,
+// and its row here).
 const std::vector<BuiltinFeature>& BuiltinFeatureTable() {
   static const std::vector<BuiltinFeature> table = {
       {"colour_contrast", "mean colour gradient of each BIP colour region (thesis eq. 5.1)",

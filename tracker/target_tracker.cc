@@ -8,6 +8,8 @@
 
 namespace attend {
 
+// The kinds' table. Adding a kind: CONTRIBUTING.md, "A tracker kind" (a file with its row,
+// and its row function in this list).
 const std::vector<TrackerKindInfo>& TrackerKinds() {
   // One row a kind, each from its kind's file (tracker_kinds.h).
   static const std::vector<TrackerKindInfo> kinds = {BipKind(), KcfKind(), CsrtKind()};
