@@ -37,7 +37,7 @@ class TemplateSearchTest : public ::testing::Test {
   }
   void TearDown() override { h_.Release(); }
 
-  Hierarchy h_;
+  Hierarchy h_{nullptr};  // a pool of its own
   Target target_;
   TemplateSearch search_;
 };
