@@ -129,7 +129,7 @@ def include_breaches(root, files, layers):
                        f"(ATTEND_LAYERS)")
             if unit_of(target) in known and unit_of(target) != unit_of(path):
                 graph.setdefault(unit_of(path), set()).add(unit_of(target))
-    # A header without a .cc of its own (tracker_impl.h, param_block_yaml.h) holds declarations
+    # A header without a .cc of its own (param_block_yaml.h, tracker_mode.h) holds declarations
     # that one unit's files share; a cycle through it alone is that unit's inside.
     implemented = {unit_of(p) for p in files if p.endswith(".cc")}
     for component in cycles(graph):
