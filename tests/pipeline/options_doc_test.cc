@@ -17,7 +17,7 @@
 namespace attend {
 namespace {
 
-std::string ReadText(const std::string& path) {
+std::string FileText(const std::string& path) {
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
@@ -26,7 +26,7 @@ std::string ReadText(const std::string& path) {
 
 TEST(OptionsDoc, ConfigsReadmeHoldsTheGeneratedTables) {
   const std::string path = testing::ProjectRoot() + "/configs/README.md";
-  const std::string readme = ReadText(path);
+  const std::string readme = FileText(path);
   ASSERT_FALSE(readme.empty());
   EXPECT_TRUE(WithGeneratedTables(readme) == readme)
       << "configs/README.md's option tables differ from the options structs' field tables; "
@@ -35,7 +35,7 @@ TEST(OptionsDoc, ConfigsReadmeHoldsTheGeneratedTables) {
 }
 
 TEST(OptionsDoc, EveryKeyHasItsRowWithItsRangeAndDefault) {
-  const std::string readme = ReadText(testing::ProjectRoot() + "/configs/README.md");
+  const std::string readme = FileText(testing::ProjectRoot() + "/configs/README.md");
   for (const FieldDescription& line : DescribeEveryKey()) {
     if (line.type == "list of features") continue;  // the features' table lists them
     EXPECT_NE(readme.find("| `" + line.key + "` | "), std::string::npos)
@@ -87,7 +87,7 @@ TEST(OptionsDoc, WriteRegeneratesAFileInPlaceOnce) {
   const std::string path = dir.File("README.md");
   std::ofstream(path) << "# x\n<!-- options: inhibition -->\n<!-- end options -->\n";
   EXPECT_TRUE(WriteGeneratedTables(path));
-  EXPECT_NE(ReadText(path).find("`inhibition.margin`"), std::string::npos);
+  EXPECT_NE(FileText(path).find("`inhibition.margin`"), std::string::npos);
   EXPECT_FALSE(WriteGeneratedTables(path));
 }
 

@@ -14,7 +14,7 @@ using testing::WithFeatures;
 FeatureSetup StereoSetup() { return testing::SetupFor(true); }
 
 // The tests' execution context (util/execution_context.h): one thread.
-ExecutionContext* Execution() {
+ExecutionContext* DisparityRunExecution() {
   static ExecutionContext execution(1);
   return &execution;
 }
@@ -23,7 +23,7 @@ TEST(RunDisparity, TheDisparityFeaturesEntryChoosesTheContextsOptions) {
   const FramePipeline pipeline(
       WithFeatures("[{name: intensity_contrast}, {name: disparity, max_disparity: 24, window: "
                    "9, smoothness: penalty}]"),
-      BuiltinFeatures(), StereoSetup(), Execution());
+      BuiltinFeatures(), StereoSetup(), DisparityRunExecution());
   const DisparityOptions& options = pipeline.context().disparity_options();
   EXPECT_EQ(options.max_disparity, 24);
   EXPECT_EQ(options.window, 9);
@@ -36,7 +36,7 @@ TEST(RunDisparity, WithoutTheFeatureOrWithItDisabledTheOptionsAreTheDefaults) {
         std::string(
             "[{name: intensity_contrast}, {name: disparity, window: 9, enabled: false}]")}) {
     const FramePipeline pipeline(WithFeatures(features), BuiltinFeatures(), StereoSetup(),
-                                 Execution());
+                                 DisparityRunExecution());
     EXPECT_TRUE(pipeline.context().disparity_options() == DisparityOptions()) << features;
   }
 }
