@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "tracker/correlation_tracker.h"
 #include "tracker/tracker_kinds.h"
 
 namespace attend {
@@ -40,9 +41,15 @@ class BipTargetTracker final : public TargetTracker {
   MultiTracker tracker_;
 };
 
-bool UsesBipKey(std::string_view key) { return HasKey(TrackerOptions::Fields(), key); }
+bool UsesBipKey(std::string_view key) {
+  return HasKey(TrackerOptions::Fields(), key) || HasKey(CorrelationOptions::Fields(), key);
+}
 
-std::string CheckBip(const TargetTrackerOptions& options) { return options.bip.Check(); }
+std::string CheckBip(const TargetTrackerOptions& options) {
+  const std::string error = options.bip.Check();
+  if (!error.empty() || options.bip.mode != TrackerMode::kCorrelation) return error;
+  return options.correlation.Check();
+}
 
 // Which BIP tracker: the mode and whether its occlusion rules were on.
 std::vector<TrackerSetting> BipSettings(const TargetTrackerOptions& options) {
@@ -50,7 +57,11 @@ std::vector<TrackerSetting> BipSettings(const TargetTrackerOptions& options) {
           {"occlusion", options.bip.occlusion}};
 }
 
+// The correlation mode is a tracker of its own; the thesis and bounded modes are MultiTracker's.
 std::unique_ptr<TargetTracker> CreateBip(const TargetTrackerOptions& options, BipPool* pool) {
+  if (options.bip.mode == TrackerMode::kCorrelation) {
+    return MakeCorrelationTracker(options.correlation, pool);
+  }
   return std::make_unique<BipTargetTracker>(options.bip, pool);
 }
 

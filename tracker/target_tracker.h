@@ -34,6 +34,7 @@
 #include <variant>
 #include <vector>
 
+#include "tracker/correlation_options.h"
 #include "tracker/tracker.h"
 
 namespace attend {
@@ -69,6 +70,8 @@ struct TargetTrackerOptions {
   // best on real footage (docs/TRACKING.md, "Modes"); TrackerOptions alone defaults to the
   // thesis's tracker.
   TrackerOptions bip = BoundedTrackerOptions();
+  // Used by kind bip in mode correlation only (tracker/correlation_tracker.h).
+  CorrelationOptions correlation;
   OpenCvTrackerOptions opencv;  // used by kinds kcf and csrt only
   // "" when valid; otherwise names the field ("mode", "t_colour", "lost_frames", ...) and the
   // broken constraint. Checks only the options of `kind`.
@@ -83,6 +86,7 @@ struct TargetTrackerOptions {
 template <typename Visit>
 void ForEachTrackerOptionBlock(Visit&& visit) {
   visit(&TargetTrackerOptions::bip, TrackerOptions::Fields());
+  visit(&TargetTrackerOptions::correlation, CorrelationOptions::Fields());
   visit(&TargetTrackerOptions::opencv, OpenCvTrackerOptions::Fields());
 }
 

@@ -27,8 +27,12 @@ std::unique_ptr<ModePolicy> MakeMode(const TrackerOptions& options) {
       return MakeThesisMode(options);
     case TrackerMode::kBounded:
       return MakeBoundedMode(options);
+    case TrackerMode::kCorrelation:
+      break;
   }
-  return MakeThesisMode(options);
+  // The correlation mode is not a MultiTracker policy: TargetTracker::Create makes it.
+  throw ConfigError("tracker.mode correlation is a tracker of its own: make it with "
+                    "TargetTracker::Create, not MultiTracker");
 }
 
 }  // namespace

@@ -17,9 +17,10 @@ int TrackerOptions::EpsilonMaxPixels(int width) const {
 
 namespace {
 
-constexpr EnumTable<TrackerMode, 2> kTrackerModes = {{{
+constexpr EnumTable<TrackerMode, 3> kTrackerModes = {{{
     {TrackerMode::kThesis, "thesis"},
     {TrackerMode::kBounded, "bounded"},
+    {TrackerMode::kCorrelation, "correlation"},
 }}};
 
 }  // namespace
@@ -28,7 +29,8 @@ const OptionFields<TrackerOptions>& TrackerOptions::Fields() {
   using O = TrackerOptions;
   static const OptionFields<TrackerOptions> fields = {
       {"mode", EnumField<&O::mode, kTrackerModes>(),
-       "thesis: chapter 4 as written; bounded: refinement and box bounded (docs/TRACKING.md)"},
+       "thesis: chapter 4 as written; bounded: refinement and box bounded; correlation: a "
+       "correlation filter with BIP masks (docs/TRACKING.md)"},
       {"t_colour", &O::t_colour, Range::Closed(0.001, 1000),
        "T_c: a template vertex matches a ROI vertex below this colour distance"},
       {"t_oversegment", &O::t_oversegment, Range::Closed(0.001, 1000),

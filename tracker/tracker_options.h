@@ -12,11 +12,14 @@
 
 namespace attend {
 
-// Which tracker: the thesis's as written (chapter 4), or the variant for real footage whose
-// refinement and box are bounded (docs/TRACKING.md, "Modes"). Each is a policy of its own,
-// chosen when the tracker is made (tracker_mode.h: thesis_mode.cc, bounded_mode.cc).
-enum class TrackerMode { kThesis, kBounded };
-// "thesis", "bounded" (the tracker.mode key).
+// Which tracker: the thesis's as written (chapter 4), the variant for real footage whose
+// refinement and box are bounded (docs/TRACKING.md, "Modes"), or the correlation-filter tracker
+// whose masks are the BIP's regions (tracker/correlation_tracker.h). The first two are policies
+// of MultiTracker, chosen when it is made (tracker_mode.h: thesis_mode.cc, bounded_mode.cc);
+// the third is a TargetTracker of its own, made by the bip kind (bip_target_tracker.cc), with
+// its options in CorrelationOptions.
+enum class TrackerMode { kThesis, kBounded, kCorrelation };
+// "thesis", "bounded", "correlation" (the tracker.mode key).
 const char* TrackerModeName(TrackerMode mode);
 
 struct TrackerOptions {
