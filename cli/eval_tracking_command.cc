@@ -97,6 +97,14 @@ int EvalOtb(const EvalTrackingArguments& args, const std::string& command_line) 
     std::cerr << "[otb] " << index + 1 << "/" << count << " " << sequence.name << ": "
               << sequence.images.size() << " frames" << std::endl;
   };
+  observer.on_result = [](const OtbSequenceResult& result,
+                          const std::vector<OtbTracker>& trackers) {
+    std::string aucs;
+    for (size_t t = 0; t < trackers.size(); ++t) {
+      aucs += " " + trackers[t].name + " " + Fixed(result.runs[t].scores.success_auc, 3);
+    }
+    std::cerr << "[otb]   " << result.name << " AUC:" << aucs << std::endl;
+  };
   const OtbResults results = EvaluateOtb(request, observer);
   std::cout << OtbSummaryText(results) << "report: " << args.out << "/index.html" << std::endl;
   return 0;
