@@ -76,7 +76,7 @@ Json TrackerOptionsJson(const TargetTrackerOptions& options) {
 }
 
 // "bip, mode bounded, occlusion on": the kind and the settings attend track reports.
-std::string Describe(const std::string& name, const TargetTrackerOptions& options) {
+std::string DescribeTracker(const std::string& name, const TargetTrackerOptions& options) {
   std::string text = TrackerKindName(options.kind);
   if (name != "attend") {
     return text + ", OpenCV's defaults" +
@@ -139,7 +139,7 @@ std::vector<OtbSequence> SelectSequences(const std::vector<OtbSequence>& found,
   return chosen;
 }
 
-cv::Rect Rounded(const cv::Rect2d& box) {
+cv::Rect RoundedBox(const cv::Rect2d& box) {
   const int x0 = static_cast<int>(std::lround(box.x)), y0 = static_cast<int>(std::lround(box.y));
   const int x1 = static_cast<int>(std::lround(box.x + box.width));
   const int y1 = static_cast<int>(std::lround(box.y + box.height));
@@ -176,7 +176,7 @@ struct Follower {
 
 // Starts the follower on frame 0 from the true box (clipped to the frame). Its first answer is
 // the box of the target it started (as attend track's first row).
-void Start(Follower* follower, const cv::Mat& frame, const cv::Rect& box, int frames) {
+void StartFollower(Follower* follower, const cv::Mat& frame, const cv::Rect& box, int frames) {
   follower->boxes.assign(frames, cv::Rect2d());
   const cv::Rect inside = box & cv::Rect(0, 0, frame.cols, frame.rows);
   const int id = inside.empty() ? -1 : follower->tracker->StartFromBox(frame, inside);
@@ -188,7 +188,7 @@ void Start(Follower* follower, const cv::Mat& frame, const cv::Rect& box, int fr
 }
 
 // One timed Track() call on frame `f`; a target no longer tracked keeps its last box.
-void Follow(Follower* follower, const cv::Mat& frame, int f) {
+void FollowFrame(Follower* follower, const cv::Mat& frame, int f) {
   OtbRun& run = follower->run;
   if (!run.started) return;
   if (!follower->active) {
@@ -225,7 +225,7 @@ OtbSequenceResult TrackOtbSequence(const OtbSequence& sequence,
   std::vector<Follower> followers(count);
   for (int t = 0; t < count; ++t) {
     followers[t].tracker = TargetTracker::Create(options[t], pool);
-    Start(&followers[t], first, Rounded(sequence.truth[0]), frames);
+    StartFollower(&followers[t], first, RoundedBox(sequence.truth[0]), frames);
     if (!followers[t].run.started) {
       notes->push_back(sequence.name + ": " + names[t] + " could not start on the first box " +
                        "(it scores 0 on this sequence)");
@@ -233,7 +233,7 @@ OtbSequenceResult TrackOtbSequence(const OtbSequence& sequence,
   }
   for (int f = 1; f < frames; ++f) {
     const cv::Mat frame = ReadSequenceFrame(sequence, f, first.size());
-    for (int k = 0; k < count; ++k) Follow(&followers[(f + k) % count], frame, f);
+    for (int k = 0; k < count; ++k) FollowFrame(&followers[(f + k) % count], frame, f);
   }
   OtbSequenceResult result;
   result.name = sequence.name;
@@ -298,7 +298,7 @@ OtbResults EvaluateOtb(const OtbEvaluationRequest& request, const OtbObserver& o
     const std::string error = options.back().Check();
     if (!error.empty()) throw ConfigError(name + ": tracker." + error);
     results.trackers.push_back(
-        {name, Describe(name, options.back()), TrackerOptionsJson(options.back())});
+        {name, DescribeTracker(name, options.back()), TrackerOptionsJson(options.back())});
   }
   const std::vector<OtbSequence> sequences =
       SelectSequences(FindOtbSequences(request.dir, &results.notes), request.sequences);

@@ -51,7 +51,7 @@ std::string GroupPlot(const OtbResults& results, const OtbGroup& group, bool suc
   return SvgLinePlot(plot);
 }
 
-std::string Plots(const OtbResults& results) {
+std::string GroupPlots(const OtbResults& results) {
   std::string html = "<section><h2>Success and precision plots</h2>";
   html +=
       "<p class=\"small\">One-pass evaluation (OPE): every tracker starts on frame 0 from the "
@@ -180,7 +180,7 @@ std::string OtbReportHtml(const OtbResults& results) {
           std::to_string(results.opencv_threads) + " thread</p>\n";
   html += HtmlNotes(results.notes);
   html += SummaryTable(results);
-  html += Plots(results);
+  html += GroupPlots(results);
   html += SequenceTable(results);
   html += TrackerList(results);
   return html + HtmlPageEnd();

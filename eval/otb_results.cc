@@ -15,18 +15,17 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// A number, or null when it is not finite (JSON has no NaN).
+Json JsonNumber(double value) { return std::isfinite(value) ? Json(value) : Json(); }
 
-Json Number(double value) { return std::isfinite(value) ? Json(value) : Json(); }
-
-Json Numbers(const std::vector<double>& values) {
+Json JsonNumbers(const std::vector<double>& values) {
   Json array = Json::array();
-  for (const double value : values) array.push_back(Number(value));
+  for (const double value : values) array.push_back(JsonNumber(value));
   return array;
 }
 
 double Median(std::vector<double> values) {
-  if (values.empty()) return kNaN;
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::sort(values.begin(), values.end());
   const size_t n = values.size();
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
@@ -83,16 +82,16 @@ int TrackerIndex(const OtbResults& results, const std::string& name) {
 
 Json RunJson(const OtbRun& run) {
   return {{"started", run.started},
-          {"success_auc", Number(run.scores.success_auc)},
-          {"precision_20", Number(run.scores.precision_20)},
-          {"mean_iou", Number(run.scores.mean_iou)},
-          {"ms_per_frame", Number(run.ms_per_frame)},
+          {"success_auc", JsonNumber(run.scores.success_auc)},
+          {"precision_20", JsonNumber(run.scores.precision_20)},
+          {"mean_iou", JsonNumber(run.scores.mean_iou)},
+          {"ms_per_frame", JsonNumber(run.ms_per_frame)},
           {"updates", run.updates},
           {"not_found", run.not_found},
           {"lost_frames", run.lost_frames},
           {"tracks", run.tracks},
-          {"success", Numbers(run.scores.success)},
-          {"precision", Numbers(run.scores.precision)}};
+          {"success", JsonNumbers(run.scores.success)},
+          {"precision", JsonNumbers(run.scores.precision)}};
 }
 
 Json SequencesJson(const OtbResults& results) {
@@ -118,10 +117,10 @@ Json GroupsJson(const OtbResults& results) {
   for (const OtbGroup& group : OtbGroups(results)) {
     Json trackers = Json::object();
     for (size_t t = 0; t < results.trackers.size(); ++t) {
-      trackers[results.trackers[t].name] = {{"success_auc", Number(group.auc[t])},
-                                            {"precision_20", Number(group.precision_20[t])},
-                                            {"success", Numbers(group.success[t])},
-                                            {"precision", Numbers(group.precision[t])}};
+      trackers[results.trackers[t].name] = {{"success_auc", JsonNumber(group.auc[t])},
+                                            {"precision_20", JsonNumber(group.precision_20[t])},
+                                            {"success", JsonNumbers(group.success[t])},
+                                            {"precision", JsonNumbers(group.precision[t])}};
     }
     groups.push_back({{"attribute", group.code.empty() ? Json() : Json(group.code)},
                       {"title", group.title},
@@ -199,10 +198,10 @@ nlohmann::ordered_json OtbResultsJson(const OtbResults& results) {
   Json summary = Json::array();
   for (const OtbTrackerSummary& s : SummariseOtb(results)) {
     summary.push_back({{"tracker", s.name},
-                       {"success_auc", Number(s.auc)},
-                       {"precision_20", Number(s.precision_20)},
-                       {"ms_per_frame_median", Number(s.ms_per_frame)},
-                       {"speed_vs_csrt_median", Number(s.speed_vs_csrt)},
+                       {"success_auc", JsonNumber(s.auc)},
+                       {"precision_20", JsonNumber(s.precision_20)},
+                       {"ms_per_frame_median", JsonNumber(s.ms_per_frame)},
+                       {"speed_vs_csrt_median", JsonNumber(s.speed_vs_csrt)},
                        {"frames", s.frames},
                        {"not_found", s.not_found},
                        {"lost_frames", s.lost_frames},
@@ -215,8 +214,8 @@ nlohmann::ordered_json OtbResultsJson(const OtbResults& results) {
           {"opencv_threads", results.opencv_threads},
           {"dir", results.dir},
           {"evaluation", "OPE"},
-          {"success_thresholds", Numbers(SuccessThresholds())},
-          {"precision_thresholds_px", Numbers(PrecisionThresholds())},
+          {"success_thresholds", JsonNumbers(SuccessThresholds())},
+          {"precision_thresholds_px", JsonNumbers(PrecisionThresholds())},
           {"trackers", trackers},
           {"summary", summary},
           {"sequences", SequencesJson(results)},
