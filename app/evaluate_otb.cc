@@ -317,6 +317,7 @@ OtbResults EvaluateOtb(const OtbEvaluationRequest& request, const OtbObserver& o
   const ScopedOpenCvThreads threads(context);
   results.opencv_threads = context.threads();
   const fs::path out(request.out);
+  const Stopwatch wall;
   for (size_t s = 0; s < sequences.size(); ++s) {
     if (observer.on_sequence) {
       observer.on_sequence(sequences[s], static_cast<int>(s), static_cast<int>(sequences.size()));
@@ -325,6 +326,7 @@ OtbResults EvaluateOtb(const OtbEvaluationRequest& request, const OtbObserver& o
                                                  context.Shared<BipPool>(), &results.notes));
     if (observer.on_result) observer.on_result(results.sequences.back(), results.trackers);
   }
+  results.seconds = wall.ElapsedMs() / 1000.0;
   // The page, then results.json: a folder without results.json is not a finished report.
   ReplaceFileText((out / "index.html").string(), OtbReportHtml(results), "the OTB report page");
   ReplaceFileText((out / "results.json").string(), JsonText(OtbResultsJson(results), 2) + "\n",

@@ -177,7 +177,8 @@ std::string OtbReportHtml(const OtbResults& results) {
                     results.command_line);
   html += "<p class=\"small\">" + HtmlEscape(results.dir) + "; " + HtmlEscape(results.date) +
           "; CPU " + HtmlEscape(results.cpu) + "; OpenCV " + HtmlEscape(results.opencv) + ", " +
-          std::to_string(results.opencv_threads) + " thread</p>\n";
+          std::to_string(results.opencv_threads) + " thread; " + Fixed(results.seconds, 1) +
+          " s</p>\n";
   html += HtmlNotes(results.notes);
   html += SummaryTable(results);
   html += GroupPlots(results);

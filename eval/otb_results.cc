@@ -212,6 +212,7 @@ nlohmann::ordered_json OtbResultsJson(const OtbResults& results) {
           {"cpu", results.cpu},
           {"opencv", results.opencv},
           {"opencv_threads", results.opencv_threads},
+          {"seconds", JsonNumber(results.seconds)},
           {"dir", results.dir},
           {"evaluation", "OPE"},
           {"success_thresholds", JsonNumbers(SuccessThresholds())},

@@ -51,6 +51,7 @@ struct OtbResults {
   std::string cpu;
   std::string opencv;
   int opencv_threads = 1;
+  double seconds = 0.0;  // wall time of the whole evaluation: reading, tracking, scoring
 };
 
 // The mean curves of a set of sequences: the OTB toolkit's plot of all sequences, or of the

@@ -128,6 +128,7 @@ TEST_F(EvaluateOtbRun, ResultsJsonHoldsTheCurvesAndThePageTwoPlotsPerGroup) {
                    results_->sequences[0].runs[2].scores.success_auc);
   EXPECT_EQ(json["trackers"][0]["options"]["mode"], "bounded");
   EXPECT_FALSE(json["cpu"].get<std::string>().empty());
+  EXPECT_GT(json["seconds"].get<double>(), 0.0);
 
   const std::string html = ReadText(dir_->File("report/index.html"));
   EXPECT_EQ(Count(html, "<svg"), 2 * 3);
