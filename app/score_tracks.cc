@@ -140,7 +140,8 @@ nlohmann::json ScoreTracks(const ScoreTracksRequest& request) {
                        {"success_auc", scores.success_auc},
                        {"precision_20", scores.precision_20},
                        {"mean_iou", scores.mean_iou},
-                       {"success", scores.success}});
+                       {"success", scores.success},
+                       {"precision", scores.precision}});
   }
   const nlohmann::json report = {{"tracks", request.tracks},
                                  {"gt", request.gt},

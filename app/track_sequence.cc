@@ -6,13 +6,17 @@
 #include <system_error>
 #include <variant>
 
+#include "app/home.h"
+#include "config/param_block.h"
 #include "io/ground_truth.h"
 #include "io/image_file.h"
 #include "io/tracking_files.h"
+#include "pipeline/options_io.h"
 #include "pipeline/overlay.h"
 #include "util/error.h"
 #include "util/json_text.h"
 #include "util/output_folder.h"
+#include "util/strings.h"
 
 namespace attend {
 
@@ -122,6 +126,37 @@ void StartOnBoxes(const TrackRequest& request, const StereoFrame& frame, TargetT
 }
 
 }  // namespace
+
+const std::vector<std::string>& TrackerKeys() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> result;
+    for (const std::string& key : ConfigurationKeys()) {
+      if (key.rfind("tracker.", 0) == 0) result.push_back(key.substr(8));
+    }
+    return result;
+  }();
+  return keys;
+}
+
+TargetTrackerOptions ResolveTrackerOptions(const std::string& config,
+                                           const std::vector<std::string>& sets,
+                                           const std::string& command) {
+  auto read = [&](ParamBlock root) {
+    for (const std::string& assignment : sets) {
+      if (assignment.rfind("tracker.", 0) != 0) {
+        throw ConfigError("--set " + assignment + ": " + command +
+                          " takes only tracker.KEY=VALUE, KEY one of " + Join(TrackerKeys(), ", "));
+      }
+      root.Override(assignment);
+    }
+    return ReadOptions(root).attention.tracker;
+  };
+  if (!config.empty()) return read(ParamBlock::LoadFile(config));
+  // The kind (from --set, else the default) picks the file the others apply over.
+  const TargetTrackerOptions given = read(ParamBlock::Parse("", "--set"));
+  const std::string base = TrackConfigPath(given.kind);
+  return base.empty() ? given : read(ParamBlock::LoadFile(base));
+}
 
 std::unique_ptr<TrackObserver> MakeMaskDump(const std::string& out) {
   return std::make_unique<MaskDump>(out);

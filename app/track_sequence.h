@@ -51,6 +51,22 @@ std::unique_ptr<TrackObserver> MakeMaskDump(const std::string& out);
 // OUT/overlay/<frame>.png: the frame with each target tinted, its box and its search area.
 std::unique_ptr<TrackObserver> MakeOverlayDump(const std::string& out);
 
+// The keys of the configuration's tracker section (pipeline/options_io.h binds them to
+// TargetTrackerOptions), without the "tracker." prefix.
+const std::vector<std::string>& TrackerKeys();
+
+// The options `attend track` builds its tracker from, and `attend eval-tracking --otb` its
+// tracker called attend: the tracker section of `config`, or when `config` is "" of the kind's
+// own file (TrackConfigPath: configs/track.yaml for bip; none, the defaults, for kcf and csrt),
+// with `sets` ("tracker.KEY=VALUE", the value parsed as YAML) applied over it, read by the
+// configuration's one binding, so that keys, ranges and messages are those of `attend run`.
+// Only the tracker section is used (a whole configuration's other sections are checked all the
+// same). ConfigError, naming `command`, for a --set outside tracker; ConfigError for an unknown
+// key, a bad value or an option of another kind.
+TargetTrackerOptions ResolveTrackerOptions(const std::string& config,
+                                           const std::vector<std::string>& sets,
+                                           const std::string& command);
+
 // Checks the boxes against the first frame and starts every target before the output folder
 // is touched, then tracks until the range ends or every target is lost. Returns the summary
 // it also writes as OUT/track.json. ConfigError for a box outside the frame; InputError for

@@ -6,12 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "app/home.h"
 #include "app/track_sequence.h"
 #include "cli/cli_options.h"
 #include "cli/commands.h"
-#include "config/param_block.h"
-#include "pipeline/options_io.h"
 #include "util/error.h"
 #include "util/json_text.h"
 #include "util/strings.h"
@@ -23,19 +20,6 @@ namespace {
 const std::vector<std::string>& DumpKinds() {
   static const std::vector<std::string> kinds = {"masks", "overlay"};
   return kinds;
-}
-
-// The keys of the configuration's tracker block (pipeline/options_io.h binds them to
-// TargetTrackerOptions), without the "tracker." prefix.
-const std::vector<std::string>& TrackerKeys() {
-  static const std::vector<std::string> keys = [] {
-    std::vector<std::string> result;
-    for (const std::string& key : ConfigurationKeys()) {
-      if (key.rfind("tracker.", 0) == 0) result.push_back(key.substr(8));
-    }
-    return result;
-  }();
-  return keys;
 }
 
 std::string BoxText(const cv::Rect& box) {
@@ -66,27 +50,6 @@ cv::Rect ParseBox(const std::string& text) {
     throw ConfigError("--init " + text + ": the box's width and height must be > 0");
   }
   return {value[0], value[1], value[2], value[3]};
-}
-
-// The `tracker.*` keys of --set, read by the configuration's one binding
-// (pipeline/options_io.h), so that keys, ranges and messages (a kind that does not exist, an
-// option of another kind) are those of `attend run`. They apply over the kind's file
-// (TrackConfigPath: configs/track.yaml for the BIP), or TargetTrackerOptions' defaults.
-TargetTrackerOptions ResolveTrackerOptions(const std::vector<std::string>& sets) {
-  auto read = [&sets](ParamBlock root) {
-    for (const std::string& assignment : sets) {
-      if (assignment.rfind("tracker.", 0) != 0) {
-        throw ConfigError("--set " + assignment +
-                          ": attend track takes only tracker.KEY=VALUE, KEY one of " +
-                          Join(TrackerKeys(), ", "));
-      }
-      root.Override(assignment);
-    }
-    return ReadOptions(root).attention.tracker;
-  };
-  const TargetTrackerOptions given = read(ParamBlock::Parse("", "--set"));
-  const std::string base = TrackConfigPath(given.kind);
-  return base.empty() ? given : read(ParamBlock::LoadFile(base));
 }
 
 struct Dumps {
@@ -127,7 +90,7 @@ struct TrackArguments {
 int Track(const TrackArguments& args) {
   // Everything on the command line is checked before any frame is read.
   TrackRequest request;
-  request.options = ResolveTrackerOptions(args.sets);
+  request.options = ResolveTrackerOptions("", args.sets, "attend track");
   const FrameRange range = args.frames.empty() ? FrameRange() : ParseFrameRange(args.frames);
   request.first_frame = range.first;
   request.last_frame = range.last;

@@ -12,7 +12,8 @@ namespace attend {
 namespace {
 
 constexpr int kThresholds = 21;  // 0, 0.05, ..., 1
-constexpr double kPrecisionPixels = 20.0;
+constexpr int kPrecisionThresholds = 51;  // 0, 1, ..., 50 px
+constexpr int kPrecisionPixels = 20;
 
 bool IsEmpty(const cv::Rect2d& box) { return !(box.width > 0.0) || !(box.height > 0.0); }
 
@@ -26,11 +27,29 @@ double CentreDistance(const cv::Rect2d& a, const cv::Rect2d& b) {
 
 }  // namespace
 
+const std::vector<double>& SuccessThresholds() {
+  static const std::vector<double> thresholds = [] {
+    std::vector<double> values;
+    for (int k = 0; k < kThresholds; ++k) values.push_back(k / 20.0);
+    return values;
+  }();
+  return thresholds;
+}
+
+const std::vector<double>& PrecisionThresholds() {
+  static const std::vector<double> thresholds = [] {
+    std::vector<double> values;
+    for (int t = 0; t < kPrecisionThresholds; ++t) values.push_back(t);
+    return values;
+  }();
+  return thresholds;
+}
+
 TrackingScores ScoreTracking(const std::vector<cv::Rect2d>& predicted,
                              const std::vector<cv::Rect2d>& truth) {
   TrackingScores scores;
   scores.success.assign(kThresholds, 0.0);
-  int precise = 0;
+  scores.precision.assign(kPrecisionThresholds, 0.0);
   double iou_sum = 0.0;
   for (size_t frame = 0; frame < truth.size(); ++frame) {
     if (IsEmpty(truth[frame])) continue;
@@ -45,7 +64,9 @@ TrackingScores ScoreTracking(const std::vector<cv::Rect2d>& predicted,
       // k / 20.0 is the double nearest to 0.05 k; 0.05 * k is not always.
       if (iou > k / 20.0) scores.success[k] += 1.0;
     }
-    if (error <= kPrecisionPixels) ++precise;
+    for (int t = 0; t < kPrecisionThresholds; ++t) {
+      if (error <= t) scores.precision[t] += 1.0;
+    }
     iou_sum += iou;
   }
   if (scores.frames == 0) return scores;
@@ -55,7 +76,8 @@ TrackingScores ScoreTracking(const std::vector<cv::Rect2d>& predicted,
     sum += rate;
   }
   scores.success_auc = sum / kThresholds;
-  scores.precision_20 = static_cast<double>(precise) / scores.frames;
+  for (double& rate : scores.precision) rate /= scores.frames;
+  scores.precision_20 = scores.precision[kPrecisionPixels];
   scores.mean_iou = iou_sum / scores.frames;
   return scores;
 }

@@ -16,7 +16,8 @@ namespace attend {
 //   success_auc = (1/21) sum_k success(k / 20), so a perfect track scores 20/21 = 0.952
 //                 (no IoU exceeds 1) and a track never overlapping the truth 0;
 //   error(f)    = distance between the boxes' centres (x + w/2, y + h/2);
-//   precision_20 = #{f : error(f) <= 20} / N;
+//   precision(t) = #{f : error(f) <= t} / N for t = 0, 1, ..., 50 px (the toolkit's precision
+//                 plot), and precision_20 = precision(20);
 //   mean_iou    = (1/N) sum_f IoU(f).
 // All are 0 when N = 0.
 struct TrackingScores {
@@ -24,8 +25,14 @@ struct TrackingScores {
   double success_auc = 0.0;     // mean over thresholds 0, 0.05, ..., 1 of success rate
   double precision_20 = 0.0;    // share of frames with centre error <= 20 px
   std::vector<double> success;  // success rate per threshold (21 values)
+  std::vector<double> precision;  // share of frames with centre error <= t px, t = 0..50
   double mean_iou = 0.0;
 };
+
+// The thresholds of the success curve (0, 0.05, ..., 1: 21 values) and of the precision curve
+// (0, 1, ..., 50 px: 51 values), in the order of TrackingScores::success and ::precision.
+const std::vector<double>& SuccessThresholds();
+const std::vector<double>& PrecisionThresholds();
 
 // Scores a sequence of predicted boxes against ground truth, frame by frame (both indexed by
 // frame). A frame without a prediction (beyond the end of `predicted`, or an empty box: not

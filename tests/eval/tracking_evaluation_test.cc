@@ -127,6 +127,26 @@ TEST(ScoreTracking, TouchingBoxesDoNotOverlap) {
   EXPECT_EQ(scores.precision_20, 1.0);  // centres 10 px apart
 }
 
+TEST(ScoreTracking, PrecisionCurveCountsCentreErrorsUpToEachPixelThreshold) {
+  const cv::Rect2d box(100, 100, 20, 20);
+  // Centre errors 0, 5 and 30 px, and a frame without an answer (never within any threshold).
+  const std::vector<cv::Rect2d> truth = {box, box, box, box};
+  const std::vector<cv::Rect2d> predicted = {box, {103, 104, 20, 20}, {130, 100, 20, 20}};
+  const TrackingScores scores = ScoreTracking(predicted, truth);
+  ASSERT_EQ(scores.precision.size(), 51u);
+  ASSERT_EQ(PrecisionThresholds().size(), 51u);
+  EXPECT_EQ(PrecisionThresholds()[50], 50.0);
+  for (int t = 0; t <= 50; ++t) {
+    const double expected = t < 5 ? 0.25 : t < 30 ? 0.5 : 0.75;
+    EXPECT_DOUBLE_EQ(scores.precision[t], expected) << "threshold " << t << " px";
+  }
+  EXPECT_DOUBLE_EQ(scores.precision_20, scores.precision[20]);
+  ASSERT_EQ(SuccessThresholds().size(), 21u);
+  EXPECT_DOUBLE_EQ(SuccessThresholds()[7], 0.35);
+  // No ground truth: the curve is there, all zeros.
+  const TrackingScores none = ScoreTracking({box}, {cv::Rect2d()});
+  EXPECT_EQ(none.precision, std::vector<double>(51, 0.0));
+}
 // ------------------------------------------------------------------------------------------
 // tracks.csv
 
