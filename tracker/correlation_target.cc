@@ -17,8 +17,12 @@ namespace {
 constexpr int kPeakMemory = 50;
 // Frames that are always trusted after the start, while the mean peak settles.
 constexpr int kSettleFrames = 3;
-// The smallest target side the scale may shrink to, frame pixels.
+// The smallest target side the scale may shrink to, frame pixels, and the range of the scale
+// against the first frame's: a target lost in blur or clutter otherwise lets the scale filter
+// shrink it to a few pixels, from which it does not recover (OTB Dog1).
 constexpr double kMinSide = 4.0;
+constexpr double kMinScale = 0.2;
+constexpr double kMaxScale = 5.0;
 
 int WholeCells(double pixels, int cell, int min_cells) {
   return std::max(min_cells, static_cast<int>(std::lround(pixels / cell))) * cell;
@@ -143,8 +147,9 @@ CorrelationTarget::CorrelationTarget(const CorrelationOptions& options, const cv
   for (int n = 0; n < options.scales; ++n) {
     scale_factors_.push_back(std::pow(options.scale_step, n - options.scales / 2));
   }
-  min_scale_ = kMinSide / std::min(base_size_.width, base_size_.height);
-  max_scale_ = std::max(1.0, std::min(frame.cols / base_size_.width, frame.rows / base_size_.height));
+  min_scale_ = std::min(1.0, std::max(kMinScale, kMinSide / std::min(base_size_.width, base_size_.height)));
+  max_scale_ = std::max(1.0, std::min({kMaxScale, frame.cols / base_size_.width,
+                                       frame.rows / base_size_.height}));
   Learn(frame, options.scales > 1 ? ScaleSamples(frame, centre_) : cv::Mat(), 1.0, 1.0, 1.0);
   UpdateBox(frame.size());
 }

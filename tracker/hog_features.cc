@@ -19,9 +19,31 @@ constexpr float kEnergyFloor = 1e-4f;
 // Central differences of 8-bit levels to gradients of levels in [0, 1].
 constexpr float kGradientScale = 0.5f / 255.f;
 
+// The signed bin of every gradient (dx, dy) of 8-bit central differences, dx and dy in
+// [-255, 255]: the bin whose direction (o x 20 degrees) is nearest the gradient's.
+class BinTable {
+ public:
+  BinTable() : bins_(kSpan * kSpan) {
+    for (int dy = -255; dy <= 255; ++dy) {
+      for (int dx = -255; dx <= 255; ++dx) {
+        const float degrees = cv::fastAtan2(static_cast<float>(dy), static_cast<float>(dx));
+        bins_[Index(dx, dy)] =
+            static_cast<uchar>(static_cast<int>(degrees * (kSigned / 360.f) + 0.5f) % kSigned);
+      }
+    }
+  }
+  int Bin(int dx, int dy) const { return bins_[Index(dx, dy)]; }
+
+ private:
+  static constexpr int kSpan = 511;
+  static int Index(int dx, int dy) { return (dy + 255) * kSpan + dx + 255; }
+  std::vector<uchar> bins_;
+};
+
 }  // namespace
 
 void HogCells::Histograms(const cv::Mat& patch, int cell, int rows, int cols) {
+  static const BinTable table;
   histogram_.assign(static_cast<size_t>(rows) * cols * kSigned, 0.f);
   grey_.assign(static_cast<size_t>(rows) * cols, 0.f);
   const int height = patch.rows, width = patch.cols;
@@ -46,9 +68,7 @@ void HogCells::Histograms(const cv::Mat& patch, int cell, int rows, int cols) {
       }
       grey_row[c / cell] += row[3 * c] + row[3 * c + 1] + row[3 * c + 2];
       if (best <= 0) continue;
-      // The signed bin whose direction (o x 20 degrees) is nearest the gradient's.
-      const float degrees = cv::fastAtan2(static_cast<float>(best_dy), static_cast<float>(best_dx));
-      const int bin = static_cast<int>(degrees * (kSigned / 360.f) + 0.5f) % kSigned;
+      const int bin = table.Bin(best_dx, best_dy);
       bins_row[(c / cell) * kSigned + bin] += std::sqrt(static_cast<float>(best)) * kGradientScale;
     }
   }
