@@ -75,13 +75,24 @@ void ColourLikelihood::Likelihood(const cv::Mat& patch, cv::Mat* likelihood) con
   }
 }
 
-cv::Mat ColourResponse(const cv::Mat& likelihood, cv::Size cells, cv::Size target_cells) {
-  cv::Mat per_cell;
-  cv::resize(likelihood, per_cell, cells, 0, 0, cv::INTER_AREA);
-  const cv::Size box(std::clamp(target_cells.width, 1, cells.width),
-                     std::clamp(target_cells.height, 1, cells.height));
-  cv::Mat response;
-  cv::boxFilter(per_cell, response, CV_32F, box, cv::Point(-1, -1), true, cv::BORDER_CONSTANT);
+cv::Mat ColourResponse(const cv::Mat& likelihood, cv::Size cells, int cell, cv::Size target) {
+  cv::Mat sums;
+  cv::integral(likelihood, sums, CV_64F);
+  const int w = std::max(1, target.width), h = std::max(1, target.height);
+  const double area = static_cast<double>(w) * h;
+  cv::Mat response(cells, CV_32F);
+  for (int j = 0; j < cells.height; ++j) {
+    const int y0 = std::clamp(j * cell - h / 2, 0, likelihood.rows);
+    const int y1 = std::clamp(j * cell - h / 2 + h, 0, likelihood.rows);
+    const double* top = sums.ptr<double>(y0);
+    const double* bottom = sums.ptr<double>(y1);
+    float* out = response.ptr<float>(j);
+    for (int i = 0; i < cells.width; ++i) {
+      const int x0 = std::clamp(i * cell - w / 2, 0, likelihood.cols);
+      const int x1 = std::clamp(i * cell - w / 2 + w, 0, likelihood.cols);
+      out[i] = static_cast<float>((bottom[x1] - bottom[x0] - top[x1] + top[x0]) / area);
+    }
+  }
   return response;
 }
 

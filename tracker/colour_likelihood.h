@@ -36,10 +36,11 @@ class ColourLikelihood {
   bool trained_ = false;
 };
 
-// The colour model's response over a window's cells: the mean likelihood over a box of
-// `target_cells` (columns x rows) centred on each cell, of `likelihood` averaged into `cells`
-// (CV_32F, the cells' size; outside the window counts 0).
-cv::Mat ColourResponse(const cv::Mat& likelihood, cv::Size cells, cv::Size target_cells);
+// The colour model's response on the window's grid of cells (`cells`, `cell` pixels a side):
+// at index (i, j) the mean of `likelihood` (CV_32F, the window's pixels) over a box of
+// `target` pixels centred at pixel (i x cell, j x cell), so that index (cols / 2, rows / 2) is
+// the window's centre, as for the translation filter's response (outside the window counts 0).
+cv::Mat ColourResponse(const cv::Mat& likelihood, cv::Size cells, int cell, cv::Size target);
 
 }  // namespace tracker_internal
 }  // namespace attend

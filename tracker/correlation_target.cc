@@ -127,9 +127,8 @@ CorrelationTarget::CorrelationTarget(const CorrelationOptions& options, const cv
       }()),
       model_factor_(model_window_.width / window_base_.width,
                     model_window_.height / window_base_.height),
-      target_cells_(
-          std::max(1, static_cast<int>(std::lround(base_size_.width * model_factor_.x / options.cell))),
-          std::max(1, static_cast<int>(std::lround(base_size_.height * model_factor_.y / options.cell)))),
+      target_model_(std::max(1, static_cast<int>(std::lround(base_size_.width * model_factor_.x))),
+                    std::max(1, static_cast<int>(std::lround(base_size_.height * model_factor_.y)))),
       scale_model_([&] {
         const double f = std::sqrt(options.scale_area / base_size_.area());
         return cv::Size(WholeCells(base_size_.width * f, options.cell, 2),
@@ -170,7 +169,8 @@ CorrelationTarget::Search CorrelationTarget::SearchAt(const cv::Mat& frame,
   cv::Mat response = filter_.Respond(channels_);
   if (options_.colour_share > 0.f && colour_.trained()) {
     colour_.Likelihood(patch, &likelihood_);
-    const cv::Mat colour = ColourResponse(likelihood_, filter_.cells(), target_cells_);
+    const cv::Mat colour =
+        ColourResponse(likelihood_, filter_.cells(), options_.cell, target_model_);
     cv::addWeighted(response, 1.0 - options_.colour_share, colour, options_.colour_share, 0.0,
                     response);
   }

@@ -65,7 +65,7 @@ class CorrelationTarget {
   cv::Size2d window_base_;     // the window's size at scale 1, frame pixels
   cv::Size model_window_;      // the window resampled, pixels (whole cells)
   cv::Point2d model_factor_;   // model pixels per frame pixel at scale 1, x and y
-  cv::Size target_cells_;      // the target in the window's cells
+  cv::Size target_model_;      // the target in the window's pixels
   cv::Size scale_model_;       // a scale sample's size, pixels (whole cells)
   std::vector<double> scale_factors_;
   double min_scale_ = 0.0, max_scale_ = 0.0;
