@@ -51,8 +51,10 @@ std::string CheckBip(const TargetTrackerOptions& options) {
   return options.correlation.Check();
 }
 
-// Which BIP tracker: the mode and whether its occlusion rules were on.
+// Which BIP tracker: the mode and, for the template modes, whether the occlusion rules (which
+// the correlation mode does not read) were on.
 std::vector<TrackerSetting> BipSettings(const TargetTrackerOptions& options) {
+  if (options.bip.mode == TrackerMode::kCorrelation) return {{"mode", std::string("correlation")}};
   return {{"mode", std::string(TrackerModeName(options.bip.mode))},
           {"occlusion", options.bip.occlusion}};
 }

@@ -169,8 +169,9 @@ void ScaleFilter::Learn(const cv::Mat& samples, double rate) {
       // F conj(G)
       const float re = f[n][0] * label[n][0] + f[n][1] * label[n][1];
       const float im = f[n][1] * label[n][0] - f[n][0] * label[n][1];
-      a[n][0] = keep * a[n][0] + add * re;
-      a[n][1] = keep * a[n][1] + add * im;
+      // (A new numerator's memory is not initialised: it is written, not blended.)
+      a[n][0] = replace ? re : keep * a[n][0] + add * re;
+      a[n][1] = replace ? im : keep * a[n][1] + add * im;
       denominator[n] += add * (f[n][0] * f[n][0] + f[n][1] * f[n][1]);
     }
   }

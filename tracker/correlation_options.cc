@@ -39,6 +39,8 @@ const OptionFields<CorrelationOptions>& CorrelationOptions::Fields() {
        "correlation: nor does a response under this share of the mean sharpness (APCE)"},
       {"redetect_windows", &O::redetect_windows, Range::Closed(0, 8),
        "correlation: an untrusted frame is searched this many half windows each way"},
+      {"search_ratio", &O::search_ratio, Range::Closed(0, 1),
+       "correlation: a peak under this share of the mean is searched for wider too; 0: off"},
       {"missed_frames", &O::missed_frames, Range::Closed(1, 1e6),
        "correlation: this many untrusted frames in a row lose the target"},
       {"motion", &O::motion, Range::Closed(0, 1),

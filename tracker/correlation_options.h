@@ -30,13 +30,13 @@ struct CorrelationOptions {
   // `colour_bins` bins per BGR channel, blended in by `colour_rate`. Its response (the mean
   // likelihood over a box of the target's size) counts `colour_share` of the combined
   // response, the filter's the rest.
-  float colour_share = 0.3f;
+  float colour_share = 0.5f;
   float colour_rate = 0.04f;
   int colour_bins = 32;
   float inner_padding = 0.2f;
   // Scale (DSST): `scales` samples of the target `scale_step` apart, each resampled to about
   // `scale_area` pixels; the scale filter is blended in by `scale_rate`.
-  int scales = 15;
+  int scales = 33;
   float scale_step = 1.02f;
   float scale_rate = 0.025f;
   float scale_area = 512.f;
@@ -49,9 +49,12 @@ struct CorrelationOptions {
   // A frame found whose peak is under `learn_ratio` times the running mean peak of the frames
   // learnt from, or whose response's sharpness (APCE) is under `learn_sharpness` times theirs,
   // moves the box but teaches nothing (Wang et al., CVPR 2017); 0: always learnt from.
-  float learn_ratio = 0.7f;
-  float learn_sharpness = 0.45f;
+  float learn_ratio = 0.f;
+  float learn_sharpness = 0.f;
   int redetect_windows = 1;
+  // A frame whose peak is under `search_ratio` times the running mean (but trusted) is searched
+  // over the wider window too, and goes where the peak is highest; 0: only untrusted frames.
+  float search_ratio = 0.f;
   int missed_frames = 30;
   // Motion: the window is placed at the last position plus this share of the last
   // displacement (0: at the last position).

@@ -266,7 +266,11 @@ TrackState CorrelationTarget::Track(const cv::Mat& frame) {
     return settling || options_.confidence_ratio <= 0.f ||
            peak >= options_.confidence_ratio * mean_peak_;
   };
-  if (!trusted(search.peak) && options_.redetect_windows > 0) {
+  // A weak peak (under search_ratio of the usual, or untrusted) is searched for over the
+  // wider window too; the best peak wins.
+  const bool weak = !trusted(search.peak) ||
+                    (!settling && search.peak < options_.search_ratio * mean_peak_);
+  if (weak && options_.redetect_windows > 0) {
     const Search wider = SearchWider(frame, predicted);
     if (wider.peak > search.peak) search = wider;
   }

@@ -85,8 +85,8 @@ TEST_F(EvaluateOtbRun, FindsAndNamesTheSequencesAndRunsEveryTracker) {
   ASSERT_EQ(results_->trackers.size(), 3u);
   EXPECT_EQ(results_->trackers[0].name, "attend");
   EXPECT_EQ(results_->trackers[0].options["kind"], "bip");
-  EXPECT_EQ(results_->trackers[0].options["mode"], "bounded");
-  EXPECT_NE(results_->trackers[0].description.find("occlusion on"), std::string::npos);
+  EXPECT_EQ(results_->trackers[0].options["mode"], "correlation");
+  EXPECT_NE(results_->trackers[0].description.find("mode correlation"), std::string::npos);
   EXPECT_EQ(results_->trackers[2].options["lost_frames"], 1000000);
   for (const OtbSequenceResult& sequence : results_->sequences) {
     for (size_t t = 0; t < 3; ++t) {
@@ -126,7 +126,7 @@ TEST_F(EvaluateOtbRun, ResultsJsonHoldsTheCurvesAndThePageTwoPlotsPerGroup) {
   EXPECT_EQ(json["groups"][0]["trackers"]["csrt"]["success"].size(), 21u);
   EXPECT_DOUBLE_EQ(json["sequences"][0]["trackers"]["csrt"]["success_auc"].get<double>(),
                    results_->sequences[0].runs[2].scores.success_auc);
-  EXPECT_EQ(json["trackers"][0]["options"]["mode"], "bounded");
+  EXPECT_EQ(json["trackers"][0]["options"]["mode"], "correlation");
   EXPECT_FALSE(json["cpu"].get<std::string>().empty());
   EXPECT_GT(json["seconds"].get<double>(), 0.0);
 

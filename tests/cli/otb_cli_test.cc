@@ -38,7 +38,8 @@ TEST(EvalOtbCommand, WritesTheReportAndItsTracksRescoreToTheSameAuc) {
   TempDir dir;
   MakeSlide(dir);
   const Result r = Attend(dir, {"eval-tracking", "--otb", "otb", "--out", "report", "--trackers",
-                                "attend,kcf", "--set", "tracker.occlusion=false"});
+                                "attend,kcf", "--set", "tracker.mode=bounded", "--set",
+                                "tracker.occlusion=false"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(Contains(r.out, "OTB one-pass evaluation: 1 sequences, 10 frames")) << r.out;
   EXPECT_TRUE(Contains(r.out, "bip, mode bounded, occlusion off")) << r.out;

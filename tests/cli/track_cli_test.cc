@@ -280,13 +280,11 @@ TEST(TrackCommand, EveryKindFollowsTheRectangleAndTheSummaryNamesIt) {
     ASSERT_EQ(rows.size(), static_cast<size_t>(kFrames)) << kind;
     SCOPED_TRACE(kind);
     ExpectEveryFrameAbove(BoxesOf(rows, 1), Truth(kFrames, RedBox), 0.5);
-    // The BIP runs as configs/track.yaml says, the bounded mode with the occlusion rules; the
-    // other kinds have neither.
+    // The BIP runs as configs/track.yaml says, the correlation mode (which reads no occlusion
+    // rules); the other kinds have no mode.
     EXPECT_EQ(written.contains("mode"), kind == "bip");
-    if (kind == "bip") {
-      EXPECT_EQ(written["mode"], "bounded");
-      EXPECT_EQ(written["occlusion"], true);
-    }
+    EXPECT_FALSE(written.contains("occlusion"));
+    if (kind == "bip") EXPECT_EQ(written["mode"], "correlation");
   }
 }
 
