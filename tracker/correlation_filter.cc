@@ -82,6 +82,29 @@ void TranslationFilter::Spectra(const std::vector<cv::Mat>& channels) {
 
 void TranslationFilter::Learn(const std::vector<cv::Mat>& channels, double rate) {
   Spectra(channels);
+  LearnSpectra(label_, rate);
+}
+
+void TranslationFilter::LearnLastResponded(const cv::Point2d& shift, double rate) {
+  ATTEND_CHECK(trained() && !spectra_.empty()) << "learning from a response needs one";
+  // The label moved by `shift`: its spectrum times exp(-2 pi i (u sx / W + v sy / H)), with
+  // the frequencies u, v taken in (-W/2, W/2] so that a fraction of a cell moves it smoothly.
+  cv::Mat shifted(label_.size(), CV_32FC2);
+  for (int v = 0; v < cells_.height; ++v) {
+    const double fv = (v <= cells_.height / 2 ? v : v - cells_.height) / static_cast<double>(cells_.height);
+    const cv::Vec2f* g = label_.ptr<cv::Vec2f>(v);
+    cv::Vec2f* out = shifted.ptr<cv::Vec2f>(v);
+    for (int u = 0; u < cells_.width; ++u) {
+      const double fu = (u <= cells_.width / 2 ? u : u - cells_.width) / static_cast<double>(cells_.width);
+      const double angle = -2.0 * CV_PI * (fu * shift.x + fv * shift.y);
+      const float c = static_cast<float>(std::cos(angle)), s = static_cast<float>(std::sin(angle));
+      out[u] = cv::Vec2f(g[u][0] * c - g[u][1] * s, g[u][0] * s + g[u][1] * c);
+    }
+  }
+  LearnSpectra(shifted, rate);
+}
+
+void TranslationFilter::LearnSpectra(const cv::Mat& label, double rate) {
   const bool replace = !trained() || rate >= 1.0 || numerator_.size() != spectra_.size();
   if (replace) {
     numerator_.resize(spectra_.size());
@@ -90,7 +113,7 @@ void TranslationFilter::Learn(const std::vector<cv::Mat>& channels, double rate)
     denominator_ *= 1.0 - rate;
   }
   for (size_t l = 0; l < spectra_.size(); ++l) {
-    cv::mulSpectrums(spectra_[l], label_, product_, 0, true);  // F_l conj(G)
+    cv::mulSpectrums(spectra_[l], label, product_, 0, true);  // F_l conj(G)
     if (replace) {
       product_.copyTo(numerator_[l]);
     } else {
@@ -151,6 +174,11 @@ void ScaleFilter::Spectra(const cv::Mat& samples) {
 
 void ScaleFilter::Learn(const cv::Mat& samples, double rate) {
   Spectra(samples);
+  LearnLastSamples(rate);
+}
+
+void ScaleFilter::LearnLastSamples(double rate) {
+  ATTEND_CHECK(!spectra_.empty()) << "learning the last samples needs some";
   const bool replace = !trained() || rate >= 1.0 || numerator_.size() != spectra_.size();
   if (replace) {
     numerator_.create(spectra_.size(), CV_32FC2);

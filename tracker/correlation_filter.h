@@ -24,6 +24,10 @@ class TranslationFilter {
   // Blends the filter learnt from `channels` (CV_32FC1 maps of the cells' size) in by `rate`
   // (1: replaces it).
   void Learn(const std::vector<cv::Mat>& channels, double rate);
+  // Blends in, by `rate`, the filter learnt from the features of the last Respond call with its
+  // desired response's peak moved by `shift` cells from the centre (where the target was found
+  // in them): the search's features teach the filter without being extracted again.
+  void LearnLastResponded(const cv::Point2d& shift, double rate);
   // The response to `channels` (CV_32FC1, the cells' size), centred.
   cv::Mat Respond(const std::vector<cv::Mat>& channels);
 
@@ -33,6 +37,8 @@ class TranslationFilter {
  private:
   // The windowed spectra of `channels`, into spectra_.
   void Spectra(const std::vector<cv::Mat>& channels);
+  // Blends in the filter learnt from spectra_ against the desired response `label` (spectrum).
+  void LearnSpectra(const cv::Mat& label, double rate);
 
   cv::Size cells_;
   double lambda_;
@@ -54,6 +60,8 @@ class ScaleFilter {
 
   // `samples`: CV_32F, one row per feature, one column per scale sample.
   void Learn(const cv::Mat& samples, double rate);
+  // As Learn, from the samples of the last BestSample call (their spectra are kept).
+  void LearnLastSamples(double rate);
   // The index of the sample that responds most, refined by a parabola through its neighbours
   // (a fractional index); its response in `peak`.
   double BestSample(const cv::Mat& samples, double* peak = nullptr);

@@ -16,6 +16,8 @@ const OptionFields<CorrelationOptions>& CorrelationOptions::Fields() {
        "correlation: the filter's regularisation"},
       {"filter_rate", &O::filter_rate, Range::Closed(0, 1),
        "correlation: the filter's update rate"},
+      {"reuse_search", &O::reuse_search,
+       "correlation: learn from the search's window, not one sampled again"},
       {"colour_share", &O::colour_share, Range::Closed(0, 1),
        "correlation: the colour model's share of the combined response"},
       {"colour_rate", &O::colour_rate, Range::Closed(0, 1),

@@ -178,6 +178,7 @@ CorrelationTarget::Search CorrelationTarget::SearchAt(const cv::Mat& frame,
   const cv::Point2d peak = ResponsePeak(response, &search.peak);
   search.sharpness = Sharpness(response, search.peak);
   // Cells of the model window to frame pixels at the current scale.
+  search.offset = cv::Point2d(peak.x - response.cols / 2, peak.y - response.rows / 2);
   search.centre = at + cv::Point2d(
                                 (peak.x - response.cols / 2) * options_.cell / model_factor_.x * scale_,
                                 (peak.y - response.rows / 2) * options_.cell / model_factor_.y * scale_);
@@ -205,8 +206,9 @@ cv::Mat CorrelationTarget::ScaleSamples(const cv::Mat& frame, const cv::Point2d&
   cv::Mat samples;
   std::vector<cv::Mat>& channels = channels_;
   for (size_t n = 0; n < scale_factors_.size(); ++n) {
-    ScalePatch(frame, centre, base_size_ * (scale_ * scale_factors_[n]), scale_model_, &patch_);
-    hog_.Compute(patch_, options_.cell, &channels);
+    ScalePatch(frame, centre, base_size_ * (scale_ * scale_factors_[n]), scale_model_,
+               &scale_patch_);
+    hog_.Compute(scale_patch_, options_.cell, &channels);
     if (samples.empty()) {
       samples.create(static_cast<int>(channels.size() * channels[0].total()),
                      static_cast<int>(scale_factors_.size()), CV_32F);
@@ -227,23 +229,32 @@ void CorrelationTarget::Learn(const cv::Mat& frame, const cv::Mat& scale_samples
   const cv::Mat& patch = Window(frame, centre_);
   hog_.Compute(patch, options_.cell, &channels_);
   filter_.Learn(channels_, filter_rate);
-  if (options_.colour_share > 0.f) {
-    const cv::Size2d target(base_size_.width * model_factor_.x, base_size_.height * model_factor_.y);
-    const cv::Point2d middle(model_window_.width / 2.0, model_window_.height / 2.0);
-    const cv::Rect target_box(cv::Point(static_cast<int>(std::lround(middle.x - target.width / 2)),
-                                        static_cast<int>(std::lround(middle.y - target.height / 2))),
-                              cv::Size(static_cast<int>(std::lround(target.width)),
-                                       static_cast<int>(std::lround(target.height))));
-    const int shrink = static_cast<int>(
-        std::lround(options_.inner_padding * 0.5 * (target.width + target.height) / 2.0));
-    cv::Rect inner = target_box;
-    if (inner.width > 2 * shrink && inner.height > 2 * shrink) {
-      inner = cv::Rect(inner.x + shrink, inner.y + shrink, inner.width - 2 * shrink,
-                       inner.height - 2 * shrink);
-    }
-    colour_.Learn(patch, inner, target_box, colour_rate);
-  }
+  LearnColour(patch, cv::Point2d(), colour_rate);
   if (!scale_samples.empty()) scale_filter_.Learn(scale_samples, scale_rate);
+}
+
+void CorrelationTarget::LearnColour(const cv::Mat& patch, const cv::Point2d& offset, double rate) {
+  if (options_.colour_share <= 0.f) return;
+  const cv::Size2d target(base_size_.width * model_factor_.x, base_size_.height * model_factor_.y);
+  const cv::Point2d middle(model_window_.width / 2.0 + offset.x, model_window_.height / 2.0 + offset.y);
+  const cv::Rect target_box(cv::Point(static_cast<int>(std::lround(middle.x - target.width / 2)),
+                                      static_cast<int>(std::lround(middle.y - target.height / 2))),
+                            cv::Size(static_cast<int>(std::lround(target.width)),
+                                     static_cast<int>(std::lround(target.height))));
+  const int shrink = static_cast<int>(
+      std::lround(options_.inner_padding * 0.5 * (target.width + target.height) / 2.0));
+  cv::Rect inner = target_box;
+  if (inner.width > 2 * shrink && inner.height > 2 * shrink) {
+    inner = cv::Rect(inner.x + shrink, inner.y + shrink, inner.width - 2 * shrink,
+                     inner.height - 2 * shrink);
+  }
+  colour_.Learn(patch, inner, target_box, rate);
+}
+
+void CorrelationTarget::LearnFromSearch(const cv::Point2d& offset, const cv::Mat& scale_samples) {
+  filter_.LearnLastResponded(offset, options_.filter_rate);
+  LearnColour(patch_, offset * options_.cell, options_.colour_rate);
+  if (!scale_samples.empty()) scale_filter_.Learn(scale_samples, options_.scale_rate);
 }
 
 void CorrelationTarget::UpdateBox(cv::Size frame_size) {
@@ -270,8 +281,12 @@ TrackState CorrelationTarget::Track(const cv::Mat& frame) {
   // wider window too; the best peak wins.
   const bool weak = !trusted(search.peak) ||
                     (!settling && search.peak < options_.search_ratio * mean_peak_);
+  // The window and features of the search that won, for learning (reuse_search); a wider
+  // search overwrites them.
+  bool search_kept = true;
   if (weak && options_.redetect_windows > 0) {
     const Search wider = SearchWider(frame, predicted);
+    search_kept = false;
     if (wider.peak > search.peak) search = wider;
   }
   peak_ = search.peak;
@@ -286,6 +301,7 @@ TrackState CorrelationTarget::Track(const cv::Mat& frame) {
   centre_.x = std::clamp(centre_.x, 0.0, static_cast<double>(frame.cols));
   centre_.y = std::clamp(centre_.y, 0.0, static_cast<double>(frame.rows));
   cv::Mat samples;
+  bool learn_last_samples = false;
   if (options_.scales > 1) {
     samples = ScaleSamples(frame, centre_);
     const double best = scale_filter_.BestSample(samples);
@@ -293,7 +309,10 @@ TrackState CorrelationTarget::Track(const cv::Mat& frame) {
     scale_ = std::clamp(scale_, min_scale_, max_scale_);
     // The samples, taken at the old scale, are learnt as if taken at the new one: their
     // columns shift by the whole steps of the change, the edge columns repeated.
-    samples = ShiftColumns(samples, static_cast<int>(std::lround(best)) - options_.scales / 2);
+    const int shift = static_cast<int>(std::lround(best)) - options_.scales / 2;
+    // Unshifted (most frames), the filter learns from the spectra it has just computed.
+    samples = shift == 0 ? cv::Mat() : ShiftColumns(samples, shift);
+    learn_last_samples = shift == 0;
   }
   UpdateBox(frame.size());
   // Found, but learnt from only when its response is as high and as sharp as usual.
@@ -304,7 +323,12 @@ TrackState CorrelationTarget::Track(const cv::Mat& frame) {
     const int memory = std::min(learnt_frames_, kPeakMemory);
     mean_peak_ += (search.peak - mean_peak_) / memory;
     mean_sharpness_ += (search.sharpness - mean_sharpness_) / memory;
-    Learn(frame, samples, options_.filter_rate, options_.colour_rate, options_.scale_rate);
+    if (learn_last_samples) scale_filter_.LearnLastSamples(options_.scale_rate);
+    if (options_.reuse_search && search_kept) {
+      LearnFromSearch(search.offset, samples);
+    } else {
+      Learn(frame, samples, options_.filter_rate, options_.colour_rate, options_.scale_rate);
+    }
   }
   return TrackState::kFound;
 }

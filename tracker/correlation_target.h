@@ -42,6 +42,7 @@ class CorrelationTarget {
     cv::Point2d centre;  // the target's centre it found, frame pixels
     double peak = 0.0;   // the combined response there
     double sharpness = 0.0;  // the response's APCE
+    cv::Point2d offset;      // the peak's offset from the window's centre, cells
   };
   // The window of the current scale centred at `centre`, resampled to the model's size.
   // (A view of a buffer the next call overwrites.)
@@ -58,6 +59,11 @@ class CorrelationTarget {
   // filter from `scale_samples` (taken at the current scale).
   void Learn(const cv::Mat& frame, const cv::Mat& scale_samples, double filter_rate,
              double colour_rate, double scale_rate);
+  // As Learn, from the last search's window and features (patch_ and the filter's last
+  // spectra), the target at `offset` cells from the window's centre.
+  void LearnFromSearch(const cv::Point2d& offset, const cv::Mat& scale_samples);
+  // The colour model from `patch`, a window whose target is `offset` model pixels from its centre.
+  void LearnColour(const cv::Mat& patch, const cv::Point2d& offset, double rate);
   void UpdateBox(cv::Size frame_size);
 
   CorrelationOptions options_;
@@ -76,7 +82,7 @@ class CorrelationTarget {
   HogCells hog_;
   // Buffers kept between calls.
   std::vector<cv::Mat> channels_;
-  cv::Mat patch_, border_, likelihood_;
+  cv::Mat patch_, border_, likelihood_, scale_patch_;
 
   cv::Point2d centre_;
   cv::Point2d velocity_;
