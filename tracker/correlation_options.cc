@@ -33,6 +33,8 @@ const OptionFields<CorrelationOptions>& CorrelationOptions::Fields() {
        "correlation: the scale filter's update rate"},
       {"scale_area", &O::scale_area, Range::Closed(16, 1e5),
        "correlation: each scale sample is resampled to about this many pixels"},
+      {"scale_every", &O::scale_every, Range::Closed(1, 100),
+       "correlation: the scale is estimated every this many frames found"},
       {"confidence_ratio", &O::confidence_ratio, Range::Closed(0, 1),
        "correlation: a peak under this share of the mean found peak is not trusted; 0: off"},
       {"learn_ratio", &O::learn_ratio, Range::Closed(0, 1),

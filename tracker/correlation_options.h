@@ -44,6 +44,8 @@ struct CorrelationOptions {
   float scale_step = 1.02f;
   float scale_rate = 0.025f;
   float scale_area = 512.f;
+  // The scale is estimated (and its filter learnt) every `scale_every` frames found.
+  int scale_every = 2;
   // Confidence: a frame whose response peak is under `confidence_ratio` times the running mean
   // of the peaks of the frames found is not trusted: nothing is learnt from it, a wider window
   // (`redetect_windows` windows each way around the last position, half a window apart) is

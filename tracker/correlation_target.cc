@@ -302,7 +302,8 @@ TrackState CorrelationTarget::Track(const cv::Mat& frame) {
   centre_.y = std::clamp(centre_.y, 0.0, static_cast<double>(frame.rows));
   cv::Mat samples;
   bool learn_last_samples = false;
-  if (options_.scales > 1) {
+  ++frames_;
+  if (options_.scales > 1 && frames_ % options_.scale_every == 0) {
     samples = ScaleSamples(frame, centre_);
     const double best = scale_filter_.BestSample(samples);
     scale_ *= std::pow(options_.scale_step, best - options_.scales / 2);

@@ -92,6 +92,7 @@ class CorrelationTarget {
   double mean_peak_ = 0.0;
   double mean_sharpness_ = 0.0;
   int learnt_frames_ = 0;
+  int frames_ = 0;  // frames tracked since the start
   int missed_ = 0;
 };
 

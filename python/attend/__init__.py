@@ -160,8 +160,8 @@ class Pipeline:
 class Tracker:
     """A tracker of `kind` (bip, kcf, csrt) on numpy frames, as `attend track`; options are the
     configuration's tracker keys (e.g. mode="thesis", lost_frames=5). The BIP starts from
-    configs/track.yaml (the bounded mode with its occlusion rules): mode="thesis",
-    occlusion=False gives the thesis's tracker."""
+    configs/track.yaml (the correlation mode, docs/TRACKING.md): mode="thesis" gives the
+    thesis's tracker, mode="bounded", occlusion=True the bounded mode with its occlusion rules."""
 
     def __init__(self, kind="bip", **options):
         overrides = _overrides({"tracker": dict(options, kind=kind)})
