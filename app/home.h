@@ -19,7 +19,7 @@ std::string SegmentConfigPath();
 
 // The file that `attend track` and Python's attend.Tracker start a tracker of kind `kind` from:
 // its row's config_file under configs/ below AttendHome() (configs/track.yaml for the BIP, its
-// bounded mode with the occlusion rules), "" for a kind without one.
+// correlation mode), "" for a kind without one.
 std::string TrackConfigPath(TrackerKind kind);
 
 // The bundled default sequence, rendered from sequences/lab.yaml on first use into

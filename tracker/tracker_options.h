@@ -80,7 +80,7 @@ struct TrackerOptions {
   // forgets at `occlusion_alpha` instead of `alpha`: it survives 1 / occlusion_alpha frames.
   // Off here and in the loop: it lifts the OTB mean success AUC from 0.569 to 0.718 (above
   // CSRT's 0.659) but lowers IDF1 in the attention loop on three of the four still-camera MOT
-  // sequences. `attend track` and attend.Tracker turn it on (configs/track.yaml).
+  // sequences. configs/track.yaml turned it on for `attend track` until issue 42 made its default the correlation mode.
   bool occlusion = false;
   float occlusion_gate = 0.7f;
   float occlusion_ratio = 0.55f;
