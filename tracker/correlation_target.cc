@@ -34,6 +34,32 @@ int DftCells(double pixels, int cell, int min_cells) {
   return cv::getOptimalDFTSize(cells) * cell;
 }
 
+// The part of `frame` of `size` centred at `centre`, bilinear at the exact position and size
+// (the scale samples must differ by exactly their factors), resampled to `out`.
+void ScalePatch(const cv::Mat& frame, const cv::Point2d& centre, const cv::Size2d& size,
+                const cv::Size& out, cv::Mat* result) {
+  const double sx = size.width / out.width, sy = size.height / out.height;
+  const cv::Matx23d map(sx, 0, centre.x - size.width / 2 + 0.5 * sx - 0.5,  //
+                        0, sy, centre.y - size.height / 2 + 0.5 * sy - 0.5);
+  cv::warpAffine(frame, *result, map, out, cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                 cv::BORDER_REPLICATE);
+}
+
+// The average peak-to-correlation energy (APCE; Wang, Liu and Huang, CVPR 2017, "Large
+// margin object tracking with circulant feature maps"): (max - min)^2 over the mean of
+// (value - min)^2. High for one sharp peak, low for a flat or many-peaked response.
+double Sharpness(const cv::Mat& response, double max_value) {
+  double min_value = 0.0;
+  cv::minMaxLoc(response, &min_value);
+  double sum = 0.0;
+  for (int r = 0; r < response.rows; ++r) {
+    const float* values = response.ptr<float>(r);
+    for (int c = 0; c < response.cols; ++c) sum += (values[c] - min_value) * (values[c] - min_value);
+  }
+  const double mean = sum / static_cast<double>(response.total());
+  return mean > 0.0 ? (max_value - min_value) * (max_value - min_value) / mean : 0.0;
+}
+
 // The part of `frame` of `size` (frame pixels) centred at `centre` (continuous coordinates:
 // pixel i spans [i, i + 1)), border pixels repeated outside the frame, resampled to `out`
 // into `result` (reused when it has that size). Bilinear at the exact position and size; a
@@ -45,10 +71,7 @@ cv::Point2d SamplePatch(const cv::Mat& frame, const cv::Point2d& centre, const c
                         const cv::Size& out, cv::Mat* border, cv::Mat* result) {
   const double sx = size.width / out.width, sy = size.height / out.height;
   if (sx <= kAreaShrink || sy <= kAreaShrink) {
-    const cv::Matx23d map(sx, 0, centre.x - size.width / 2 + 0.5 * sx - 0.5,  //
-                          0, sy, centre.y - size.height / 2 + 0.5 * sy - 0.5);
-    cv::warpAffine(frame, *result, map, out, cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
-                   cv::BORDER_REPLICATE);
+    ScalePatch(frame, centre, size, out, result);
     return centre;
   }
   const int w = std::max(1, static_cast<int>(std::lround(size.width)));
@@ -74,32 +97,6 @@ cv::Point2d SamplePatch(const cv::Mat& frame, const cv::Point2d& centre, const c
   }
   cv::resize(region, *result, out, 0, 0, cv::INTER_AREA);
   return {x0 + w / 2.0, y0 + h / 2.0};
-}
-
-// As SamplePatch, always bilinear at the exact position and size: the scale samples must
-// differ by exactly their factors.
-void ScalePatch(const cv::Mat& frame, const cv::Point2d& centre, const cv::Size2d& size,
-                const cv::Size& out, cv::Mat* result) {
-  const double sx = size.width / out.width, sy = size.height / out.height;
-  const cv::Matx23d map(sx, 0, centre.x - size.width / 2 + 0.5 * sx - 0.5,  //
-                        0, sy, centre.y - size.height / 2 + 0.5 * sy - 0.5);
-  cv::warpAffine(frame, *result, map, out, cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
-                 cv::BORDER_REPLICATE);
-}
-
-// The average peak-to-correlation energy (APCE; Wang, Liu and Huang, CVPR 2017, "Large
-// margin object tracking with circulant feature maps"): (max - min)^2 over the mean of
-// (value - min)^2. High for one sharp peak, low for a flat or many-peaked response.
-double Sharpness(const cv::Mat& response, double max_value) {
-  double min_value = 0.0;
-  cv::minMaxLoc(response, &min_value);
-  double sum = 0.0;
-  for (int r = 0; r < response.rows; ++r) {
-    const float* values = response.ptr<float>(r);
-    for (int c = 0; c < response.cols; ++c) sum += (values[c] - min_value) * (values[c] - min_value);
-  }
-  const double mean = sum / static_cast<double>(response.total());
-  return mean > 0.0 ? (max_value - min_value) * (max_value - min_value) / mean : 0.0;
 }
 
 // Column n of the result is column n + shift of `samples`, clamped to its columns.
