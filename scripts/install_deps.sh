@@ -20,6 +20,7 @@ packages=(
   gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-tools
   universal-ctags # where functions begin and end, for scripts/check_structure.py's test
   ccache          # the builds reuse what earlier builds on the machine compiled (scripts/ccache.sh)
+  curl            # scripts/get_models.sh fetches the dnn models with it (docs/MODELS.md) and its test
 )
 
 missing=()
