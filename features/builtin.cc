@@ -4,6 +4,7 @@
 #include "features/centre_surround.h"
 #include "features/contrast.h"
 #include "features/detectors.h"
+#include "features/dnn_detector.h"
 #include "features/disparity_feature.h"
 #include "features/motion.h"
 #include "features/skin.h"
@@ -26,14 +27,34 @@ std::vector<FieldDescription> DisparityKeys() {
                 DescribeFields(DisparityFeatureOptions::Fields()));
 }
 
+// The `backend` key and the dnn backend's keys, each marked as the dnn backend's.
+std::vector<FieldDescription> BackendKeys(const OptionFields<ChannelBackend>& backend,
+                                          const std::string& fallback, DnnDecoder decoder) {
+  std::vector<FieldDescription> lines = DescribeFields(backend, ChannelBackend{fallback});
+  for (FieldDescription line : DescribeFields(DnnDetectorOptions::Fields(),
+                                              DnnDetectorOptions::ForDecoder(decoder))) {
+    line.key = "dnn: " + line.key;
+    lines.push_back(line);
+  }
+  return lines;
+}
+
 std::vector<FieldDescription> PeopleKeys() {
-  return Joined(DescribeFields(HogPeopleOptions::Fields()),
-                DescribeFields(ObjectChannelOptions::Fields()));
+  return Joined(Joined(DescribeFields(HogPeopleOptions::Fields()),
+                       DescribeFields(ObjectChannelOptions::Fields())),
+                BackendKeys(ChannelBackend::PeopleFields(), "hog", DnnDecoder::kYolox));
 }
 
 std::vector<FieldDescription> FacesKeys() {
-  return Joined(DescribeFields(FaceCascadeOptions::Fields()),
-                DescribeFields(ObjectChannelOptions::Fields(), FacesChannelDefaults()));
+  return Joined(Joined(DescribeFields(FaceCascadeOptions::Fields()),
+                       DescribeFields(ObjectChannelOptions::Fields(), FacesChannelDefaults())),
+                BackendKeys(ChannelBackend::FacesFields(), "cascade", DnnDecoder::kYunet));
+}
+
+std::vector<FieldDescription> ObjectsKeys() {
+  return Joined(Joined(DescribeFields(ChannelBackend::ObjectsFields(), ChannelBackend{"dnn"}),
+                       DescribeFields(ObjectChannelOptions::Fields())),
+                DescribeFields(DnnDetectorOptions::Fields()));
 }
 
 }  // namespace
@@ -65,13 +86,17 @@ const std::vector<BuiltinFeature>& BuiltinFeatureTable() {
        &CreateCentreSurroundFeature,
        [] { return DescribeFields(CentreSurroundOptions::Fields()); }},
       {"people",
-       "boxes of the people OpenCV's HOG pedestrian detector finds, where attention looks or "
+       "boxes of the people OpenCV's HOG pedestrian detector (or a network: backend dnn) finds, where attention looks or "
        "in the whole frame (top-down; not in the thesis)",
        &CreatePeopleFeature, &PeopleKeys},
       {"faces",
-       "boxes of the faces a cascade classifier finds, where attention looks or in the whole "
+       "boxes of the faces a cascade classifier (or a network: backend dnn) finds, where attention looks or in the whole "
        "frame (top-down; not in the thesis)",
-       &CreateFacesFeature, &FacesKeys}};
+       &CreateFacesFeature, &FacesKeys},
+      {"objects",
+       "boxes of the objects of the classes asked for that a detector network (cv::dnn) finds, "
+       "labelled with their class names (top-down; not in the thesis)",
+       &CreateObjectsFeature, &ObjectsKeys}};
   return table;
 }
 

@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "config/read_fields.h"
+#include "features/dnn_detector.h"
 #include "util/box.h"
 #include "util/enum_table.h"
 #include "util/opencv_extra.h"
@@ -119,6 +120,7 @@ class ObjectFeature final : public FeatureMap {
     channel_->Compute(context.left(), context.AttentionRegions(), out);
   }
   const std::vector<Detection>& detections() const override { return channel_->detections(); }
+  double searched_pixels() const override { return channel_->last_searched_pixels(); }
 
  private:
   std::unique_ptr<ObjectChannel> channel_;
@@ -132,6 +134,27 @@ ObjectChannelOptions ReadChannelOptions(const ParamBlock& params,
   const std::string error = options.Check();
   if (!error.empty()) params.FailCheck(error);
   return options;
+}
+
+// A channel around a network (features/dnn_detector.h): `decoder` unless the block names one,
+// labelled `label` ("" for the class names). `window`: the aspect of the crops around
+// attention and the smallest searched.
+std::unique_ptr<FeatureMap> MakeNetworkChannel(const ParamBlock& params, const FeatureSetup& setup,
+                                               const ObjectChannelOptions& channel,
+                                               DnnDecoder decoder, const std::string& label,
+                                               cv::Size window) {
+  DnnDetectorOptions dnn;
+  ReadFields(params, {FieldNamed(DnnDetectorOptions::Fields(), "decoder")}, &dnn);
+  dnn = DnnDetectorOptions::ForDecoder(params.Has("decoder") ? dnn.decoder : decoder);
+  ReadFields(params, DnnDetectorOptions::Fields(), &dnn);
+  std::shared_ptr<DnnDetector> detector = DnnDetector::Load(dnn, params, setup, label);
+  DetectorGeometry geometry{window, static_cast<double>(window.height), dnn.input_size,
+                            dnn.crop_zoom};
+  ObjectSearch search = [detector](const cv::Mat& image, double, std::vector<Detection>* found) {
+    detector->Detect(image, found);
+  };
+  return std::make_unique<ObjectFeature>(
+      std::make_unique<ObjectChannel>(channel, geometry, label, std::move(search)));
 }
 
 constexpr EnumTable<DetectorGate, 2> kGates = {{{
@@ -237,13 +260,24 @@ void ObjectChannel::Restart() {
 
 void ObjectChannel::Search(const cv::Mat& image, const cv::Rect& crop, double min_object,
                            double max_object, std::vector<Detection>* found) {
-  // Scaled so that the smallest object wanted fills the window: the pyramid only shrinks.
-  const double scale = geometry_.object_height / min_object;
-  const cv::Size size(cvRound(crop.width * scale), cvRound(crop.height * scale));
-  if (size.width < geometry_.window.width || size.height < geometry_.window.height) return;
+  const bool network = geometry_.network_side > 0;
+  // A network sees the frame at one scale and a crop at that scale times its zoom; a
+  // sliding-window detector's image is scaled so that the smallest object wanted fills the
+  // window: its pyramid only shrinks.
+  const bool whole = crop.width == image.cols && crop.height == image.rows;
+  const double scale =
+      network ? geometry_.network_side / static_cast<double>(std::max(image.cols, image.rows)) *
+                    (whole ? 1.0 : geometry_.crop_zoom)
+              : geometry_.object_height / min_object;
+  const cv::Size size(std::max(1, cvRound(crop.width * scale)),
+                      std::max(1, cvRound(crop.height * scale)));
+  if (!network && (size.width < geometry_.window.width || size.height < geometry_.window.height)) {
+    return;
+  }
   cv::resize(image(crop), scaled_, size, 0, 0, scale < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
   ++last_searches_;
-  last_searched_pixels_ += static_cast<double>(size.area());
+  last_searched_pixels_ += static_cast<double>(
+      (network ? DnnDetector::PaddedSize(size) : size).area());
   search_(scaled_, max_object > 0.0 ? max_object * scale : 0.0, &scaled_found_);
   const cv::Rect frame(0, 0, image.cols, image.rows);
   for (const Detection& detection : scaled_found_) {
@@ -253,7 +287,13 @@ void ObjectChannel::Search(const cv::Mat& image, const cv::Rect& crop, double mi
                  cvRound(box.width / scale), cvRound(box.height / scale)) &
         frame;
     if (box_in_frame.empty()) continue;
-    found->push_back({box_in_frame, label_, detection.confidence});
+    // A network finds objects of every size: those outside the channel's heights go.
+    if (network && (box_in_frame.height < options_.min_height ||
+                    (max_object > 0.0 && box_in_frame.height > max_object))) {
+      continue;
+    }
+    found->push_back(
+        {box_in_frame, label_.empty() ? detection.label : label_, detection.confidence});
   }
 }
 
@@ -295,8 +335,12 @@ void ObjectChannel::Compute(const cv::Mat& bgr, const std::vector<cv::Rect>& reg
       const cv::Rect crop = GateCrop(seen, options_.margin, geometry_.window, bgr.size());
       // The region is about the object: it is at least the region's height shrunk by the
       // margins (the region may be the object's box grown by attention's own margin).
+      // A network's crops are searched at one scale whatever the region (their cost is their
+      // area).
       const double min_object =
-          std::max<double>(options_.min_height, seen.height / (1.0 + 2.0 * options_.margin));
+          geometry_.network_side > 0
+              ? options_.min_height
+              : std::max<double>(options_.min_height, seen.height / (1.0 + 2.0 * options_.margin));
       if (max_object > 0.0 && min_object > max_object) continue;
       // A target and its object file's prediction often give the same region.
       const bool repeated = std::any_of(searched_.begin(), searched_.end(), [&](const auto& done) {
@@ -438,8 +482,52 @@ ObjectSearch MakeFaceCascadeSearch(const FaceCascadeOptions& options, const Para
   };
 }
 
-std::unique_ptr<FeatureMap> CreatePeopleFeature(const ParamBlock& params, const FeatureSetup&) {
+const std::vector<std::string>& PeopleBackends() {
+  static const std::vector<std::string> backends = {"hog", "dnn"};
+  return backends;
+}
+
+const std::vector<std::string>& FacesBackends() {
+  static const std::vector<std::string> backends = {"cascade", "dnn"};
+  return backends;
+}
+
+const std::vector<std::string>& ObjectsBackends() {
+  static const std::vector<std::string> backends = {"dnn"};
+  return backends;
+}
+
+const OptionFields<ChannelBackend>& ChannelBackend::PeopleFields() {
+  static const OptionFields<ChannelBackend> fields = {
+      {"backend", &ChannelBackend::backend,
+       "the detector: OpenCV's HOG, or dnn (a network by path; docs/MODELS.md)", &PeopleBackends}};
+  return fields;
+}
+
+const OptionFields<ChannelBackend>& ChannelBackend::FacesFields() {
+  static const OptionFields<ChannelBackend> fields = {
+      {"backend", &ChannelBackend::backend,
+       "the detector: OpenCV's cascade, or dnn (a network by path; docs/MODELS.md)",
+       &FacesBackends}};
+  return fields;
+}
+
+const OptionFields<ChannelBackend>& ChannelBackend::ObjectsFields() {
+  static const OptionFields<ChannelBackend> fields = {
+      {"backend", &ChannelBackend::backend, "the detector: a network by path (docs/MODELS.md)",
+       &ObjectsBackends}};
+  return fields;
+}
+
+std::unique_ptr<FeatureMap> CreatePeopleFeature(const ParamBlock& params,
+                                                const FeatureSetup& setup) {
   const ObjectChannelOptions channel = ReadChannelOptions(params, ObjectChannelOptions());
+  ChannelBackend backend{"hog"};
+  ReadFields(params, ChannelBackend::PeopleFields(), &backend);
+  if (backend.backend == "dnn") {
+    return MakeNetworkChannel(params, setup, channel, DnnDecoder::kYolox, "person",
+                              cv::Size(32, 64));
+  }
   // The model first: it sets the defaults of the box shares (ForModel).
   HogPeopleOptions hog;
   ReadFields(params, {FieldNamed(HogPeopleOptions::Fields(), "model")}, &hog);
@@ -451,6 +539,14 @@ std::unique_ptr<FeatureMap> CreatePeopleFeature(const ParamBlock& params, const 
       channel, HogPeopleGeometry(hog), "person", MakeHogPeopleSearch(hog)));
 }
 
+std::unique_ptr<FeatureMap> CreateObjectsFeature(const ParamBlock& params,
+                                                 const FeatureSetup& setup) {
+  const ObjectChannelOptions channel = ReadChannelOptions(params, ObjectChannelOptions());
+  ChannelBackend backend{"dnn"};
+  ReadFields(params, ChannelBackend::ObjectsFields(), &backend);
+  return MakeNetworkChannel(params, setup, channel, DnnDecoder::kYolox, "", cv::Size(32, 32));
+}
+
 ObjectChannelOptions FacesChannelDefaults() {
   ObjectChannelOptions defaults;
   defaults.min_height = 16;
@@ -460,6 +556,12 @@ ObjectChannelOptions FacesChannelDefaults() {
 std::unique_ptr<FeatureMap> CreateFacesFeature(const ParamBlock& params,
                                                const FeatureSetup& setup) {
   const ObjectChannelOptions channel = ReadChannelOptions(params, FacesChannelDefaults());
+  ChannelBackend backend{"cascade"};
+  ReadFields(params, ChannelBackend::FacesFields(), &backend);
+  if (backend.backend == "dnn") {
+    return MakeNetworkChannel(params, setup, channel, DnnDecoder::kYunet, "face",
+                              cv::Size(32, 32));
+  }
   FaceCascadeOptions cascade;
   ReadFields(params, FaceCascadeOptions::Fields(), &cascade);
   const std::string model = cascade.model;

@@ -95,6 +95,13 @@ struct FaceCascadeOptions {
 struct DetectorGeometry {
   cv::Size window;
   double object_height = 0.0;
+  // A network that takes an image of any size (the dnn backend, features/dnn_detector.h): the
+  // whole frame is searched with its longer side at `network_side` px and a crop at that scale
+  // times `crop_zoom`, whatever the objects' sizes (boxes shorter than min_height are then
+  // dropped), and the pixels counted are the network's (padded to multiples of 32). 0: a
+  // sliding-window detector, scaled for its smallest object.
+  int network_side = 0;
+  double crop_zoom = 1.0;
 };
 
 // One search of an image at its own scale and up: the objects found, with their boxes (the
@@ -172,14 +179,36 @@ DetectorGeometry HogPeopleGeometry(const HogPeopleOptions& options);
 ObjectSearch MakeFaceCascadeSearch(const FaceCascadeOptions& options, const ParamBlock& params,
                                    const std::string& key, DetectorGeometry* geometry);
 
-// Parameters: the fields of ObjectChannelOptions (`gate`: attended | frame) and of
-// HogPeopleOptions (`model`: default | daimler) under their names. Label "person".
+// The detector behind a channel (`backend`): OpenCV's HOG (`people`) or cascade (`faces`), or a
+// network (`dnn`, features/dnn_detector.h).
+struct ChannelBackend {
+  std::string backend;
+  static const OptionFields<ChannelBackend>& PeopleFields();
+  static const OptionFields<ChannelBackend>& FacesFields();
+  static const OptionFields<ChannelBackend>& ObjectsFields();
+};
+
+// Parameters: `backend` (hog | dnn), the fields of ObjectChannelOptions (`gate`: attended |
+// frame) and, for hog, of HogPeopleOptions (`model`: default | daimler), for dnn of
+// DnnDetectorOptions, under their names. Label "person".
 std::unique_ptr<FeatureMap> CreatePeopleFeature(const ParamBlock& params,
                                                 const FeatureSetup& setup);
 // The channel's defaults for faces, which are smaller than people: min_height 16.
 ObjectChannelOptions FacesChannelDefaults();
 
-// Parameters: the fields of ObjectChannelOptions and of FaceCascadeOptions. Label "face".
+// Parameters: `backend` (cascade | dnn), the fields of ObjectChannelOptions and of
+// FaceCascadeOptions or, for dnn, DnnDetectorOptions (decoder yunet by default). Label "face".
 std::unique_ptr<FeatureMap> CreateFacesFeature(const ParamBlock& params, const FeatureSetup& setup);
+
+// Any class a network gives (a COCO detector's cars, dogs, bags...): the dnn backend only,
+// labelled with the names file's class names. Parameters: the fields of ObjectChannelOptions
+// and of DnnDetectorOptions.
+std::unique_ptr<FeatureMap> CreateObjectsFeature(const ParamBlock& params,
+                                                 const FeatureSetup& setup);
+
+// The `backend` key's default and choices of each channel.
+const std::vector<std::string>& PeopleBackends();
+const std::vector<std::string>& FacesBackends();
+const std::vector<std::string>& ObjectsBackends();
 
 }  // namespace attend

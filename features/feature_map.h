@@ -60,6 +60,10 @@ class FeatureMap {
     static const std::vector<Detection> none;
     return none;
   }
+  // A top-down channel's cost in the last Compute: the pixels its detector searched (the
+  // scaled images of a sliding-window detector, a network's inputs); -1 for features that
+  // search for nothing. summary.json reports its mean a frame.
+  virtual double searched_pixels() const { return -1.0; }
 };
 
 // What a factory may need to know about the run besides its own parameters.

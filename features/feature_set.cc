@@ -74,6 +74,7 @@ void FeatureSet::Compute(const FrameContext& context, bool concurrent) {
     results_[i].milliseconds = stopwatch.ElapsedMs();
     CheckFeatureOutput(members_[i].entry, results_[i].map, context.size());
     results_[i].detections = members_[i].feature->detections();
+    results_[i].searched_pixels = members_[i].feature->searched_pixels();
   });
 }
 

@@ -21,6 +21,7 @@ struct FeatureResult {
   cv::Mat map;                // CV_32FC1, the frame's size
   double milliseconds = 0.0;  // computing this map (including shared work it triggered first)
   std::vector<Detection> detections;  // a top-down channel's (FeatureMap::detections)
+  double searched_pixels = -1.0;      // FeatureMap::searched_pixels
 };
 
 // Runs task(0) .. task(count - 1), on OpenCV's thread pool when `concurrent`, else in order on

@@ -23,6 +23,7 @@
 // attention looks (AttentionRegions), and a FeatureMap may report detections (Detection).
 // Version 5: the region adjacency became plain vectors (RegionAdjacency, no Boost in the plugin
 // API), and every normalisation is in one registry (FeatureRegistry::normalisations()).
+// Version 6: a FeatureMap may report the pixels its detector searched (searched_pixels).
 //
 // A plugin reads its parameters as the built-in features do: an options struct with a field
 // table, read with ReadFields (config/read_fields.h; examples/temporal_change). The
@@ -31,7 +32,7 @@
 
 #include "features/feature_map.h"
 
-#define ATTEND_PLUGIN_ABI_VERSION 5
+#define ATTEND_PLUGIN_ABI_VERSION 6
 
 extern "C" {
 

@@ -3,10 +3,12 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <functional>
 
 #include "config/param_block_yaml.h"
 #include "config/read_fields.h"
+#include "features/dnn_detector.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -101,6 +103,7 @@ template <typename Visitor>
 void VisitMemory(AttendOptions* o, Visitor& v) {
   v.BeginSection("attention");
   v.Fields(&o->attention.memory, ObjectFileOptions::Fields());
+  v.Fields(&o->attention.appearance, AppearanceOptions::Fields());
   v.EndSection([o] { return o->attention.Check(); });
 }
 
@@ -377,11 +380,37 @@ bool OutputOptions::WritesMapFormat(const std::string& format) const {
   return std::find(map_formats.begin(), map_formats.end(), format) != map_formats.end();
 }
 
+namespace {
+
+// attention.appearance, a model file: found (features/dnn_detector.h, FindModelFile) and kept
+// as an absolute path, so that RUN/config.yaml repeats the run from anywhere; a ConfigError at
+// the key when it is nowhere.
+void ResolveAppearanceModel(const ParamBlock& root, AppearanceOptions* appearance) {
+  if (appearance->model.empty()) return;
+  std::string places;
+  const std::string found = FindModelFile(appearance->model, root.source(), "", &places);
+  const ParamBlock attention = root.Child("attention");
+  if (found.empty()) {
+    attention.Fail("appearance",
+                   "no such file: " + appearance->model +
+                       (places.empty() ? "" : " (looked in " + places + ")") +
+                       "; docs/MODELS.md says where to get each model (scripts/get_models.sh "
+                       "DIR downloads them; then set ATTEND_MODELS=DIR)");
+  }
+  if (std::filesystem::is_directory(found)) {
+    attention.Fail("appearance", found + ": is a folder, not a model file");
+  }
+  appearance->model = std::filesystem::absolute(found).lexically_normal().string();
+}
+
+}  // namespace
+
 AttendOptions ReadOptions(const ParamBlock& root) {
   AttendOptions options;
   Reader reader(root);
   VisitOptions(&options, reader);
   reader.Finish();
+  ResolveAppearanceModel(root, &options.attention.appearance);
   return options;
 }
 

@@ -65,6 +65,19 @@ nlohmann::ordered_json SummaryJson(const RunSummary& summary, const SequenceInfo
           {"attend_version", ATTEND_VERSION}};
   // Added only where they apply, so that a file run's summary keeps its fields.
   if (!summary.left_out.empty()) json["features_left_out"] = summary.left_out;
+  if (!summary.searched_pixels.empty()) {
+    // What each top-down channel's detector cost: its time and the pixels it searched a
+    // frame, against the working frame's pixels (a network's pixels are at its own scale).
+    nlohmann::ordered_json detectors = nlohmann::ordered_json::object();
+    const double frame_pixels = static_cast<double>(info.size.area());
+    for (const auto& [name, pixels] : summary.searched_pixels) {
+      detectors[name] = {{"ms", summary.mean_ms.Get("feature." + name)},
+                         {"searched_pixels", pixels},
+                         {"frame_pixels", frame_pixels},
+                         {"searched_fraction", frame_pixels > 0 ? pixels / frame_pixels : 0.0}};
+    }
+    json["detectors"] = detectors;
+  }
   if (summary.live.has_value()) {
     const LiveStatus& live = *summary.live;
     json["live"] = {{"source", live.source},
@@ -195,6 +208,8 @@ struct Latencies {
 // What a run gathers over its frames for its summary and scanpath.json.
 struct RunTotals {
   StageTimes stages;  // the frames' timings, summed
+  // The detectors' searched pixels, summed over the frames, in the features' order.
+  std::vector<std::pair<std::string, double>> searched;
   Latencies latencies;
   nlohmann::ordered_json scanpath = nlohmann::ordered_json::array();
   Stopwatch wall;  // from the first frame's read on
@@ -213,6 +228,16 @@ bool RunFrame(FrameSource* source, FramePipeline* pipeline,
   record.timings.Add("read", stage.ElapsedMs());
 
   pipeline->Process(frame, &record);
+  for (const FeatureResult& result : pipeline->features()) {
+    if (result.searched_pixels < 0.0) continue;
+    auto known = std::find_if(totals->searched.begin(), totals->searched.end(),
+                              [&](const auto& entry) { return entry.first == result.name; });
+    if (known == totals->searched.end()) {
+      totals->searched.emplace_back(result.name, 0.0);
+      known = totals->searched.end() - 1;
+    }
+    known->second += result.searched_pixels;
+  }
 
   stage.Restart();
   for (RunObserver* observer : observers) observer->OnFrame(frame, *pipeline, record);
@@ -289,6 +314,10 @@ void FinishRun(const RunRequest& request, const FrameSource& source, const RunTo
   summary->fps = summary->wall_seconds > 0 ? summary->frames / summary->wall_seconds : 0.0;
   for (const auto& [stage, ms] : totals.stages.stages()) {
     summary->mean_ms.Add(stage, summary->frames > 0 ? ms / summary->frames : 0.0);
+  }
+  for (const auto& [name, pixels] : totals.searched) {
+    summary->searched_pixels.emplace_back(name, summary->frames > 0 ? pixels / summary->frames
+                                                                    : 0.0);
   }
   summary->live = source.live_status();
   if (totals.latencies.count > 0) {

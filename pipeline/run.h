@@ -69,6 +69,9 @@ struct RunSummary {
   std::optional<LiveStatus> live;
   double mean_latency_ms = 0.0;
   double max_latency_ms = 0.0;
+  // The top-down channels' detectors (FeatureMap::searched_pixels): by feature name, the mean
+  // pixels searched a frame, at the working size's scale of each search.
+  std::vector<std::pair<std::string, double>> searched_pixels;
 
   // Two lines for the terminal: frames, fps, the slowest stages, where the outputs are.
   std::string BriefReport() const;

@@ -83,8 +83,14 @@ struct AttentionStage::Impl {
   // Leaves an object file for a target that ends.
   void Forget(const FollowedTarget& followed);
 
+  // What targets look like, with an embedding (attention.appearance): the target's box in
+  // `bgr`, over its mask `own` (may be empty: the box); `embed` takes the embedding.
+  ObjectAppearance AppearanceOf(const cv::Mat& bgr, const cv::Mat& own, const cv::Rect& box,
+                                bool embed);
+
   AttentionOptions options_;
   SkinModel skin_model_;
+  std::unique_ptr<Reidentifier> reidentifier_;  // attention.appearance set only
   std::unique_ptr<TargetTracker> tracker_;
   FollowedTargets targets_;
   ObjectFiles files_;
@@ -103,11 +109,14 @@ struct AttentionStage::Impl {
 AttentionStage::Impl::Impl(const AttentionOptions& options, SkinModel skin_model, BipPool* pool)
     : options_(Checked(options)),
       skin_model_(std::move(skin_model)),
+      reidentifier_(options_.appearance.model.empty()
+                        ? nullptr
+                        : Reidentifier::Load(options_.appearance, "attention.appearance")),
       tracker_(TargetTracker::Create(options_.tracker, pool)),
       files_(options_.memory),
       inhibition_(options_.inhibition),
       release_(options_.select, options_.drop),
-      recogniser_(options_.select, options_.drop, options_.label_overlap),
+      recogniser_(options_.select, options_.drop, options_.label_overlap, reidentifier_.get()),
       candidates_(options_.select, pool),
       seeds_(options_.select) {
   if (options_.select.group_min_speed > 0.f) {
@@ -244,7 +253,12 @@ void AttentionStage::Impl::Keep(const Frame& in, const cv::Mat& own, const Atten
   const bool recognised =
       in.detections.empty() || followed->label.empty() || followed->unrecognised == 0;
   if (appearances && recognised) {
-    followed->Kept(target.box, ObjectAppearance::Of(in.bgr, own, target.box));
+    // The embedding every appearance.every frames kept (at once when it has none).
+    const bool embed = reidentifier_ != nullptr &&
+                       (followed->appearance.embedding.empty() ||
+                        ++followed->since_embedding >= options_.appearance.every);
+    if (embed) followed->since_embedding = 0;
+    followed->Kept(target.box, AppearanceOf(in.bgr, own, target.box, embed));
   }
   followed->unseen = 0;
 }
@@ -333,7 +347,7 @@ bool AttentionStage::Impl::Start(const Frame& in, const Seed& seed, bool skin,
   if (files_.enabled()) {
     // A remembered object attended again resumes its id, its label and its motion.
     followed.last_box = target.box;
-    followed.appearance = ObjectAppearance::Of(in.bgr, own, target.box);
+    followed.appearance = AppearanceOf(in.bgr, own, target.box, !files_.files().empty());
     const int file = files_.Match(target.box, followed.appearance, skin);
     if (file >= 0) {
       ObjectFile resumed = files_.Take(file);
@@ -347,6 +361,15 @@ bool AttentionStage::Impl::Start(const Frame& in, const Seed& seed, bool skin,
   if (target.state == TargetState::kNew) frame->new_ids.push_back(target.id);
   frame->targets.push_back(target);
   return true;
+}
+
+ObjectAppearance AttentionStage::Impl::AppearanceOf(const cv::Mat& bgr, const cv::Mat& own,
+                                                   const cv::Rect& box, bool embed) {
+  ObjectAppearance appearance = ObjectAppearance::Of(bgr, own, box);
+  if (embed && reidentifier_ != nullptr && !appearance.empty()) {
+    appearance.embedding = reidentifier_->Embed(bgr, box);
+  }
+  return appearance;
 }
 
 void AttentionStage::Impl::LabelTargets(const Frame& in, AttentionFrame* frame) {

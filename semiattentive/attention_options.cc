@@ -28,6 +28,8 @@ std::string AttentionOptions::Check() const {
   if (!error.empty()) return "select.skin_region: " + error;
   error = tracker.Check();
   if (!error.empty()) return "tracker." + error;
+  error = appearance.Check();
+  if (!error.empty()) return "attention." + error;
   error = memory.Check();
   if (!error.empty()) return "attention." + error;
   return "";

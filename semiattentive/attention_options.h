@@ -9,6 +9,7 @@
 #include "features/skin.h"
 #include "semiattentive/inhibition.h"
 #include "semiattentive/object_files.h"
+#include "semiattentive/reidentification.h"
 #include "semiattentive/release.h"
 #include "semiattentive/select_options.h"
 #include "tracker/target_tracker.h"
@@ -32,6 +33,9 @@ struct AttentionOptions {
   // Object files: the memory of objects that ended (semiattentive/object_files.h); off when
   // memory.memory_frames is 0.
   ObjectFileOptions memory;
+  // What targets look like: a re-identification network's embedding beside the colour
+  // histogram and grey template (semiattentive/reidentification.h); none by default.
+  AppearanceOptions appearance;
   // A target takes the label of a top-down detection ("person", "face") whose box and its own
   // overlap by at least this share of the larger of the two.
   float label_overlap = 0.5f;

@@ -20,6 +20,7 @@ struct FollowedTarget {
   int unseen = 0;        // consecutive frames not found (occluded)
   int unrecognised = 0;  // consecutive frames with detections, none on it
   int since_kept = 0;    // frames since last_box was last updated
+  int since_embedding = 0;  // frames kept since its appearance's embedding was last taken
   std::string label;     // from the top-down channels, once given
   // For its object file (object files or the re-anchoring's look gate only): where it was last
   // found and kept, how fast it moved, and what it looked like.

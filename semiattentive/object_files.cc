@@ -4,6 +4,8 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "semiattentive/reidentification.h"
+
 namespace attend {
 
 const OptionFields<ObjectFileOptions>& ObjectFileOptions::Fields() {
@@ -54,6 +56,15 @@ ObjectAppearance ObjectAppearance::Of(const cv::Mat& bgr, const cv::Mat& mask,
 
 void ObjectAppearance::Blend(const ObjectAppearance& seen, float rate) {
   if (seen.empty()) return;
+  if (!seen.embedding.empty()) {
+    if (embedding.empty() || embedding.total() != seen.embedding.total()) {
+      embedding = seen.embedding.clone();
+    } else {
+      cv::addWeighted(embedding, 1.0 - rate, seen.embedding, rate, 0.0, embedding);
+      const double norm = cv::norm(embedding);
+      if (norm > 1e-12) embedding /= norm;
+    }
+  }
   if (empty()) {
     histogram = seen.histogram.clone();
     grey = seen.grey.clone();
@@ -67,6 +78,9 @@ void ObjectAppearance::Blend(const ObjectAppearance& seen, float rate) {
 
 double ObjectAppearance::Similarity(const ObjectAppearance& other) const {
   if (empty() || other.empty()) return 0.0;
+  if (!embedding.empty() && !other.embedding.empty()) {
+    return EmbeddingSimilarity(embedding, other.embedding);
+  }
   const double colour =
       std::clamp(cv::compareHist(histogram, other.histogram, cv::HISTCMP_INTERSECT), 0.0, 1.0);
   if (contrast < kMinContrast || other.contrast < kMinContrast) return colour;

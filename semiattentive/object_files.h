@@ -56,6 +56,9 @@ struct ObjectAppearance {
   // plain object's template is noise, and its correlation says nothing.
   float contrast = 0.f;
   static constexpr float kMinContrast = 4.f;
+  // A re-identification network's unit-length embedding (semiattentive/reidentification.h),
+  // blended over the frames it was taken in and scaled back to unit length; empty without one.
+  cv::Mat embedding;
 
   static constexpr int kHueBins = 8, kSaturationBins = 4, kValueBins = 4;
   static constexpr int kTemplateWidth = 12, kTemplateHeight = 24;
@@ -66,9 +69,10 @@ struct ObjectAppearance {
   // Moves this appearance towards `seen` by `rate` (0: keep, 1: replace); an empty one is
   // replaced.
   void Blend(const ObjectAppearance& seen, float rate);
-  // In [0, 1]: the mean of the histograms' intersection and the templates' correlation clipped
-  // at 0, or the intersection alone when either template has less than kMinContrast. 0 when
-  // either is empty.
+  // In [0, 1]: the embeddings' cosine similarity clipped at 0 when both have one; otherwise the
+  // mean of the histograms' intersection and the templates' correlation clipped at 0, or the
+  // intersection alone when either template has less than kMinContrast. 0 when either is
+  // empty.
   double Similarity(const ObjectAppearance& other) const;
 };
 

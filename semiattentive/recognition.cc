@@ -7,10 +7,12 @@
 
 namespace attend {
 
-Recogniser::Recogniser(const SelectOptions& select, const DropOptions& drop, float label_overlap)
+Recogniser::Recogniser(const SelectOptions& select, const DropOptions& drop, float label_overlap,
+                       Reidentifier* reidentifier)
     : select_(select),
       unrecognised_frames_(drop.unrecognised_frames),
-      label_overlap_(label_overlap) {}
+      label_overlap_(label_overlap),
+      reidentifier_(reidentifier) {}
 
 std::vector<int> Recogniser::MatchDetections(const std::vector<TrackResult>& results,
                                              const FollowedTargets& targets,
@@ -45,10 +47,13 @@ Recognition Recogniser::Recognise(const cv::Mat& bgr, const Segmentation& segmen
   if (reanchor) seeds->FromBox(segmentation, detections[on].box, seed);
   const int seed_area = reanchor ? static_cast<int>(seed->area) : 0;
   if (reanchor && select_.reanchor_min_similarity > 0.f && !target->appearance.empty() &&
-      seed_area > 0 &&
-      target->appearance.Similarity(ObjectAppearance::Of(bgr, seed->mask, detections[on].box)) <
-          select_.reanchor_min_similarity) {
-    on = -1;  // the detection is someone else's: this target is not recognised
+      seed_area > 0) {
+    ObjectAppearance seen = ObjectAppearance::Of(bgr, seed->mask, detections[on].box);
+    if (reidentifier_ != nullptr && !target->appearance.embedding.empty()) {
+      seen.embedding = reidentifier_->Embed(bgr, detections[on].box);
+    }
+    // The detection is someone else's: this target is not recognised.
+    if (target->appearance.Similarity(seen) < select_.reanchor_min_similarity) on = -1;
   }
   Recognition recognition;
   if (on >= 0) {

@@ -18,6 +18,7 @@
 
 #include "features/feature_map.h"
 #include "semiattentive/followed_targets.h"
+#include "semiattentive/reidentification.h"
 #include "semiattentive/release.h"
 #include "semiattentive/seeds.h"
 #include "semiattentive/select_options.h"
@@ -34,7 +35,10 @@ struct Recognition {
 
 class Recogniser {
  public:
-  Recogniser(const SelectOptions& select, const DropOptions& drop, float label_overlap);
+  // `reidentifier` (may be null: the model-free appearance) embeds a detection that a target
+  // is re-anchored on, for the look gate.
+  Recogniser(const SelectOptions& select, const DropOptions& drop, float label_overlap,
+             Reidentifier* reidentifier = nullptr);
 
   // The detection each of `results` is on (its index, -1: none): the found, non-skin targets and
   // the detections matched one to one (MatchBoxes) at IoU >= select.reanchor_min_iou (0.3 when
@@ -57,6 +61,7 @@ class Recogniser {
   SelectOptions select_;
   int unrecognised_frames_;
   float label_overlap_;
+  Reidentifier* reidentifier_;
 };
 
 }  // namespace attend

@@ -21,7 +21,7 @@
 namespace attend::cvextra {
 
 // Bumped whenever a class below changes; the module refuses another version.
-inline constexpr int kAbiVersion = 2;
+inline constexpr int kAbiVersion = 3;
 
 // A video file, a camera or a GStreamer pipeline (cv::VideoCapture).
 class Capture {
@@ -83,6 +83,19 @@ class Cascade {
                       std::vector<double>* weights) = 0;
 };
 
+// A network read by cv::dnn (Darknet, ONNX, ...), run on the CPU.
+class DnnNet {
+ public:
+  virtual ~DnnNet() = default;
+  // One forward pass on `image` (8-bit or float, 1 or 3 channels, already at the network's
+  // input size): cv::dnn::blobFromImage(image, scale, image size, mean, swap_rb), then every
+  // unconnected output, in the network's order, into `outputs`.
+  virtual void Forward(const cv::Mat& image, double scale, const cv::Scalar& mean, bool swap_rb,
+                       std::vector<cv::Mat>* outputs) = 0;
+  // The names of the unconnected output layers, in the order Forward fills them.
+  virtual const std::vector<std::string>& OutputNames() const = 0;
+};
+
 // cv::VideoWriter::fourcc.
 constexpr int FourCc(char a, char b, char c, char d) {
   return (a & 255) | ((b & 255) << 8) | ((c & 255) << 16) | ((d & 255) << 24);
@@ -116,6 +129,9 @@ class Module {
   // objdetect. LoadCascade throws cv::Exception for a file that is not a cascade.
   virtual std::unique_ptr<HogDetector> CreateHog(bool daimler) = 0;
   virtual std::unique_ptr<Cascade> LoadCascade(const std::string& path) = 0;
+  // dnn: cv::dnn::readNet(model, config) (the extension decides the format; `config` may be
+  // empty), on the CPU. Throws cv::Exception for a file cv::dnn cannot read.
+  virtual std::unique_ptr<DnnNet> ReadNet(const std::string& model, const std::string& config) = 0;
   // saliency: false when the detector fails.
   virtual bool ComputeStaticSaliency(StaticSaliencyType type, const cv::Mat& bgr,
                                      cv::Mat* map) = 0;

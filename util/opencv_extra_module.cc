@@ -1,6 +1,7 @@
-// The module of util/opencv_extra.h: OpenCV's imgcodecs, videoio, video, tracking, objdetect
-// and saliency behind attend's small interfaces. Built as libattend_opencv_extra.so, which
+// The module of util/opencv_extra.h: OpenCV's imgcodecs, videoio, video, tracking, objdetect,
+// saliency and dnn behind attend's small interfaces. Built as libattend_opencv_extra.so, which
 // links OpenCV and nothing of attend's libraries; compiled into the Python module too.
+#include <opencv2/dnn.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/objdetect.hpp>
 #include <opencv2/saliency.hpp>
@@ -105,6 +106,27 @@ class CascadeImpl final : public Cascade {
   cv::CascadeClassifier cascade_;
 };
 
+class DnnNetImpl final : public DnnNet {
+ public:
+  explicit DnnNetImpl(cv::dnn::Net net) : net_(std::move(net)) {
+    net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
+    net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+    names_ = net_.getUnconnectedOutLayersNames();
+  }
+  void Forward(const cv::Mat& image, double scale, const cv::Scalar& mean, bool swap_rb,
+               std::vector<cv::Mat>* outputs) override {
+    cv::dnn::blobFromImage(image, blob_, scale, image.size(), mean, swap_rb, false);
+    net_.setInput(blob_);
+    net_.forward(*outputs, names_);
+  }
+  const std::vector<std::string>& OutputNames() const override { return names_; }
+
+ private:
+  cv::dnn::Net net_;
+  std::vector<std::string> names_;
+  cv::Mat blob_;
+};
+
 class ModuleImpl final : public Module {
  public:
   cv::Mat Decode(const std::vector<uchar>& bytes, int flags) override {
@@ -154,6 +176,9 @@ class ModuleImpl final : public Module {
     auto cascade = std::make_unique<CascadeImpl>();
     cascade->Load(path);
     return cascade;
+  }
+  std::unique_ptr<DnnNet> ReadNet(const std::string& model, const std::string& config) override {
+    return std::make_unique<DnnNetImpl>(cv::dnn::readNet(model, config));
   }
   bool ComputeStaticSaliency(StaticSaliencyType type, const cv::Mat& bgr,
                              cv::Mat* map) override {

@@ -36,6 +36,13 @@ class StageTimes {
     stages_.emplace_back(stage, ms);
   }
   const std::vector<std::pair<std::string, double>>& stages() const { return stages_; }
+  // The total of `stage`, 0 when it has none.
+  double Get(const std::string& stage) const {
+    for (const auto& [name, total] : stages_) {
+      if (name == stage) return total;
+    }
+    return 0.0;
+  }
 
  private:
   std::vector<std::pair<std::string, double>> stages_;

@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "config/param_block.h"
 #include "features/builtin.h"
 #include "pipeline/options_io.h"
 #include "tests/support/error_message.h"
@@ -92,25 +94,77 @@ TEST(OptionsDoc, WriteRegeneratesAFileInPlaceOnce) {
 }
 
 // Each built-in feature's table lists exactly the keys its factory reads.
+// The keys a feature made from `params` asked for, sorted, without the ones every feature has.
+std::vector<std::string> KeysRead(const FeatureRegistry& registry, const FeatureSetup& setup,
+                                  const std::string& name, const std::string& params) {
+  FeatureSpec spec;
+  spec.name = name;
+  spec.params = ParamBlock::Parse(params, "test");
+  registry.Create(spec, setup);
+  std::vector<std::string> read;
+  for (const std::string& key : spec.params.KnownKeys()) {
+    if (key != "name" && key != "weight" && key != "enabled" && key != "normalisation") {
+      read.push_back(key);
+    }
+  }
+  std::sort(read.begin(), read.end());
+  return read;
+}
+
+// The described keys, sorted: those of the dnn backend ("dnn: KEY", read only with `backend:
+// dnn`) when `dnn`, the others otherwise (`backend` in both).
+std::vector<std::string> KeysDescribed(const BuiltinFeature& feature, bool dnn) {
+  std::vector<std::string> described;
+  for (const FieldDescription& line : feature.keys()) {
+    const bool dnn_key = line.key.rfind("dnn: ", 0) == 0;
+    if (dnn_key && dnn) described.push_back(line.key.substr(5));
+    if (!dnn_key && (!dnn || line.key == "backend")) described.push_back(line.key);
+  }
+  std::sort(described.begin(), described.end());
+  return described;
+}
+
 TEST(OptionsDoc, EachFeaturesKeysAreTheKeysItReads) {
   FeatureSetup setup;
   setup.home = testing::ProjectRoot();
   const FeatureRegistry registry = BuiltinFeatures();
   for (const BuiltinFeature& feature : BuiltinFeatureTable()) {
-    FeatureSpec spec;
-    spec.name = feature.name;
-    registry.Create(spec, setup);
-    std::vector<std::string> read;
-    for (const std::string& key : spec.params.KnownKeys()) {
-      if (key != "name" && key != "weight" && key != "enabled" && key != "normalisation") {
-        read.push_back(key);
+    // `objects` has no model by default; the dnn backends are checked below.
+    if (feature.name == "objects") continue;
+    EXPECT_EQ(KeysRead(registry, setup, feature.name, "{}"), KeysDescribed(feature, false))
+        << feature.name;
+  }
+}
+
+// The dnn backend's keys, with the reference data's networks (skipped without them).
+TEST(OptionsDoc, EachDnnBackendsKeysAreTheKeysItReads) {
+  const std::string models = testing::SharedData() + "/models";
+  if (!std::filesystem::exists(models + "/yolox/yolox_nano.onnx") ||
+      !std::filesystem::exists(models + "/yunet/yunet_n_640_640.onnx")) {
+    GTEST_SKIP() << "no " << models << " (the reference data's models)";
+  }
+  FeatureSetup setup;
+  setup.home = testing::ProjectRoot();
+  const FeatureRegistry registry = BuiltinFeatures();
+  const std::string yolox = "{backend: dnn, model: " + models + "/yolox/yolox_nano.onnx}";
+  const std::string yunet = "{backend: dnn, model: " + models + "/yunet/yunet_n_640_640.onnx}";
+  for (const BuiltinFeature& feature : BuiltinFeatureTable()) {
+    if (feature.name != "people" && feature.name != "faces" && feature.name != "objects") continue;
+    std::vector<std::string> described = KeysDescribed(feature, true);
+    if (feature.name == "objects") {
+      // Every key of `objects` is the dnn backend's (it has no other), described plainly.
+      described = KeysDescribed(feature, false);
+    } else {
+      // The channel's own keys are read whatever the backend.
+      for (const std::string key :
+           {"gate", "margin", "every", "scan_every", "min_height", "max_height", "blur"}) {
+        described.push_back(key);
       }
+      std::sort(described.begin(), described.end());
     }
-    std::vector<std::string> described;
-    for (const FieldDescription& line : feature.keys()) described.push_back(line.key);
-    std::sort(read.begin(), read.end());
-    std::sort(described.begin(), described.end());
-    EXPECT_EQ(read, described) << feature.name;
+    EXPECT_EQ(KeysRead(registry, setup, feature.name, feature.name == "faces" ? yunet : yolox),
+              described)
+        << feature.name;
   }
 }
 
