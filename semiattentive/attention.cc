@@ -73,6 +73,12 @@ struct AttentionStage::Impl {
                     std::vector<cv::Rect>* looked);
   // Whether a seed on colour region `region` starts a skin target.
   bool IsSkin(const Frame& in, int region) const;
+  // select.every_detection: starts targets on the free detections, the most salient first,
+  // up to `limit` targets started this frame in all (`started` so far); `inhibited_area`
+  // grows with each.
+  void StartOnDetections(const Frame& in, const SeedFrame& seeds, int limit, double max_inhibited,
+                         int* started, double* inhibited_area, CandidateRegions* under,
+                         AttentionFrame* frame);
   // Starts a target on `seed` (a skin target when `skin`); false when its tracker does not
   // start.
   bool Start(const Frame& in, const Seed& seed, bool skin, AttentionFrame* frame);
@@ -229,6 +235,11 @@ cv::Mat AttentionStage::Impl::Recognise(const Frame& in, const TrackResult& resu
       in.bgr, in.segmentation, in.detections, target->box, detection, &seeds_, followed, &seed);
   if (recognition.unrecognised) target->reason = ReleaseReason::kUnrecognised;
   if (recognition.detection >= 0) detection_used_[recognition.detection] = 1;
+  // Its box is its detection's, whatever its tracker says (select.detection_box).
+  const bool detection_box = options_.select.detection_box && recognition.detection >= 0;
+  const cv::Rect detected =
+      detection_box ? in.detections[recognition.detection].box & in.image : cv::Rect();
+  if (detection_box) target->box = detected;
   if (!recognition.reanchor) return mask;
   const int restarted =
       tracker_->StartFromMask(in.bgr, seed.mask, TrackSimilarity::kColour, in.tracked.skin);
@@ -236,7 +247,7 @@ cv::Mat AttentionStage::Impl::Recognise(const Frame& in, const TrackResult& resu
   tracker_->Remove(result.id);
   followed->tracker_id = restarted;
   cv::Mat own = tracker_->Mask(restarted);
-  target->box = cv::boundingRect(own) & in.image;
+  target->box = detection_box ? detected : cv::boundingRect(own) & in.image;
   target->area = cv::countNonZero(own);
   return own;
 }
@@ -271,7 +282,9 @@ void AttentionStage::Impl::StartTargets(const Frame& in, int inhibited_pixels,
   for (size_t k = 0; k < candidates.ranked.size() && k < kLookCandidates; ++k) {
     looked->push_back(candidates.Box(candidates.ranked[k].second));
   }
-  if (candidates.ranked.empty()) return;
+  const bool every_detection =
+      options_.select.every_detection && options_.select.seed == SeedKind::kDetection;
+  if (candidates.ranked.empty() && !every_detection) return;
   CandidateRegions under = RegionsUnder(candidates, in.segmentation, inhibition_.covered());
   // New targets are started only while the inhibition stays within
   // select.max_inhibited_fraction of the image: attention that covers everything attends
@@ -303,6 +316,39 @@ void AttentionStage::Impl::StartTargets(const Frame& in, int inhibited_pixels,
     for (const int region : seed.members) under.taken[region] = 1;
     if (seed.detection >= 0 && !skin) detection_used_[seed.detection] = 1;
     if (Start(in, seed, skin, frame)) ++started;
+  }
+  if (every_detection) {
+    StartOnDetections(in, seed_frame, std::min(options_.select.max_new, free_slots),
+                      max_inhibited, &started, &inhibited_area, &under, frame);
+  }
+}
+
+void AttentionStage::Impl::StartOnDetections(const Frame& in, const SeedFrame& seeds, int limit,
+                                             double max_inhibited, int* started,
+                                             double* inhibited_area, CandidateRegions* under,
+                                             AttentionFrame* frame) {
+  // The free detections, the most salient first.
+  std::vector<std::pair<double, int>> order;
+  for (size_t d = 0; d < in.detections.size(); ++d) {
+    if (detection_used_[d]) continue;
+    const cv::Rect box = in.detections[d].box & in.image;
+    if (box.empty()) continue;
+    order.emplace_back(cv::mean(inhibition_.inhibited()(box))[0], static_cast<int>(d));
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (const auto& [saliency, d] : order) {
+    (void)saliency;
+    if (*started >= limit) break;
+    Seed seed;
+    if (!seeds_.FromDetection(seeds, d, &seed)) continue;
+    if (*inhibited_area + seed.area > max_inhibited) continue;
+    *inhibited_area += seed.area;
+    for (const int region : seed.members) {
+      if (region < static_cast<int>(under->taken.size())) under->taken[region] = 1;
+    }
+    detection_used_[d] = 1;
+    if (Start(in, seed, false, frame)) ++*started;
   }
 }
 

@@ -65,6 +65,26 @@ bool SeedMaker::Make(const SeedFrame& frame, size_t k, MotionGrouping* grouping,
   return true;
 }
 
+bool SeedMaker::FromDetection(const SeedFrame& frame, int index, Seed* seed) {
+  if (frame.detection_used[index]) return false;
+  const cv::Rect& box = frame.detections[index].box;
+  for (const cv::Rect& followed : frame.followed) {
+    const int shared = (followed & box).area();
+    if (shared > 0 && shared >= options_.detection_taken * box.area()) return false;
+  }
+  seed->members.clear();
+  FromBox(frame.segmentation, box, seed);
+  if (seed->members.empty()) return false;
+  seed->best = seed->members.front();
+  seed->detection = index;
+  for (const int region : seed->members) {
+    if (region < static_cast<int>(frame.under.taken.size()) && frame.under.taken[region]) {
+      return false;
+    }
+  }
+  return seed->area >= options_.min_area && seed->area <= frame.max_area;
+}
+
 void SeedMaker::GrowObject(const SeedFrame& frame, int r, MotionGrouping* grouping, Seed* seed) {
   const Segmentation& segmentation = frame.segmentation;
   const Candidates& c = frame.candidates;

@@ -58,6 +58,10 @@ class SeedMaker {
   // The seed of ranked candidate `k` into `seed`; false when it starts nothing. `grouping`:
   // motion grouping of object seeds (nullptr: off).
   bool Make(const SeedFrame& frame, size_t k, MotionGrouping* grouping, Seed* seed);
+  // The seed of detection `index` of `frame` on its own (select.every_detection), as a
+  // candidate's detection seed is made; false when a target is on it, a followed target
+  // covers it or its seed is too small or too large.
+  bool FromDetection(const SeedFrame& frame, int index, Seed* seed);
   // The seed of a detected object in `box`: the colour regions of `segmentation` of which at
   // least select.seed_share lies inside the box, clipped to it, into seed->mask; seed->area
   // gets its pixels and seed->members the regions (after those it holds).

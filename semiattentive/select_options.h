@@ -59,6 +59,16 @@ struct SelectOptions {
   // onto the person beside it is not restarted on them (it is left as it is, unrecognised).
   // 0: any look.
   float reanchor_min_similarity = 0.f;
+  // A recognised target is where its detection is: its box in the records (and in its
+  // object file) is the detection's box, and its tracker's box only in the frames no detection
+  // is on it. false: always the tracker's (its mask's bounding box).
+  bool detection_box = false;
+  // "detection" only: after the candidates, every detection that no target is on and no
+  // followed target covers starts a target too, the most salient (mean inhibited saliency
+  // over its box) first, within select.max_new and select.max_targets: attention still
+  // orders them, but a recognised object needs no salient region of its own. false: only
+  // detections under a candidate's most salient pixel start targets.
+  bool every_detection = false;
   float seed_share = 0.5f;
   // object: the candidate's salient region is the connected area around its most salient
   // pixel where the inhibited saliency is at least this times the candidate's mean.
