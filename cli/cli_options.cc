@@ -1,10 +1,14 @@
 #include "cli/cli_options.h"
 
 #include <filesystem>
+#include <iomanip>
+#include <iostream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 
 #include "util/error.h"
+#include "util/timer.h"
 
 namespace attend {
 
@@ -15,6 +19,24 @@ CLI::Option* AddSetOption(CLI::App* command, std::vector<std::string>* sets,
       ->expected(1)
       ->allow_extra_args(false)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+void PrintRunProgress(const RunProgress& progress) {
+  // Ten updates a second are enough to read; more would slow a fast run down.
+  static Stopwatch since_last;
+  const bool last = progress.total > 0 && progress.done == progress.total;
+  if (progress.done > 1 && !last && since_last.ElapsedMs() < 100.0) return;
+  since_last.Restart();
+  std::ostringstream line;
+  line << "\r[attend] frame " << progress.done;
+  if (progress.total > 0) line << "/" << progress.total;
+  line << std::fixed << std::setprecision(1) << "  " << progress.fps << " frames/s";
+  if (progress.total > 0 && progress.fps > 0) {
+    line << "  ETA " << std::setprecision(0) << (progress.total - progress.done) / progress.fps
+         << " s";
+  }
+  line << "   ";
+  std::cerr << line.str() << std::flush;
 }
 
 std::vector<std::string> OutputStems(const std::vector<std::string>& images,

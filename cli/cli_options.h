@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/run.h"
 #include "util/frame_range.h"
 
 namespace attend {
@@ -14,6 +15,9 @@ namespace attend {
 CLI::Option* AddSetOption(CLI::App* command, std::vector<std::string>* sets,
                           const std::string& help);
 
+// The progress line of a run on stderr (`attend run`, `attend track-detections`): frames done,
+// frames a second and the time left, rewritten in place at most ten times a second.
+void PrintRunProgress(const RunProgress& progress);
 
 // The output stem of every image, in order. Two images with one stem would overwrite each
 // other's files: a ConfigError naming both and `outputs` (with STEM standing for the stem).

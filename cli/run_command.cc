@@ -2,10 +2,8 @@
 #include <unistd.h>
 
 #include <csignal>
-#include <iomanip>
 #include <iostream>
 #include <memory>
-#include <sstream>
 
 #include "app/run_attention.h"
 #include "cli/cli_options.h"
@@ -13,7 +11,6 @@
 #include "pipeline/options_doc.h"
 #include "pipeline/options_io.h"
 #include "util/error.h"
-#include "util/timer.h"
 
 namespace attend {
 
@@ -44,24 +41,6 @@ struct RunArguments {
   std::string command_line;
 };
 
-void PrintProgress(const RunProgress& progress) {
-  // Ten updates a second are enough to read; more would slow a fast run down.
-  static Stopwatch since_last;
-  const bool last = progress.total > 0 && progress.done == progress.total;
-  if (progress.done > 1 && !last && since_last.ElapsedMs() < 100.0) return;
-  since_last.Restart();
-  std::ostringstream line;
-  line << "\r[attend] frame " << progress.done;
-  if (progress.total > 0) line << "/" << progress.total;
-  line << std::fixed << std::setprecision(1) << "  " << progress.fps << " frames/s";
-  if (progress.total > 0 && progress.fps > 0) {
-    line << "  ETA " << std::setprecision(0) << (progress.total - progress.done) / progress.fps
-         << " s";
-  }
-  line << "   ";
-  std::cerr << line.str() << std::flush;
-}
-
 int Run(const RunArguments& args) {
   if (args.list_keys) {
     std::cout << "The configuration's keys (configs/README.md): type, range, default and what "
@@ -88,7 +67,7 @@ int Run(const RunArguments& args) {
   request.command_line = args.command_line;
   request.stop = &g_stop_requested;
   const bool show_progress = !args.quiet && isatty(STDERR_FILENO);
-  if (show_progress) request.on_progress = PrintProgress;
+  if (show_progress) request.on_progress = PrintRunProgress;
   const AttendOptions options = ResolveRunOptions(request);
 
   std::signal(SIGINT, OnStopSignal);

@@ -152,7 +152,8 @@ std::string FindModelFile(const std::string& path, const std::string& config_fil
   std::vector<fs::path> folders;
   if (!path.empty() && !fs::path(path).is_absolute()) {
     if (!config_file.empty() && fs::is_regular_file(config_file)) {
-      folders.push_back(fs::path(config_file).parent_path());
+      // Absolute, so that a configuration named without a folder names its folder in messages.
+      folders.push_back(fs::absolute(config_file).parent_path());
     }
     if (const char* models = std::getenv("ATTEND_MODELS"); models != nullptr && *models != '\0') {
       folders.emplace_back(models);

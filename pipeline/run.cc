@@ -31,68 +31,6 @@ std::string LocalTime(const char* format) {
   return out.str();
 }
 
-nlohmann::ordered_json SummaryJson(const RunSummary& summary, const SequenceInfo& info,
-                                   const RunRequest& request, const std::string& started) {
-  nlohmann::ordered_json timings = nlohmann::ordered_json::object();
-  for (const auto& [stage, ms] : summary.mean_ms.stages()) timings[stage] = ms;
-  nlohmann::ordered_json json = {{"frames", summary.frames},
-          {"fps", summary.fps},
-          {"wall_seconds", summary.wall_seconds},
-          {"timings_ms", timings},
-          {"targets_attended", summary.targets_attended},
-          {"tracker", TrackerKindName(request.options.attention.tracker.kind)},
-          {"interrupted", summary.interrupted},
-          {"error", summary.error.empty() ? nlohmann::ordered_json()
-                                          : nlohmann::ordered_json(summary.error)},
-          {"sequence",
-           {{"name", info.name},
-            {"source", request.options.sequence.source.Describe()},
-            {"stereo", info.stereo},
-            {"frames_in_range", info.frame_count},
-            {"native_size", {info.native_size.width, info.native_size.height}},
-            {"size", {info.size.width, info.size.height}}}},
-          // SPEC 3.3: boxes and areas of frames.jsonl are in input pixels; the dumped maps and
-          // the overlays are at the working size. input = working * input_from_working.
-          {"pixels",
-           {{"records", "input"},
-            {"maps", "working"},
-            {"input_size", {info.native_size.width, info.native_size.height}},
-            {"working_size", {info.size.width, info.size.height}},
-            {"input_from_working", {1.0 / info.scale_x, 1.0 / info.scale_y}}}},
-          {"config", request.config_path},
-          {"command", request.command_line},
-          {"started", started},
-          {"attend_version", ATTEND_VERSION}};
-  // Added only where they apply, so that a file run's summary keeps its fields.
-  if (!summary.left_out.empty()) json["features_left_out"] = summary.left_out;
-  if (!summary.searched_pixels.empty()) {
-    // What each top-down channel's detector cost: its time and the pixels it searched a
-    // frame, against the working frame's pixels (a network's pixels are at its own scale).
-    nlohmann::ordered_json detectors = nlohmann::ordered_json::object();
-    const double frame_pixels = static_cast<double>(info.size.area());
-    for (const auto& [name, pixels] : summary.searched_pixels) {
-      detectors[name] = {{"ms", summary.mean_ms.Get("feature." + name)},
-                         {"searched_pixels", pixels},
-                         {"frame_pixels", frame_pixels},
-                         {"searched_fraction", frame_pixels > 0 ? pixels / frame_pixels : 0.0}};
-    }
-    json["detectors"] = detectors;
-  }
-  if (summary.live.has_value()) {
-    const LiveStatus& live = *summary.live;
-    json["live"] = {{"source", live.source},
-                    {"queue", live.queue},
-                    {"frames_captured", live.captured},
-                    {"frames_dropped", live.dropped},
-                    {"frames_unprocessed", live.unprocessed},
-                    {"end", LiveEndName(live.end)},
-                    {"why", live.why},
-                    {"latency_ms",
-                     {{"mean", summary.mean_latency_ms}, {"max", summary.max_latency_ms}}}};
-  }
-  return json;
-}
-
 // The map dumps of SPEC 3.3 that output.dump asks for.
 class MapDumps final : public RunObserver {
  public:
@@ -194,6 +132,70 @@ std::string DefaultRunFolder(const std::string& parent, const std::string& confi
     candidate = base + "-" + std::to_string(suffix);
   }
   return candidate;
+}
+
+std::string RunStartTime() { return LocalTime("%Y-%m-%dT%H:%M:%S%z"); }
+
+nlohmann::ordered_json RunSummaryJson(const RunSummary& summary, const SequenceInfo& info,
+                                      const RunRequest& request, const std::string& started) {
+  nlohmann::ordered_json timings = nlohmann::ordered_json::object();
+  for (const auto& [stage, ms] : summary.mean_ms.stages()) timings[stage] = ms;
+  nlohmann::ordered_json json = {{"frames", summary.frames},
+          {"fps", summary.fps},
+          {"wall_seconds", summary.wall_seconds},
+          {"timings_ms", timings},
+          {"targets_attended", summary.targets_attended},
+          {"tracker", TrackerKindName(request.options.attention.tracker.kind)},
+          {"interrupted", summary.interrupted},
+          {"error", summary.error.empty() ? nlohmann::ordered_json()
+                                          : nlohmann::ordered_json(summary.error)},
+          {"sequence",
+           {{"name", info.name},
+            {"source", request.options.sequence.source.Describe()},
+            {"stereo", info.stereo},
+            {"frames_in_range", info.frame_count},
+            {"native_size", {info.native_size.width, info.native_size.height}},
+            {"size", {info.size.width, info.size.height}}}},
+          // SPEC 3.3: boxes and areas of frames.jsonl are in input pixels; the dumped maps and
+          // the overlays are at the working size. input = working * input_from_working.
+          {"pixels",
+           {{"records", "input"},
+            {"maps", "working"},
+            {"input_size", {info.native_size.width, info.native_size.height}},
+            {"working_size", {info.size.width, info.size.height}},
+            {"input_from_working", {1.0 / info.scale_x, 1.0 / info.scale_y}}}},
+          {"config", request.config_path},
+          {"command", request.command_line},
+          {"started", started},
+          {"attend_version", ATTEND_VERSION}};
+  // Added only where they apply, so that a file run's summary keeps its fields.
+  if (!summary.left_out.empty()) json["features_left_out"] = summary.left_out;
+  if (!summary.searched_pixels.empty()) {
+    // What each top-down channel's detector cost: its time and the pixels it searched a
+    // frame, against the working frame's pixels (a network's pixels are at its own scale).
+    nlohmann::ordered_json detectors = nlohmann::ordered_json::object();
+    const double frame_pixels = static_cast<double>(info.size.area());
+    for (const auto& [name, pixels] : summary.searched_pixels) {
+      detectors[name] = {{"ms", summary.mean_ms.Get("feature." + name)},
+                         {"searched_pixels", pixels},
+                         {"frame_pixels", frame_pixels},
+                         {"searched_fraction", frame_pixels > 0 ? pixels / frame_pixels : 0.0}};
+    }
+    json["detectors"] = detectors;
+  }
+  if (summary.live.has_value()) {
+    const LiveStatus& live = *summary.live;
+    json["live"] = {{"source", live.source},
+                    {"queue", live.queue},
+                    {"frames_captured", live.captured},
+                    {"frames_dropped", live.dropped},
+                    {"frames_unprocessed", live.unprocessed},
+                    {"end", LiveEndName(live.end)},
+                    {"why", live.why},
+                    {"latency_ms",
+                     {{"mean", summary.mean_latency_ms}, {"max", summary.max_latency_ms}}}};
+  }
+  return json;
 }
 
 namespace {
@@ -325,7 +327,7 @@ void FinishRun(const RunRequest& request, const FrameSource& source, const RunTo
     summary->max_latency_ms = totals.latencies.max;
   }
   folder->WriteJson("scanpath.json", totals.scanpath);
-  folder->WriteSummary(SummaryJson(*summary, source.info(), request, started));
+  folder->WriteSummary(RunSummaryJson(*summary, source.info(), request, started));
 }
 
 }  // namespace
@@ -352,7 +354,7 @@ RunSummary RunSequence(const RunRequest& request) {
                                   : request.out_dir;
   RunFolder folder(out_dir, request.overwrite);
   folder.WriteConfig(OptionsToYaml(options));
-  const std::string started = LocalTime("%Y-%m-%dT%H:%M:%S%z");
+  const std::string started = RunStartTime();
 
   // The dumps output.dump asks for, then the caller's observers.
   MapDumps map_dumps(options.output, &folder);

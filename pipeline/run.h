@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -83,6 +84,17 @@ struct RunSummary {
 // delivering (live.timeout_s) ends the run as the end of a file does; summary.json's `live`
 // says how it ended.
 RunSummary RunSequence(const RunRequest& request);
+
+// RUN/summary.json (SPEC 3.3) of a run of `request` over the sequence `info` that started at
+// `started` (RunStartTime): frames, rates, mean stage times, the sequence, the pixels of the
+// records and the maps, and where they apply the features left out, the detectors' searched
+// pixels (`detectors`: each one's mean ms, its `feature.<name>` stage, and pixels a frame) and
+// the live capture. `attend track-detections` writes its run's summary with it too.
+nlohmann::ordered_json RunSummaryJson(const RunSummary& summary, const SequenceInfo& info,
+                                      const RunRequest& request, const std::string& started);
+
+// The local time now, as summary.json's `started` ("2026-12-04T14:34:57+0100").
+std::string RunStartTime();
 
 // runs/<YYYYmmdd-HHMMSS>-<config stem>-<sequence name> below `parent`, made unique.
 std::string DefaultRunFolder(const std::string& parent, const std::string& config_path,
