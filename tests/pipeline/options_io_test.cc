@@ -72,6 +72,9 @@ TEST(OptionsIo, EveryBuiltinFeatureParameterIsDocumentedAndSet) {
   setup.home = testing::ProjectRoot();
   for (const std::string& name : registry.Names()) {
     EXPECT_NE(readme.find("`features." + name + "`"), std::string::npos) << name;
+    // `objects` is a network's and has no default model: its keys are checked with the
+    // reference data's network (OptionsDoc.EachDnnBackendsKeysAreTheKeysItReads).
+    if (name == "objects") continue;
     FeatureSpec spec;
     spec.name = name;
     registry.Create(spec, setup);
