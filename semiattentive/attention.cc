@@ -398,8 +398,9 @@ bool AttentionStage::Impl::Start(const Frame& in, const Seed& seed, bool skin,
     if (file >= 0) {
       ObjectFile resumed = files_.Take(file);
       target.state = TargetState::kResumed;
-      // Its file counts the frames since it was last seen, this one included.
-      target.absent_frames = resumed.absent - 1;
+      // Its file counts the frames since it was last seen, this one included; a file left in
+      // this very frame (a target released, its object started again at once) has 0.
+      target.absent_frames = std::max(0, resumed.absent - 1);
       followed.Resume(std::move(resumed));
     }
   }

@@ -286,6 +286,51 @@ TEST(DetectionSeeds, APartOfADetectedObjectAlreadyFollowedStartsNothing) {
   }
 }
 
+// select.every_detection: a detected object that is not salient starts a target too, after the
+// salient one; without it, only the salient one does.
+TEST(DetectionSeeds, EveryFreeDetectionStartsATargetWithEveryDetection) {
+  const cv::Rect a(20, 20, 24, 30), b(100, 60, 30, 30);
+  const std::vector<Detection> people = {{a, "person", 0.9f}, {b, "person", 0.8f}};
+  for (const bool every : {true, false}) {
+    AttentionOptions options;
+    options.select.seed = SeedKind::kDetection;
+    options.select.detected_only = true;
+    options.select.every_detection = every;
+    options.select.max_new = 2;
+    Stage stage(options);
+    const AttentionFrame frame = stage.Run(Draw({{a, kRed}, {b, kBlue}}, {a}, 0), people);
+    ASSERT_EQ(frame.new_ids.size(), every ? 2u : 1u) << every;
+    // The salient one first.
+    const cv::Rect first = frame.targets[0].box;
+    EXPECT_GT((first & a).area(), 0.8 * a.area()) << first;
+    if (every) {
+      EXPECT_GT((frame.targets[1].box & b).area(), 0.8 * b.area()) << frame.targets[1].box;
+      EXPECT_EQ(frame.targets[1].label, "person");
+    }
+  }
+}
+
+// select.detection_box: a recognised target's box is its detection's.
+TEST(DetectionSeeds, ARecognisedTargetsBoxIsItsDetectionsWithDetectionBox) {
+  const cv::Rect a(40, 30, 24, 40);
+  // The detector's box is a little larger than the object (a margin of background).
+  const cv::Rect detected(37, 27, 30, 46);
+  for (const bool from_detection : {true, false}) {
+    AttentionOptions options;
+    options.select.seed = SeedKind::kDetection;
+    options.select.detection_box = from_detection;
+    Stage stage(options);
+    stage.Run(Draw({{a, kRed}}, {a}, 0), {{detected, "person", 0.9f}});
+    const AttentionFrame frame = stage.Run(Draw({{a, kRed}}, {a}, 1), {{detected, "person", 0.9f}});
+    ASSERT_EQ(frame.targets.size(), 1u);
+    if (from_detection) {
+      EXPECT_EQ(frame.targets[0].box, detected);
+    } else {
+      EXPECT_NE(frame.targets[0].box, detected);
+    }
+  }
+}
+
 // Where attention looked: the targets' boxes and the candidates weighed, for the gated
 // channels of the next frame.
 TEST(DetectionSeeds, TheStageSaysWhereAttentionLooked) {
