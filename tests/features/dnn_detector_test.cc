@@ -158,7 +158,10 @@ std::unique_ptr<DnnDetector> LoadDetector(const std::string& yaml, const std::st
   options.model = params.GetString("model", "");
   options.config = params.GetString("config", "");
   const std::string decoder = params.GetString("decoder", "darknet");
-  options.decoder = decoder == "yolox" ? DnnDecoder::kYolox : DnnDecoder::kDarknet;
+  options.decoder = decoder == "yolox"   ? DnnDecoder::kYolox
+                    : decoder == "yunet" ? DnnDecoder::kYunet
+                                         : DnnDecoder::kDarknet;
+  options.input_size = params.GetInt("input_size", options.input_size);
   return DnnDetector::Load(options, params, FeatureSetup(), label);
 }
 
@@ -321,6 +324,32 @@ TEST(DnnDetector, TheReferenceNetworksLoadAndYoloxFindsPeopleInARealFrame) {
   // TUD-Stadtmitte's first frame has several pedestrians in full view.
   EXPECT_GE(found.size(), 3u);
   for (const Detection& detection : found) EXPECT_GT(detection.box.height, detection.box.width);
+}
+
+// YuNet finds faces in a real crowd photograph (the reference data's crowd200).
+TEST(DnnDetector, YunetFindsFacesInARealCrowdPhotograph) {
+  const std::string model = testing::SharedData() + "/models/yunet/yunet_n_640_640.onnx";
+  const std::string photo = testing::SharedData() + "/fixations/crowd200/stimuli/001.jpg";
+  if (!fs::exists(model) || !fs::exists(photo)) {
+    GTEST_SKIP() << "no " << model << " or " << photo << " (the reference data)";
+  }
+  std::unique_ptr<DnnDetector> yunet =
+      LoadDetector("{model: " + model + ", decoder: yunet, input_size: 640}", "face");
+  const cv::Mat image = cv::imread(photo, cv::IMREAD_COLOR);
+  ASSERT_FALSE(image.empty());
+  cv::Mat scaled;
+  const double scale = 640.0 / std::max(image.cols, image.rows);
+  cv::resize(image, scaled, cv::Size(), scale, scale, cv::INTER_AREA);
+  std::vector<Detection> faces;
+  yunet->Detect(scaled, &faces);
+  ASSERT_GE(faces.size(), 2u);
+  for (const Detection& face : faces) {
+    EXPECT_EQ(face.label, "face");
+    // A face's box is about as tall as it is wide.
+    const double aspect = static_cast<double>(face.box.height) / face.box.width;
+    EXPECT_GT(aspect, 0.8) << face.box;
+    EXPECT_LT(aspect, 2.0) << face.box;
+  }
 }
 
 }  // namespace
