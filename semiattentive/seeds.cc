@@ -82,7 +82,9 @@ bool SeedMaker::FromDetection(const SeedFrame& frame, int index, Seed* seed) {
       return false;
     }
   }
-  return seed->area >= options_.min_area && seed->area <= frame.max_area;
+  // Bounded by the detection's box, which the detector says is one object, not by the
+  // background rule of select.max_area_fraction: a person near the camera is large.
+  return seed->area >= options_.min_area;
 }
 
 void SeedMaker::GrowObject(const SeedFrame& frame, int r, MotionGrouping* grouping, Seed* seed) {

@@ -59,8 +59,9 @@ class SeedMaker {
   // motion grouping of object seeds (nullptr: off).
   bool Make(const SeedFrame& frame, size_t k, MotionGrouping* grouping, Seed* seed);
   // The seed of detection `index` of `frame` on its own (select.every_detection), as a
-  // candidate's detection seed is made; false when a target is on it, a followed target
-  // covers it or its seed is too small or too large.
+  // candidate's detection seed is made, but not bounded by select.max_area_fraction (the box
+  // is one object, however near); false when a target is on it, a followed target covers it
+  // or its seed is smaller than select.min_area.
   bool FromDetection(const SeedFrame& frame, int index, Seed* seed);
   // The seed of a detected object in `box`: the colour regions of `segmentation` of which at
   // least select.seed_share lies inside the box, clipped to it, into seed->mask; seed->area

@@ -30,7 +30,7 @@ output:
   dump: []
 )";
 
-DetectionTracksRequest Request(const testing::TempDir& dir) {
+DetectionTracksRequest TracksRequest(const testing::TempDir& dir) {
   DetectionTracksRequest request;
   request.run.config = dir.Write("peer.yaml", kConfig);
   request.run.source.folder = testing::MakeFolderSequence(dir.File("seq"), 4, 160, 120, false);
@@ -41,7 +41,7 @@ DetectionTracksRequest Request(const testing::TempDir& dir) {
 
 TEST(ResolveDetectorOptions, KeepsTheChannelAloneOnTheWholeFrameEveryFrame) {
   testing::TempDir dir;
-  DetectionTracksRequest request = Request(dir);
+  DetectionTracksRequest request = TracksRequest(dir);
   request.run.frames = "1:2";
   const AttendOptions options = ResolveDetectorOptions(request);
   ASSERT_EQ(options.features.size(), 1u);
@@ -58,7 +58,7 @@ TEST(ResolveDetectorOptions, KeepsTheChannelAloneOnTheWholeFrameEveryFrame) {
 
 TEST(ResolveDetectorOptions, RefusesAMissingDisabledOrBottomUpFeature) {
   testing::TempDir dir;
-  DetectionTracksRequest request = Request(dir);
+  DetectionTracksRequest request = TracksRequest(dir);
   const auto error = [&request] {
     return testing::ConfigErrorOf([&request] { ResolveDetectorOptions(request); });
   };
@@ -80,7 +80,7 @@ TEST(ResolveDetectorOptions, RefusesAMissingDisabledOrBottomUpFeature) {
 
 TEST(TrackDetections, WritesARunFolderThatEvalScores) {
   testing::TempDir dir;
-  const DetectionTracksRequest request = Request(dir);
+  const DetectionTracksRequest request = TracksRequest(dir);
   const RunSummary summary = TrackDetections(request, ResolveDetectorOptions(request));
   EXPECT_EQ(summary.frames, 4);
   EXPECT_FALSE(summary.interrupted);
