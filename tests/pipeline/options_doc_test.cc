@@ -130,7 +130,7 @@ TEST(OptionsDoc, EachFeaturesKeysAreTheKeysItReads) {
   const FeatureRegistry registry = BuiltinFeatures();
   for (const BuiltinFeature& feature : BuiltinFeatureTable()) {
     // `objects` has no model by default; the dnn backends are checked below.
-    if (feature.name == "objects") continue;
+    if (std::string(feature.name) == "objects") continue;
     EXPECT_EQ(KeysRead(registry, setup, feature.name, "{}"), KeysDescribed(feature, false))
         << feature.name;
   }
@@ -149,9 +149,10 @@ TEST(OptionsDoc, EachDnnBackendsKeysAreTheKeysItReads) {
   const std::string yolox = "{backend: dnn, model: " + models + "/yolox/yolox_nano.onnx}";
   const std::string yunet = "{backend: dnn, model: " + models + "/yunet/yunet_n_640_640.onnx}";
   for (const BuiltinFeature& feature : BuiltinFeatureTable()) {
-    if (feature.name != "people" && feature.name != "faces" && feature.name != "objects") continue;
+    const std::string name = feature.name;
+    if (name != "people" && name != "faces" && name != "objects") continue;
     std::vector<std::string> described = KeysDescribed(feature, true);
-    if (feature.name == "objects") {
+    if (name == "objects") {
       // Every key of `objects` is the dnn backend's (it has no other), described plainly.
       described = KeysDescribed(feature, false);
     } else {
@@ -162,7 +163,7 @@ TEST(OptionsDoc, EachDnnBackendsKeysAreTheKeysItReads) {
       }
       std::sort(described.begin(), described.end());
     }
-    EXPECT_EQ(KeysRead(registry, setup, feature.name, feature.name == "faces" ? yunet : yolox),
+    EXPECT_EQ(KeysRead(registry, setup, name, name == "faces" ? yunet : yolox),
               described)
         << feature.name;
   }
