@@ -210,8 +210,8 @@ struct Latencies {
 // What a run gathers over its frames for its summary and scanpath.json.
 struct RunTotals {
   StageTimes stages;  // the frames' timings, summed
-  // The detectors' searched pixels, summed over the frames, in the features' order.
-  std::vector<std::pair<std::string, double>> searched;
+  // The detectors' searched pixels by feature, summed over the frames.
+  StageTimes searched;
   Latencies latencies;
   nlohmann::ordered_json scanpath = nlohmann::ordered_json::array();
   Stopwatch wall;  // from the first frame's read on
@@ -231,14 +231,7 @@ bool RunFrame(FrameSource* source, FramePipeline* pipeline,
 
   pipeline->Process(frame, &record);
   for (const FeatureResult& result : pipeline->features()) {
-    if (result.searched_pixels < 0.0) continue;
-    auto known = std::find_if(totals->searched.begin(), totals->searched.end(),
-                              [&](const auto& entry) { return entry.first == result.name; });
-    if (known == totals->searched.end()) {
-      totals->searched.emplace_back(result.name, 0.0);
-      known = totals->searched.end() - 1;
-    }
-    known->second += result.searched_pixels;
+    if (result.searched_pixels >= 0.0) totals->searched.Add(result.name, result.searched_pixels);
   }
 
   stage.Restart();
@@ -317,7 +310,7 @@ void FinishRun(const RunRequest& request, const FrameSource& source, const RunTo
   for (const auto& [stage, ms] : totals.stages.stages()) {
     summary->mean_ms.Add(stage, summary->frames > 0 ? ms / summary->frames : 0.0);
   }
-  for (const auto& [name, pixels] : totals.searched) {
+  for (const auto& [name, pixels] : totals.searched.stages()) {
     summary->searched_pixels.emplace_back(name, summary->frames > 0 ? pixels / summary->frames
                                                                     : 0.0);
   }

@@ -23,7 +23,8 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_;
 };
 
-// Per-stage times of one frame, in the order the stages ran.
+// Per-stage times of one frame, in the order the stages ran (or any totals by name, in the
+// order the names came: a run's detectors' searched pixels).
 class StageTimes {
  public:
   void Add(const std::string& stage, double ms) {

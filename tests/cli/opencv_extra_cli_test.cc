@@ -12,6 +12,7 @@
 
 #include "tests/cli/attend_cli.h"
 #include "tests/support/attend_process.h"
+#include "tests/support/scoped_env.h"
 #include "tests/support/sequence_maker.h"
 #include "tests/support/temp_dir.h"
 
@@ -39,17 +40,7 @@ std::string MakeVideo(const testing::TempDir& dir) {
   return path;
 }
 
-// Sets an environment variable for the scope (the children attend started inherit it).
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const std::string& value) : name_(name) {
-    setenv(name, value.c_str(), 1);
-  }
-  ~ScopedEnv() { unsetenv(name_); }
-
- private:
-  const char* name_;
-};
+using testing::ScopedEnv;
 
 TEST(OpenCvExtraCli, TheProgramLinksNoneOfTheOptionalModules) {
   FILE* pipe = popen((std::string("ldd ") + ATTEND_BINARY).c_str(), "r");

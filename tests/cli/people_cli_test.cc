@@ -3,14 +3,13 @@
 // fit its decoder is bad input naming the shapes; with the reference data's networks it runs on
 // real pedestrian frames, labels its targets as people and reports the detector's cost.
 #include <gtest/gtest.h>
-#include <stdlib.h>
-
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "tests/cli/attend_cli.h"
 #include "tests/support/attend_process.h"
+#include "tests/support/scoped_env.h"
 #include "tests/support/temp_dir.h"
 
 namespace attend {
@@ -22,24 +21,10 @@ using testing::Contains;
 
 std::string PeopleConfig() { return testing::ProjectRoot() + "/configs/people.yaml"; }
 
-// Sets ATTEND_MODELS for the runs this test starts, and restores it.
-class ModelsFolder {
+// ATTEND_MODELS for the runs a test starts.
+class ModelsFolder : public testing::ScopedEnv {
  public:
-  explicit ModelsFolder(const std::string& folder) {
-    if (const char* old = getenv("ATTEND_MODELS"); old != nullptr) old_ = old, had_ = true;
-    setenv("ATTEND_MODELS", folder.c_str(), 1);
-  }
-  ~ModelsFolder() {
-    if (had_) {
-      setenv("ATTEND_MODELS", old_.c_str(), 1);
-    } else {
-      unsetenv("ATTEND_MODELS");
-    }
-  }
-
- private:
-  std::string old_;
-  bool had_ = false;
+  explicit ModelsFolder(const std::string& folder) : ScopedEnv("ATTEND_MODELS", folder) {}
 };
 
 TEST(PeopleCli, WithoutItsNetworksTheConfigurationIsAnErrorNamingKeyFileAndWhereToGetIt) {

@@ -299,6 +299,17 @@ TEST(DnnDetector, AnOnnxNetworkBuiltByTheTestLoadsThroughThePeopleChannel) {
   EXPECT_NE(people, nullptr);
 }
 
+// The image at `path` with its longer side scaled to `side` px, as the channel gives it to a
+// network on the whole frame; empty when it cannot be read.
+cv::Mat ReadScaled(const std::string& path, double side) {
+  const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+  if (image.empty()) return image;
+  cv::Mat scaled;
+  const double scale = side / std::max(image.cols, image.rows);
+  cv::resize(image, scaled, cv::Size(), scale, scale, cv::INTER_AREA);
+  return scaled;
+}
+
 // The reference data's networks: each loads, and YOLOX finds people in a real frame.
 TEST(DnnDetector, TheReferenceNetworksLoadAndYoloxFindsPeopleInARealFrame) {
   const std::string models = testing::SharedData() + "/models";
@@ -314,11 +325,8 @@ TEST(DnnDetector, TheReferenceNetworksLoadAndYoloxFindsPeopleInARealFrame) {
   for (const auto& entry : fs::directory_iterator(frame_path)) frames.push_back(entry.path());
   std::sort(frames.begin(), frames.end());
   ASSERT_FALSE(frames.empty());
-  const cv::Mat image = cv::imread(frames.front().string(), cv::IMREAD_COLOR);
-  ASSERT_FALSE(image.empty());
-  cv::Mat scaled;
-  const double scale = 416.0 / std::max(image.cols, image.rows);
-  cv::resize(image, scaled, cv::Size(), scale, scale, cv::INTER_AREA);
+  const cv::Mat scaled = ReadScaled(frames.front().string(), 416.0);
+  ASSERT_FALSE(scaled.empty());
   std::vector<Detection> found;
   yolox->Detect(scaled, &found);
   // TUD-Stadtmitte's first frame has several pedestrians in full view.
@@ -335,11 +343,8 @@ TEST(DnnDetector, YunetFindsFacesInARealCrowdPhotograph) {
   }
   std::unique_ptr<DnnDetector> yunet =
       LoadDetector("{model: " + model + ", decoder: yunet, input_size: 640}", "face");
-  const cv::Mat image = cv::imread(photo, cv::IMREAD_COLOR);
-  ASSERT_FALSE(image.empty());
-  cv::Mat scaled;
-  const double scale = 640.0 / std::max(image.cols, image.rows);
-  cv::resize(image, scaled, cv::Size(), scale, scale, cv::INTER_AREA);
+  const cv::Mat scaled = ReadScaled(photo, 640.0);
+  ASSERT_FALSE(scaled.empty());
   std::vector<Detection> faces;
   yunet->Detect(scaled, &faces);
   ASSERT_GE(faces.size(), 2u);

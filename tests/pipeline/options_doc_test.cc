@@ -11,6 +11,7 @@
 
 #include "config/param_block.h"
 #include "features/builtin.h"
+#include "features/detectors.h"
 #include "pipeline/options_io.h"
 #include "tests/support/error_message.h"
 #include "tests/support/temp_dir.h"
@@ -157,9 +158,8 @@ TEST(OptionsDoc, EachDnnBackendsKeysAreTheKeysItReads) {
       described = KeysDescribed(feature, false);
     } else {
       // The channel's own keys are read whatever the backend.
-      for (const std::string key :
-           {"gate", "margin", "every", "scan_every", "min_height", "max_height", "blur"}) {
-        described.push_back(key);
+      for (const FieldDescription& line : DescribeFields(ObjectChannelOptions::Fields())) {
+        described.push_back(line.key);
       }
       std::sort(described.begin(), described.end());
     }
