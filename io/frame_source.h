@@ -6,11 +6,13 @@
 
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 
 #include "io/live_options.h"
+#include "io/stereo_calibration.h"
 
 namespace attend {
 
@@ -30,6 +32,11 @@ struct SequenceInfo {
                          // container's header, which some containers only estimate.
   std::string folder;    // the sequence folder ("" for videos and image folders); gt/ lives
                          // below it
+  // The stereo calibration (io/stereo_calibration.h): SEQ/calib.yaml, --calib FILE
+  // (sequence.calib), or sequence.yaml's focal_px and baseline_m; null when there is none or
+  // the source is monocular. For the native size: frames handed out are rectified already
+  // when it rectifies (a raw pair), and scale_x, scale_y take its pixels to the working size.
+  std::shared_ptr<const StereoCalibration> calibration;
 };
 
 struct StereoFrame {
