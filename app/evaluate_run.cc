@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "eval/disparity_scores.h"
+#include "eval/depth_scores.h"
 #include "eval/mot_metrics.h"
 #include "eval/run_evaluation.h"
 #include "features/disparity_feature.h"
@@ -144,6 +145,22 @@ nlohmann::ordered_json MotReport(const std::vector<FrameRecord>& frames,
   return mot;
 }
 
+// The targets' disparity and depth errors (eval/depth_scores.h); -1 as null.
+nlohmann::ordered_json DepthJson(const DepthScores& s) {
+  auto value = [](double v) { return v < 0.0 ? nlohmann::ordered_json() : nlohmann::ordered_json(v); };
+  return {{"match_iou", DepthScoreOptions{}.match_iou},
+          {"matches", s.matches},
+          {"median_abs_error_px", value(s.median_abs_error_px)},
+          {"mean_abs_error_px", value(s.mean_abs_error_px)},
+          {"share_within_0.25_px", value(s.share_within_quarter_px)},
+          {"near_disparity_px", DepthScoreOptions{}.near_disparity},
+          {"near_matches", s.near_matches},
+          {"median_depth_error", value(s.median_depth_error)},
+          {"share_depth_within_2_percent", value(s.share_depth_within_2_percent)},
+          {"share_within_1_sd", value(s.share_within_1_sd)},
+          {"share_within_2_sd", value(s.share_within_2_sd)}};
+}
+
 }  // namespace
 
 nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::string& gt_dir) {
@@ -202,6 +219,8 @@ nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::
                                    {"per_object", per_object}};
   const nlohmann::ordered_json disparity = DisparityScores(run_dir, gt, options);
   if (!disparity.is_null()) report["disparity"] = disparity;
+  const DepthScores depth = EvaluateTargetDepth(frames, truth);
+  if (depth.matches > 0) report["target_depth"] = DepthJson(depth);
   return report;
 }
 

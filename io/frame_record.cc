@@ -56,6 +56,9 @@ FrameRecord InputFromWorking(const FrameRecord& record_in_working, double scale_
     if (target.area > 0) {
       target.area = std::max(1, static_cast<int>(std::lround(target.area / area_scale)));
     }
+    // Disparities are horizontal: they scale with the width.
+    target.disparity_px /= scale_x;
+    target.disparity_sd_px /= scale_x;
   }
   return record;
 }
@@ -65,6 +68,42 @@ int VisibleTargets(const FrameRecord& record) {
   for (const TargetRecord& t : record.targets) n += Visible(t.state);
   return n;
 }
+
+namespace {
+
+// `value` to a multiple of `step` (records keep what the estimates can tell); non-finite
+// values (an unknown standard deviation) as null.
+nlohmann::ordered_json Rounded(double value, double step) {
+  if (!std::isfinite(value)) return nullptr;
+  return std::round(value / step) * step;
+}
+
+nlohmann::ordered_json Rounded3(const cv::Vec3d& v, double step) {
+  return {Rounded(v[0], step), Rounded(v[1], step), Rounded(v[2], step)};
+}
+
+// A finite number of the record (named `name` in the error).
+double FiniteNumber(const nlohmann::json& value, const std::string& name) {
+  if (!value.is_number()) throw std::runtime_error("'" + name + "' is not a number");
+  const double number = value.get<double>();
+  if (!std::isfinite(number)) throw std::runtime_error("'" + name + "' is not finite");
+  return number;
+}
+
+// Three numbers, each finite or null (an unknown standard deviation).
+cv::Vec3d ThreeNumbers(const nlohmann::json& value, const std::string& name) {
+  if (!value.is_array() || value.size() != 3) {
+    throw std::runtime_error("'" + name + "' needs 3 numbers");
+  }
+  cv::Vec3d v;
+  for (int k = 0; k < 3; ++k) {
+    v[k] = value[k].is_null() ? std::numeric_limits<double>::quiet_NaN()
+                              : FiniteNumber(value[k], name);
+  }
+  return v;
+}
+
+}  // namespace
 
 std::string FrameRecordToJson(const FrameRecord& record) {
   nlohmann::ordered_json targets = nlohmann::ordered_json::array();
@@ -80,6 +119,14 @@ std::string FrameRecordToJson(const FrameRecord& record) {
     if (t.reason != ReleaseReason::kNone) target["reason"] = ReleaseReasonName(t.reason);
     if (t.state == TargetState::kResumed) target["absent_frames"] = t.absent_frames;
     if (!t.label.empty()) target["label"] = t.label;
+    if (std::isfinite(t.disparity_px)) {
+      target["disparity_px"] = Rounded(t.disparity_px, 1e-3);
+      target["disparity_sd_px"] = Rounded(t.disparity_sd_px, 1e-3);
+    }
+    if (t.has_position) {
+      target["position_m"] = Rounded3(t.position_m, 1e-4);
+      target["position_sd_m"] = Rounded3(t.position_sd_m, 1e-4);
+    }
     targets.push_back(target);
   }
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
@@ -105,6 +152,27 @@ int IntIn(const nlohmann::json& value, const std::string& name, long min, long m
                              std::to_string(min) + ".." + std::to_string(max) + ")");
   }
   return static_cast<int>(number);
+}
+
+// The fields of a stereo run's target (issue 44); absent in older records and mono runs.
+void ReadDepth(const nlohmann::json& t, TargetRecord* target) {
+  if (t.contains("disparity_px")) {
+    target->disparity_px = FiniteNumber(t.at("disparity_px"), "disparity_px");
+    if (t.contains("disparity_sd_px") && !t.at("disparity_sd_px").is_null()) {
+      target->disparity_sd_px = FiniteNumber(t.at("disparity_sd_px"), "disparity_sd_px");
+    }
+  }
+  if (t.contains("position_m")) {
+    target->position_m = ThreeNumbers(t.at("position_m"), "position_m");
+    if (!(std::isfinite(target->position_m[0]) && std::isfinite(target->position_m[1]) &&
+          std::isfinite(target->position_m[2]))) {
+      throw std::runtime_error("'position_m' needs 3 numbers");
+    }
+    target->has_position = true;
+    if (t.contains("position_sd_m")) {
+      target->position_sd_m = ThreeNumbers(t.at("position_sd_m"), "position_sd_m");
+    }
+  }
 }
 
 }  // namespace
@@ -144,6 +212,7 @@ std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
           target.absent_frames = IntIn(t.at("absent_frames"), "absent_frames", 0, kMaxFrameNumber);
         }
         if (t.contains("label")) target.label = t.at("label").get<std::string>();
+        ReadDepth(t, &target);
         record.targets.push_back(target);
       }
       record.new_ids = json.at("new").get<std::vector<int>>();

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,14 @@ struct TargetRecord {
   int absent_frames = 0;
   // What a top-down channel recognised it as ("person", "face"), "" when none did.
   std::string label;
+  // A stereo run (depth.method set), a target seen this frame: its disparity and standard
+  // deviation (NaN when none); with a calibration, its position in the left camera's frame
+  // (X right, Y down, Z forward), metres, and each coordinate's standard deviation.
+  double disparity_px = std::numeric_limits<double>::quiet_NaN();
+  double disparity_sd_px = std::numeric_limits<double>::quiet_NaN();
+  bool has_position = false;
+  cv::Vec3d position_m;
+  cv::Vec3d position_sd_m;
 };
 
 struct FrameRecord {

@@ -15,7 +15,7 @@ constexpr EnumTable<TargetState, 6> kStateNames = {{{
     {TargetState::kResumed, "resumed"},
 }}};
 
-constexpr EnumTable<ReleaseReason, 7> kReasonNames = {{{
+constexpr EnumTable<ReleaseReason, 8> kReasonNames = {{{
     {ReleaseReason::kNone, ""},
     {ReleaseReason::kTooLarge, "too_large"},
     {ReleaseReason::kSpansImage, "spans_image"},
@@ -23,6 +23,7 @@ constexpr EnumTable<ReleaseReason, 7> kReasonNames = {{{
     {ReleaseReason::kLowSaliency, "low_saliency"},
     {ReleaseReason::kDuplicate, "duplicate"},
     {ReleaseReason::kUnrecognised, "unrecognised"},
+    {ReleaseReason::kDepthJump, "depth_jump"},
 }}};
 
 }  // namespace

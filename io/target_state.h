@@ -21,7 +21,8 @@ enum class ReleaseReason {
   kTooSmall,
   kLowSaliency,
   kDuplicate,
-  kUnrecognised
+  kUnrecognised,
+  kDepthJump
 };
 
 // "new", "tracked", "occluded", "lost", "released", "resumed".
@@ -29,7 +30,7 @@ const char* TargetStateName(TargetState state);
 // The state called `name`; false when there is none.
 bool TargetStateFromName(const std::string& name, TargetState* state);
 // "" (kNone), "too_large", "spans_image", "too_small", "low_saliency", "duplicate",
-// "unrecognised".
+// "unrecognised", "depth_jump".
 const char* ReleaseReasonName(ReleaseReason reason);
 
 // Whether a target in this state was seen in its frame (new, tracked or resumed): it has a box

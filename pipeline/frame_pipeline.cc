@@ -154,13 +154,34 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
     detections_.insert(detections_.end(), result.detections.begin(), result.detections.end());
   }
   attention_.Select(frame.left, context_.SkinDistance(attention_.skin_model()), tracked_,
-                    saliency_.saliency(),
-                    context_.Regions(), &attended_, detections_);
+                    saliency_.saliency(), context_.Regions(), &attended_, detections_,
+                    StereoOf(frame));
   record->timings.Add("track", attended_.track_ms);
   record->timings.Add("inhibit", attended_.inhibit_ms);
   record->timings.Add("select", attended_.select_ms);
   record->inhibited_fraction = attended_.inhibited_fraction;
   RecordTargets(record);
+}
+
+void FramePipeline::SetCamera(const SequenceInfo& info) {
+  calibration_ = info.calibration;
+  scale_x_ = info.scale_x;
+  scale_y_ = info.scale_y;
+}
+
+StereoInput FramePipeline::StereoOf(const StereoFrame& frame) const {
+  const DepthOptions& depth = options_.attention.depth;
+  StereoInput stereo;
+  if (depth.method == TargetDisparityMethod::kOff || frame.right.empty()) return stereo;
+  stereo.right = frame.right;
+  const DisparityOptions& disparity = context_.disparity_options();
+  stereo.max_disparity = disparity.max_disparity;
+  stereo.window = disparity.window;
+  if (depth.method == TargetDisparityMethod::kMap || depth.inhibit_band_px > 0.f ||
+      depth.separate_px > 0.f) {
+    stereo.disparity = context_.Disparity(disparity);
+  }
+  return stereo;
 }
 
 void FramePipeline::Saliency(const StereoFrame& frame) {
@@ -186,6 +207,21 @@ void FramePipeline::RecordTargets(FrameRecord* record) const {
     out.reason = target.reason;
     out.absent_frames = target.absent_frames;
     out.label = target.label;
+    out.disparity_px = target.disparity;
+    out.disparity_sd_px = target.disparity_sd;
+    if (calibration_ != nullptr && target.centroid.x >= 0.f) {
+      // The calibration's pixels are the native frame's (SPEC 3.3's input pixels).
+      const cv::Point2d centroid((target.centroid.x + 0.5) / scale_x_ - 0.5,
+                                 (target.centroid.y + 0.5) / scale_y_ - 0.5);
+      const DisparityEstimate native{target.disparity / scale_x_, target.disparity_sd / scale_x_};
+      Position3d position;
+      if (Triangulate(calibration_->focal_px(), calibration_->cx(), calibration_->cy(),
+                      calibration_->baseline_m(), centroid, native, &position)) {
+        out.has_position = true;
+        out.position_m = position.m;
+        out.position_sd_m = position.sd_m;
+      }
+    }
     record->targets.push_back(out);
   }
   record->new_ids = attended_.new_ids;

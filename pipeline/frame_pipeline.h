@@ -3,6 +3,7 @@
 // map. `attend run` drives it frame by frame and writes what it produced.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,10 @@ class FramePipeline {
   // Tell the feature plugins that a sequence starts (before its first Process) or has ended.
   void BeginSequence(const SequenceStart& start) { features_.BeginSequence(start); }
   void EndSequence() { features_.EndSequence(); }
+  // The sequence's camera: its stereo calibration (SequenceInfo::calibration; none: targets
+  // get a disparity but no position) and the working size's scales, which take the targets'
+  // centroids and disparities to the calibration's pixels.
+  void SetCamera(const SequenceInfo& info);
 
   // Results of the last frame.
   const FrameContext& context() const { return context_; }
@@ -70,6 +75,8 @@ class FramePipeline {
  private:
   // The feature maps normalised, weighted and combined by saliency_ (SPEC 2.3).
   void Saliency(const StereoFrame& frame);
+  // What the attention stage takes of the stereo pair for the targets' disparities.
+  StereoInput StereoOf(const StereoFrame& frame) const;
   // The attention stage's targets as the frame's records (SPEC 3.3).
   void RecordTargets(FrameRecord* record) const;
 
@@ -84,6 +91,8 @@ class FramePipeline {
   TrackedTargets tracked_;  // what attention_ tracked in this frame
   std::vector<Detection> detections_;  // the top-down channels' detections in this frame
   AttentionFrame attended_;
+  std::shared_ptr<const StereoCalibration> calibration_;
+  double scale_x_ = 1.0, scale_y_ = 1.0;
 };
 
 }  // namespace attend

@@ -107,6 +107,14 @@ void VisitMemory(AttendOptions* o, Visitor& v) {
   v.EndSection([o] { return o->attention.Check(); });
 }
 
+// depth: each target's disparity and position in a stereo run, and depth in the loop.
+template <typename Visitor>
+void VisitDepth(AttendOptions* o, Visitor& v) {
+  v.BeginSection("depth");
+  v.Fields(&o->attention.depth, DepthOptions::Fields());
+  v.EndSection([o] { return o->attention.Check(); });
+}
+
 // The tracker kinds that read `key` (TrackerKindInfo::uses_key), as "kcf or csrt".
 std::string KindsUsing(std::string_view key) {
   std::vector<std::string> kinds;
@@ -163,6 +171,7 @@ void VisitOptions(AttendOptions* o, Visitor& v) {
   VisitDrop(o, v);
   VisitInhibition(o, v);
   VisitMemory(o, v);
+  VisitDepth(o, v);
   VisitTracker(o, v);
   v.Fields(o, AttendOptions::Fields(), "", "threads");
 }

@@ -341,6 +341,7 @@ RunSummary RunSequence(const RunRequest& request) {
   RunSummary summary;
   const FeatureSetup setup = SetUpFeatures(request, info, registry, &options, &summary);
   FramePipeline pipeline(options, registry, setup, &execution);
+  pipeline.SetCamera(info);
 
   const std::string out_dir = request.out_dir.empty()
                                   ? DefaultRunFolder("runs", request.config_path, info.name)

@@ -47,6 +47,7 @@ struct AttentionStage::Impl {
     const Segmentation& segmentation;
     const std::vector<Detection>& detections;
     cv::Rect image;
+    const StereoInput& stereo;
   };
 
   void Track(const cv::Mat& bgr, const cv::Mat& skin_distance, TrackedTargets* tracked,
@@ -88,6 +89,10 @@ struct AttentionStage::Impl {
   void Look(const Frame& in, const AttentionFrame& frame, const std::vector<cv::Rect>& looked);
   // Leaves an object file for a target that ends.
   void Forget(const FollowedTarget& followed);
+  // A seen target's disparity this frame (its mask `own`; `raw` its raw estimate when
+  // measured already) and its centroid.
+  void Depth(const Frame& in, const cv::Mat& own, AttendedTarget* target,
+             DisparityEstimate raw = {}, bool measured = false);
 
   // What targets look like, with an embedding (attention.appearance): the target's box in
   // `bgr`, over its mask `own` (may be empty: the box); `embed` takes the embedding.
@@ -107,6 +112,7 @@ struct AttentionStage::Impl {
   CandidateFinder candidates_;
   SeedMaker seeds_;
   std::unique_ptr<MotionGrouping> grouping_;  // select.group_min_speed > 0 only
+  TargetDepths depths_;
   // Per detection of the frame: a target is on it (recognised, or started on it).
   std::vector<uint8_t> detection_used_;
   std::vector<cv::Rect> look_regions_;
@@ -124,7 +130,8 @@ AttentionStage::Impl::Impl(const AttentionOptions& options, SkinModel skin_model
       release_(options_.select, options_.drop),
       recogniser_(options_.select, options_.drop, options_.label_overlap, reidentifier_.get()),
       candidates_(options_.select, pool),
-      seeds_(options_.select) {
+      seeds_(options_.select),
+      depths_(options_.depth) {
   if (options_.select.group_min_speed > 0.f) {
     grouping_ = std::make_unique<MotionGrouping>(options_.select.group_min_speed,
                                                  options_.select.group_flow_tolerance);
@@ -193,6 +200,7 @@ void AttentionStage::Impl::FollowTargets(const Frame& in, AttentionFrame* frame)
       ++followed->since_kept;
       removed.push_back(result.id);
       Forget(*followed);
+      depths_.Forget(followed->id);
     }
     frame->targets.push_back(target);
   }
@@ -211,6 +219,16 @@ void AttentionStage::Impl::FollowFound(const Frame& in, const TrackResult& resul
       release_.duplicates() && result.area > 0 ? held_.Shared(mask, result.area) : 0.0;
   target->reason =
       release_.WhyReleased(target->box, target->area, followed->low_frames, shared, in.image);
+  // Depth in the loop: a target whose disparity jumps has slid onto another object.
+  const bool depth = depths_.enabled() && !in.stereo.empty();
+  const DisparityEstimate raw =
+      depth ? depths_.Measure(in.bgr, in.stereo, mask, target->box) : DisparityEstimate{};
+  if (target->reason == ReleaseReason::kNone && options_.depth.jump_px > 0.f && raw.valid()) {
+    const DisparityEstimate last = depths_.Last(target->id);
+    if (last.valid() && std::abs(raw.disparity - last.disparity) > options_.depth.jump_px) {
+      target->reason = ReleaseReason::kDepthJump;
+    }
+  }
   const cv::Mat own =
       target->reason == ReleaseReason::kNone && !in.detections.empty() && !followed->skin
           ? Recognise(in, result, mask, detection, followed, target)
@@ -222,8 +240,11 @@ void AttentionStage::Impl::FollowFound(const Frame& in, const TrackResult& resul
     // A duplicate's object is another target's; any other release ends the object's
     // tracking, not the object (its file keeps the last box it was kept with).
     if (target->reason != ReleaseReason::kDuplicate) Forget(*followed);
+    depths_.Forget(target->id);
     return;
   }
+  // A target restarted on its detection is measured again on its new mask.
+  if (depth) Depth(in, own, target, raw, own.data == mask.data);
   Keep(in, own, *target, followed);
 }
 
@@ -405,6 +426,8 @@ bool AttentionStage::Impl::Start(const Frame& in, const Seed& seed, bool skin,
     }
   }
   target.id = targets_.Add(std::move(followed));
+  depths_.Forget(target.id);  // a resumed object's disparity starts again
+  if (depths_.enabled() && !in.stereo.empty()) Depth(in, own, &target);
   if (target.state == TargetState::kNew) frame->new_ids.push_back(target.id);
   frame->targets.push_back(target);
   return true;
@@ -446,6 +469,19 @@ void AttentionStage::Impl::Look(const Frame& in, const AttentionFrame& frame,
   look_regions_.insert(look_regions_.end(), looked.begin(), looked.end());
 }
 
+void AttentionStage::Impl::Depth(const Frame& in, const cv::Mat& own, AttendedTarget* target,
+                                 DisparityEstimate raw, bool measured) {
+  if (!measured) raw = depths_.Measure(in.bgr, in.stereo, own, target->box);
+  const DisparityEstimate filtered = depths_.Update(target->id, raw);
+  target->disparity = filtered.disparity;
+  target->disparity_sd = filtered.sd;
+  const cv::Moments moments = cv::moments(own(target->box & in.image), true);
+  if (moments.m00 > 0) {
+    target->centroid = cv::Point2f(static_cast<float>(moments.m10 / moments.m00 + target->box.x),
+                                   static_cast<float>(moments.m01 / moments.m00 + target->box.y));
+  }
+}
+
 void AttentionStage::Impl::Forget(const FollowedTarget& followed) {
   if (!files_.enabled() || followed.last_box.empty()) return;
   files_.Remember(followed.File());
@@ -466,11 +502,11 @@ void AttentionStage::Track(const cv::Mat& bgr, const cv::Mat& skin_distance,
 void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
                             const TrackedTargets& tracked, const cv::Mat& saliency,
                             const Segmentation& segmentation, AttentionFrame* frame,
-                            const std::vector<Detection>& detections) {
+                            const std::vector<Detection>& detections, const StereoInput& stereo) {
   // Maps of the last frame that someone still holds are let go (util/shared_mat.h).
   impl_->inhibition_.ReleaseShared();
   impl_->Select({bgr, skin_distance, tracked, saliency, segmentation, detections,
-                 cv::Rect(0, 0, bgr.cols, bgr.rows)},
+                 cv::Rect(0, 0, bgr.cols, bgr.rows), stereo},
                 frame);
 }
 

@@ -27,6 +27,7 @@
 // followed across frames are followed_targets.h's.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
@@ -38,6 +39,7 @@
 #include "pyramid/segmentation.h"
 #include "semiattentive/attention_options.h"
 #include "semiattentive/object_files.h"
+#include "semiattentive/target_depth.h"
 #include "tracker/target_tracker.h"
 
 namespace attend {
@@ -54,6 +56,12 @@ struct AttendedTarget {
   bool skin = false;
   int absent_frames = 0;  // state resumed: the frames its object file was remembered unseen
   std::string label;      // from a top-down channel's detections; "" when none
+  // A stereo run with depth.method set, a target seen this frame (new, tracked, resumed):
+  // its disparity, filtered over its frames, and its standard deviation, working pixels
+  // (NaN when it has none), and its mask's centroid.
+  double disparity = std::numeric_limits<double>::quiet_NaN();
+  double disparity_sd = std::numeric_limits<double>::quiet_NaN();
+  cv::Point2f centroid{-1.f, -1.f};
 };
 
 struct AttentionFrame {
@@ -89,10 +97,11 @@ class AttentionStage {
   // From the targets `tracked` in this frame: builds the inhibition, inhibits `saliency`,
   // selects and starts new targets on the colour regions of `segmentation`, and fills
   // `frame`. `detections`: the top-down channels' detections in this frame, which label the
-  // targets and seed them with select.seed: detection.
+  // targets and seed them with select.seed: detection. `stereo`: the frame's right view and
+  // disparity, for each target's disparity and depth in the loop (the depth section).
   void Select(const cv::Mat& bgr, const cv::Mat& skin_distance, const TrackedTargets& tracked,
               const cv::Mat& saliency, const Segmentation& segmentation, AttentionFrame* frame,
-              const std::vector<Detection>& detections = {});
+              const std::vector<Detection>& detections = {}, const StereoInput& stereo = {});
   // Where attention looked in the last frame Select saw: the boxes of the targets it follows,
   // of its object files' predictions and of the candidates it weighed (at most
   // kLookCandidates, best first); FrameContext::AttentionRegions of the next frame.

@@ -30,6 +30,8 @@ std::string AttentionOptions::Check() const {
   if (!error.empty()) return "tracker." + error;
   error = appearance.Check();
   if (!error.empty()) return "attention." + error;
+  error = depth.Check();
+  if (!error.empty()) return "depth." + error;
   error = memory.Check();
   if (!error.empty()) return "attention." + error;
   return "";

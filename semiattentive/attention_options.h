@@ -12,6 +12,7 @@
 #include "semiattentive/reidentification.h"
 #include "semiattentive/release.h"
 #include "semiattentive/select_options.h"
+#include "semiattentive/target_depth.h"
 #include "tracker/target_tracker.h"
 #include "util/option_fields.h"
 
@@ -36,6 +37,8 @@ struct AttentionOptions {
   // What targets look like: a re-identification network's embedding beside the colour
   // histogram and grey template (semiattentive/reidentification.h); none by default.
   AppearanceOptions appearance;
+  // Each target's disparity and depth in the loop (the depth section; target_depth.h).
+  DepthOptions depth;
   // A target takes the label of a top-down detection ("person", "face") whose box and its own
   // overlap by at least this share of the larger of the two.
   float label_overlap = 0.5f;
