@@ -1,5 +1,6 @@
 #include "app/estimate_disparity.h"
 
+#include "app/region_disparity.h"
 #include "eval/disparity_scores.h"
 #include "io/disparity_files.h"
 #include "util/error.h"
@@ -72,6 +73,10 @@ nlohmann::json EstimateDisparity(const DisparityRequest& request) {
     report["known_pixels"] = rates.known;
     report["bad1"] = rates.bad1;
     report["bad2"] = rates.bad2;
+    if (request.regions > 0.0) {
+      report["regions"] = ScoreRegionDisparities(left, right, disparity, ground_truth, options,
+                                                 request.regions);
+    }
   }
   return report;
 }

@@ -17,6 +17,9 @@ struct DisparityRequest {
   DisparityOptions options;  // valid (Check)
   std::string gt;            // optional ground truth of the left view
   double gt_scale = 1.0;     // its values are divided by this
+  // With gt: the regions of the left image's BIP segmentation larger than this share of the
+  // image are scored as targets (app/region_disparity.h); 0: not.
+  double regions = 0.0;
 };
 
 // Reads and checks every input before computing or writing anything, computes the map, writes

@@ -36,6 +36,7 @@ struct DisparityArguments {
   bool left_right_check = false;
   std::string gt;
   double gt_scale = 1.0;
+  double regions = 0.0;
   std::vector<std::string> sets;
 };
 
@@ -109,6 +110,7 @@ int Disparity(const DisparityArguments& args, bool subpixel_given, bool lr_check
   request.out = args.out;
   request.gt = args.gt;
   request.gt_scale = args.gt_scale;
+  request.regions = args.regions;
   std::cout << JsonText(EstimateDisparity(request), 2) << std::endl;
   return 0;
 }
@@ -173,6 +175,14 @@ void AddDisparityCommand(CLI::App& app, const std::string&, CommandAction* actio
                        : "'" + text + "' is not a finite number > 0";
           },
           "POSITIVE"))
+      ->needs(gt);
+  command
+      ->add_option("--regions", args->regions,
+                   "With --gt: score the regions of the left image's BIP segmentation larger "
+                   "than this share of the image (e.g. 0.01) as targets, each region's disparity "
+                   "estimated both ways of the depth section (template, map) against the ground "
+                   "truth's median over it (docs/STEREO3D.md)")
+      ->check(CLI::Range(0.0, 1.0))
       ->needs(gt);
   AddSetOption(command, &args->sets,
                "Set an option, the value parsed as YAML (repeatable): --set "

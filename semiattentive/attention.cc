@@ -89,6 +89,12 @@ struct AttentionStage::Impl {
   void Look(const Frame& in, const AttentionFrame& frame, const std::vector<cv::Rect>& looked);
   // Leaves an object file for a target that ends.
   void Forget(const FollowedTarget& followed);
+  // Depth in the loop: the pixels of the frame that a target at disparity `d` neither
+  // inhibits (in front of it) nor covers (apart from it); empty when off or unknown.
+  struct DepthMasks {
+    cv::Mat in_front, apart;
+  };
+  DepthMasks DepthMasksOf(const Frame& in, const DisparityEstimate& d) const;
   // A seen target's disparity this frame (its mask `own`; `raw` its raw estimate when
   // measured already) and its centroid.
   void Depth(const Frame& in, const cv::Mat& own, AttendedTarget* target,
@@ -193,7 +199,8 @@ void AttentionStage::Impl::FollowTargets(const Frame& in, AttentionFrame* frame)
       ++followed->unseen;
       ++followed->since_kept;
       target.saliency = target.box.empty() ? 0.0 : cv::mean(in.saliency(target.box))[0];
-      inhibition_.AddOccluded(target.box, result.roi, in.image);
+      const DepthMasks masks = DepthMasksOf(in, depths_.Last(target.id));
+      inhibition_.AddOccluded(target.box, result.roi, in.image, masks.in_front, masks.apart);
     } else {
       target.state = TargetState::kLost;
       ++followed->unseen;
@@ -223,11 +230,11 @@ void AttentionStage::Impl::FollowFound(const Frame& in, const TrackResult& resul
   const bool depth = depths_.enabled() && !in.stereo.empty();
   const DisparityEstimate raw =
       depth ? depths_.Measure(in.bgr, in.stereo, mask, target->box) : DisparityEstimate{};
-  if (target->reason == ReleaseReason::kNone && options_.depth.jump_px > 0.f && raw.valid()) {
-    const DisparityEstimate last = depths_.Last(target->id);
-    if (last.valid() && std::abs(raw.disparity - last.disparity) > options_.depth.jump_px) {
-      target->reason = ReleaseReason::kDepthJump;
-    }
+  if (depth && options_.depth.jump_px > 0.f &&
+      depths_.JumpOf(target->id, in.bgr, in.stereo, mask, target->box, raw) >
+          options_.depth.jump_px &&
+      target->reason == ReleaseReason::kNone) {
+    target->reason = ReleaseReason::kDepthJump;
   }
   const cv::Mat own =
       target->reason == ReleaseReason::kNone && !in.detections.empty() && !followed->skin
@@ -275,7 +282,8 @@ cv::Mat AttentionStage::Impl::Recognise(const Frame& in, const TrackResult& resu
 
 void AttentionStage::Impl::Keep(const Frame& in, const cv::Mat& own, const AttendedTarget& target,
                                 FollowedTarget* followed) {
-  inhibition_.AddTarget(own, target.box, in.image);
+  const DepthMasks masks = DepthMasksOf(in, {target.disparity, target.disparity_sd});
+  inhibition_.AddTarget(own, target.box, in.image, masks.in_front, masks.apart);
   if (release_.duplicates()) held_.Hold(own);
   // Its file remembers it as it was last seen on its object: with top-down channels, a
   // labelled target only in the frames a detection is on it (its tracker may drift in the
@@ -427,7 +435,16 @@ bool AttentionStage::Impl::Start(const Frame& in, const Seed& seed, bool skin,
   }
   target.id = targets_.Add(std::move(followed));
   depths_.Forget(target.id);  // a resumed object's disparity starts again
-  if (depths_.enabled() && !in.stereo.empty()) Depth(in, own, &target);
+  if (depths_.enabled() && !in.stereo.empty()) {
+    Depth(in, own, &target);
+    // The jump test's series starts with the target (its first frame cannot jump).
+    if (options_.depth.jump_px > 0.f) {
+      const bool by_template = options_.depth.method == TargetDisparityMethod::kTemplate;
+      depths_.JumpOf(target.id, in.bgr, in.stereo, own, target.box,
+                     by_template ? depths_.Measure(in.bgr, in.stereo, own, target.box)
+                                 : DisparityEstimate{});
+    }
+  }
   if (target.state == TargetState::kNew) frame->new_ids.push_back(target.id);
   frame->targets.push_back(target);
   return true;
@@ -480,6 +497,22 @@ void AttentionStage::Impl::Depth(const Frame& in, const cv::Mat& own, AttendedTa
     target->centroid = cv::Point2f(static_cast<float>(moments.m10 / moments.m00 + target->box.x),
                                    static_cast<float>(moments.m01 / moments.m00 + target->box.y));
   }
+}
+
+AttentionStage::Impl::DepthMasks AttentionStage::Impl::DepthMasksOf(
+    const Frame& in, const DisparityEstimate& d) const {
+  DepthMasks masks;
+  if (in.stereo.disparity.empty() || !d.valid()) return masks;
+  const DepthOptions& depth = options_.depth;
+  if (depth.inhibit_band_px > 0.f) {
+    masks.in_front = in.stereo.disparity > d.disparity + depth.inhibit_band_px;
+  }
+  if (depth.separate_px > 0.f) {
+    cv::Mat distance;
+    cv::absdiff(in.stereo.disparity, cv::Scalar(d.disparity), distance);
+    masks.apart = distance > depth.separate_px;
+  }
+  return masks;
 }
 
 void AttentionStage::Impl::Forget(const FollowedTarget& followed) {

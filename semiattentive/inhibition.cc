@@ -27,7 +27,8 @@ void Inhibition::Reset(cv::Size size) {
   covered_.setTo(0);
 }
 
-void Inhibition::AddTarget(const cv::Mat& own, const cv::Rect& box, const cv::Rect& image) {
+void Inhibition::AddTarget(const cv::Mat& own, const cv::Rect& box, const cv::Rect& image,
+                           const cv::Mat& in_front, const cv::Mat& apart) {
   // The mask, dilated, within its box plus the margin.
   const int margin = options_.margin;
   const cv::Rect around =
@@ -35,15 +36,27 @@ void Inhibition::AddTarget(const cv::Mat& own, const cv::Rect& box, const cv::Re
       image;
   cv::Mat grown;
   cv::dilate(own(around), grown, kernel_);
+  if (!in_front.empty()) grown.setTo(0, in_front(around));
   inhibition_(around).setTo(1.f, grown);
-  covered_.setTo(255, own);
+  if (apart.empty()) {
+    covered_.setTo(255, own);
+  } else {
+    cv::Mat own_here;
+    own(around).copyTo(own_here);
+    own_here.setTo(0, apart(around));
+    covered_(around).setTo(255, own_here);
+  }
 }
 
-void Inhibition::AddOccluded(const cv::Rect& box, const cv::Rect& roi, const cv::Rect& image) {
+void Inhibition::AddOccluded(const cv::Rect& box, const cv::Rect& roi, const cv::Rect& image,
+                             const cv::Mat& in_front, const cv::Mat& apart) {
   if (!options_.keep_occluded || box.empty()) return;
   const cv::Rect area = options_.occluded_search && !roi.empty() ? (box | roi) & image : box;
+  if (area.empty()) return;
   inhibition_(area).setTo(1.f);
+  if (!in_front.empty()) inhibition_(area).setTo(0.f, in_front(area));
   covered_(area).setTo(255);
+  if (!apart.empty()) covered_(area).setTo(0, apart(area));
 }
 
 int Inhibition::Apply(const cv::Mat& saliency, const ObjectFiles& files) {

@@ -34,10 +34,15 @@ class Inhibition {
   // A new frame of `size`: nothing inhibited or covered.
   void Reset(cv::Size size);
   // A kept target: its mask `own` (CV_8UC1, frame size) with bounding box `box`, in `image`.
-  void AddTarget(const cv::Mat& own, const cv::Rect& box, const cv::Rect& image);
+  // `in_front` (depth in the loop; CV_8UC1 of the frame's size, or empty: none): pixels nearer
+  // than the target by depth.inhibit_band_px, which it does not inhibit, and `apart`, those
+  // nearer or farther by depth.separate_px, which it does not cover.
+  void AddTarget(const cv::Mat& own, const cv::Rect& box, const cv::Rect& image,
+                 const cv::Mat& in_front = cv::Mat(), const cv::Mat& apart = cv::Mat());
   // An occluded target last at `box` (clipped to `image`), searched in `roi` this frame
   // (empty: not searched); nothing unless keep_occluded.
-  void AddOccluded(const cv::Rect& box, const cv::Rect& roi, const cv::Rect& image);
+  void AddOccluded(const cv::Rect& box, const cv::Rect& roi, const cv::Rect& image,
+                   const cv::Mat& in_front = cv::Mat(), const cv::Mat& apart = cv::Mat());
   // Adds the object files' inhibition and inhibits `saliency` (CV_32FC1); returns the
   // inhibited pixels.
   int Apply(const cv::Mat& saliency, const ObjectFiles& files);

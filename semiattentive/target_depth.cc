@@ -24,6 +24,26 @@ double IndependentSamples(int pixels, int step, int window) {
   return std::max(1.0, pixels / per_sample);
 }
 
+// The mean of the values between the quartiles, and the values' spread (1.4826 MAD).
+struct RobustSpread {
+  double mean = 0.0;
+  double spread = 0.0;
+  size_t count = 0;
+};
+
+RobustSpread InterquartileMean(std::vector<float> values) {
+  std::sort(values.begin(), values.end());
+  const size_t count = values.size();
+  const size_t low = count / 4, high = std::max(low + 1, count - count / 4);
+  double sum = 0.0;
+  for (size_t i = low; i < high; ++i) sum += values[i];
+  const double median = values[count / 2];
+  std::vector<double> deviations(count);
+  for (size_t i = 0; i < count; ++i) deviations[i] = std::abs(values[i] - median);
+  std::nth_element(deviations.begin(), deviations.begin() + count / 2, deviations.end());
+  return {sum / static_cast<double>(high - low), 1.4826 * deviations[count / 2], count};
+}
+
 }  // namespace
 
 const OptionFields<DepthOptions>& DepthOptions::Fields() {
@@ -58,8 +78,11 @@ DisparityEstimate TemplateDisparity(const cv::Mat& left, const cv::Mat& right, c
   if (pixels == 0 || max_disparity < 1) return {};
   const int step = SampleStep(pixels, options.max_samples);
   const int tolerance = static_cast<int>(options.match_tolerance);
-  // matches[d]: template pixels whose colour matches at shift d.
-  std::vector<int> matches(max_disparity, 0);
+  // matches[d]: template pixels whose colour matches at shift d; in_view[d]: those that the
+  // right view shows at all (x - d >= 0). A left pixel nearer the left edge than its disparity
+  // has no partner: at each shift the overlap is taken over the pixels in view, and a shift
+  // that leaves fewer than half of them in view is not tried.
+  std::vector<int> matches(max_disparity, 0), in_view(max_disparity, 0);
   int samples = 0;
   for (int y = inside.y; y < inside.br().y; y += step) {
     const uint8_t* m = mask.ptr<uint8_t>(y);
@@ -74,18 +97,26 @@ DisparityEstimate TemplateDisparity(const cv::Mat& left, const cv::Mat& right, c
         const cv::Vec3b& q = r[x - d];
         const int cost = std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]);
         matches[d] += cost <= tolerance;
+        ++in_view[d];
       }
     }
   }
-  const auto best_it = std::max_element(matches.begin(), matches.end());
-  if (samples == 0 || *best_it == 0) return {};
-  const int best = static_cast<int>(best_it - matches.begin());
-  const double p0 = static_cast<double>(*best_it) / samples;
+  if (samples == 0) return {};
+  std::vector<double> overlap(max_disparity, -1.0);  // -1: not tried
+  int best = -1;
+  for (int d = 0; d < max_disparity; ++d) {
+    if (2 * in_view[d] < samples) continue;
+    overlap[d] = static_cast<double>(matches[d]) / in_view[d];
+    if (best < 0 || overlap[d] > overlap[best]) best = d;
+  }
+  if (best < 0 || overlap[best] <= 0.0) return {};
+  const double p0 = overlap[best];
   double offset = 0.0;
   double curvature = 0.0;  // the overlap's second difference at the peak, <= 0
-  if (best > 0 && best + 1 < max_disparity) {
-    const double minus = static_cast<double>(matches[best - 1]) / samples;
-    const double plus = static_cast<double>(matches[best + 1]) / samples;
+  if (best > 0 && best + 1 < max_disparity && overlap[best - 1] >= 0.0 &&
+      overlap[best + 1] >= 0.0) {
+    const double minus = overlap[best - 1];
+    const double plus = overlap[best + 1];
     curvature = minus - 2.0 * p0 + plus;
     if (curvature < 0.0) offset = std::clamp(0.5 * (minus - plus) / curvature, -0.5, 0.5);
   }
@@ -107,26 +138,31 @@ DisparityEstimate MapDisparity(const cv::Mat& disparity, const cv::Mat& mask, co
   if (pixels == 0) return {};
   const int step = SampleStep(pixels, options.max_samples);
   std::vector<float> values;
-  values.reserve(std::min(pixels, options.max_samples * 2));
+  std::vector<int> columns;
   for (int y = inside.y; y < inside.br().y; y += step) {
     const uint8_t* m = mask.ptr<uint8_t>(y);
     const float* d = disparity.ptr<float>(y);
     for (int x = inside.x; x < inside.br().x; x += step) {
-      if (m[x] != 0 && d[x] >= 0.f && std::isfinite(d[x])) values.push_back(d[x]);
+      if (m[x] != 0 && d[x] >= 0.f && std::isfinite(d[x])) {
+        values.push_back(d[x]);
+        columns.push_back(x);
+      }
     }
   }
   if (values.empty()) return {};
-  std::sort(values.begin(), values.end());
-  const size_t count = values.size();
-  const size_t low = count / 4, high = std::max(low + 1, count - count / 4);
-  double sum = 0.0;
-  for (size_t i = low; i < high; ++i) sum += values[i];
-  const double mean = sum / static_cast<double>(high - low);
-  const double median = values[count / 2];
-  std::vector<double> deviations(count);
-  for (size_t i = 0; i < count; ++i) deviations[i] = std::abs(values[i] - median);
-  std::nth_element(deviations.begin(), deviations.begin() + count / 2, deviations.end());
-  const double spread = 1.4826 * deviations[count / 2];
+  // A left pixel nearer the left edge than its disparity has no partner in the right view, and
+  // its value is a guess: once the estimate is known, those pixels are left out and it is made
+  // again (where at least a quarter remain).
+  RobustSpread estimate = InterquartileMean(values);
+  std::vector<float> seen;
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (columns[i] >= estimate.mean) seen.push_back(values[i]);
+  }
+  if (seen.size() < values.size() && 4 * seen.size() >= values.size()) {
+    estimate = InterquartileMean(seen);
+  }
+  const size_t count = estimate.count;
+  const double mean = estimate.mean, spread = estimate.spread;
   const double n = IndependentSamples(static_cast<int>(count), step, window);
   // The interquartile mean's standard error is about 1.1 sigma / sqrt(n) for normal values;
   // an integer map's rounding (sd 1 / sqrt(12)) stands in for a spread of 0.
@@ -216,6 +252,26 @@ bool Triangulate(double focal_px, double cx, double cy, double baseline_m, cv::P
   position->m = m;
   for (int k = 0; k < 3; ++k) position->sd_m[k] = std::abs(m[k]) * relative;
   return true;
+}
+
+double TargetDepths::JumpOf(int id, const cv::Mat& left, const StereoInput& stereo,
+                           const cv::Mat& mask, const cv::Rect& box, const DisparityEstimate& raw) {
+  if (stereo.empty() || mask.empty()) return 0.0;
+  const DisparityEstimate estimate =
+      options_.method == TargetDisparityMethod::kTemplate
+          ? raw
+          : TemplateDisparity(left, stereo.right, mask, box, stereo.max_disparity, options_,
+                              stereo.window);
+  if (!estimate.valid()) return 0.0;
+  auto it = jumps_.find(id);
+  double jump = 0.0;
+  if (it == jumps_.end()) {
+    it = jumps_.emplace(id, JumpTrack(options_.low_pass)).first;
+  } else {
+    jump = std::abs(estimate.disparity - it->second.last);
+  }
+  it->second.last = it->second.filter.Step(estimate.disparity);
+  return jump;
 }
 
 DisparityEstimate TargetDepths::Last(int id) const {

@@ -41,12 +41,13 @@ inline constexpr EnumTable<TargetDisparityMethod, 3> kTargetDisparityMethods = {
 // The configuration's `depth:` section.
 struct DepthOptions {
   // How each target's disparity is estimated on a stereo run; off: not at all.
+  // map is the more accurate on the real pairs and on the rendered scenes (docs/STEREO3D.md).
   TargetDisparityMethod method = TargetDisparityMethod::kMap;
   // template: a template pixel matches the right image's pixel when the sum over B, G, R of
   // their absolute differences is at most this (8-bit values).
   float match_tolerance = 30.f;
   // The fourth-order low-pass filter's cutoff, a fraction of the frame rate; 0.5 or more: none.
-  float low_pass = 0.5f;
+  float low_pass = 0.1f;
   // The pixels of the template (or of the mask) read, at most: a larger target is read on a
   // regular grid of about this many (its estimate then costs no more than a smaller one's).
   int max_samples = 4096;
@@ -55,8 +56,10 @@ struct DepthOptions {
   // `separate_px` from that of the target it overlaps is not that target's;
   float separate_px = 0.f;
   // a found target whose raw disparity leaves its filtered one by more than `jump_px` is a
-  // switch to another object, and is released ("depth_jump");
-  float jump_px = 0.f;
+  // switch to another object, and is released ("depth_jump"); the test is always on the
+  // thesis's template estimate, filtered at low_pass, whatever `method` records (it measured
+  // best so on the rendered scenes, docs/STEREO3D.md; the map's jumped on its own noise);
+  float jump_px = 3.f;
   // a target inhibits only the pixels whose disparity is within `inhibit_band_px` of its own
   // (an object passing in front of it is not inhibited by it).
   float inhibit_band_px = 0.f;
@@ -142,7 +145,15 @@ class TargetDepths {
   DisparityEstimate Update(int id, const DisparityEstimate& raw);
   // Its last filtered disparity (invalid when it has none).
   DisparityEstimate Last(int id) const;
-  void Forget(int id) { tracks_.erase(id); }
+  // depth.jump_px: how far the template estimate of target `id` on `mask` leaves its filtered
+  // series (0 when it has none yet), which then takes the estimate in. `raw` is this frame's
+  // estimate when `method` is template (measured already), ignored otherwise.
+  double JumpOf(int id, const cv::Mat& left, const StereoInput& stereo, const cv::Mat& mask,
+                const cv::Rect& box, const DisparityEstimate& raw);
+  void Forget(int id) {
+    tracks_.erase(id);
+    jumps_.erase(id);
+  }
 
  private:
   struct Track {
@@ -152,6 +163,13 @@ class TargetDepths {
     int frames = 0;
     DisparityEstimate last;
   };
+  // The template's series for the jump test.
+  struct JumpTrack {
+    explicit JumpTrack(double cutoff) : filter(cutoff) {}
+    LowPass4 filter;
+    double last = 0.0;
+  };
+  std::map<int, JumpTrack> jumps_;
   DepthOptions options_;
   std::map<int, Track> tracks_;
 };
