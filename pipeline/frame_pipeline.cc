@@ -107,6 +107,7 @@ FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry
   // The run's disparity (FrameContext::disparity_options) is the `disparity` feature's.
   for (const FeatureSpec& spec : options.features) {
     if (spec.enabled && spec.name == "disparity") {
+      has_disparity_ = true;
       context_.set_disparity_options(ReadDisparityOptions(spec.params));
     }
   }
@@ -177,8 +178,10 @@ StereoInput FramePipeline::StereoOf(const StereoFrame& frame) const {
   const DisparityOptions& disparity = context_.disparity_options();
   stereo.max_disparity = disparity.max_disparity;
   stereo.window = disparity.window;
-  if (depth.method == TargetDisparityMethod::kMap || depth.inhibit_band_px > 0.f ||
-      depth.separate_px > 0.f) {
+  // The dense map is the disparity feature's: without that feature none is computed for the
+  // targets (method map then measures by the template).
+  if (has_disparity_ && (depth.method == TargetDisparityMethod::kMap ||
+                         depth.inhibit_band_px > 0.f || depth.separate_px > 0.f)) {
     stereo.disparity = context_.Disparity(disparity);
   }
   return stereo;

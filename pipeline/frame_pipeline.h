@@ -91,6 +91,7 @@ class FramePipeline {
   TrackedTargets tracked_;  // what attention_ tracked in this frame
   std::vector<Detection> detections_;  // the top-down channels' detections in this frame
   AttentionFrame attended_;
+  bool has_disparity_ = false;  // the disparity feature is enabled
   std::shared_ptr<const StereoCalibration> calibration_;
   double scale_x_ = 1.0, scale_y_ = 1.0;
 };

@@ -75,6 +75,7 @@ DisparityEstimate TemplateDisparity(const cv::Mat& left, const cv::Mat& right, c
       << "TemplateDisparity takes 8-bit BGR views and an 8-bit mask";
   const cv::Rect inside = box & cv::Rect(0, 0, left.cols, left.rows);
   const int pixels = inside.empty() ? 0 : cv::countNonZero(mask(inside));
+  max_disparity = std::min(max_disparity, left.cols);
   if (pixels == 0 || max_disparity < 1) return {};
   const int step = SampleStep(pixels, options.max_samples);
   const int tolerance = static_cast<int>(options.match_tolerance);
@@ -223,7 +224,11 @@ DisparityEstimate TargetDepths::Measure(const cv::Mat& left, const StereoInput& 
     return TemplateDisparity(left, stereo.right, mask, box, stereo.max_disparity, options_,
                              stereo.window);
   }
-  if (stereo.disparity.empty()) return {};
+  // Without a dense map (a run without the disparity feature), the template measures.
+  if (stereo.disparity.empty()) {
+    return TemplateDisparity(left, stereo.right, mask, box, stereo.max_disparity, options_,
+                             stereo.window);
+  }
   return MapDisparity(stereo.disparity, mask, box, options_, stereo.window);
 }
 

@@ -8,7 +8,8 @@
 //             overlap and its two neighbours';
 //   map       a robust statistic of the frame's disparity map over the target's mask: the
 //             mean of the values between its quartiles (the interquartile mean), which is
-//             sub-pixel even where the map is integer.
+//             sub-pixel even where the map is integer. The map is the disparity feature's; a
+//             run without that feature measures by the template.
 // Either is then filtered over the frames by a fourth-order low-pass filter (a Butterworth,
 // two biquads, started at the first value so that it has no transient), as the thesis filters
 // its estimates; depth.low_pass is its cutoff as a fraction of the frame rate, >= 0.5 none.

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tests/support/error_message.h"
 #include "tests/support/temp_dir.h"
 
@@ -116,6 +118,64 @@ TEST(FrameRecordJson, ADuplicateOrOutOfOrderFrameIsRefusedWithItsLines) {
   message = testing::InputErrorOf([&] { ReadFrameRecords(back); });
   EXPECT_NE(message.find(back + ":3: frame 2 after frame 4 (line 2)"), std::string::npos)
       << message;
+}
+
+}  // namespace
+}  // namespace attend
+
+namespace attend {
+namespace {
+
+// A stereo run's target: its disparity (scaled with the width to input pixels) and position
+// read back; a record without them (older runs, monocular runs) reads as before.
+TEST(FrameRecordJson, DisparityAndPositionReadBackAndScale) {
+  FrameRecord record;
+  record.frame = 2;
+  TargetRecord target;
+  target.id = 1;
+  target.bbox = {4, 4, 10, 10};
+  target.state = TargetState::kTracked;
+  target.disparity_px = 6.25;
+  target.disparity_sd_px = 0.5;
+  target.has_position = true;
+  target.position_m = {0.5, -0.25, 3.0};
+  target.position_sd_m = {0.01, 0.02, 0.25};
+  TargetRecord plain;
+  plain.id = 2;
+  record.targets = {target, plain};
+  // Half the input width: disparities double.
+  const FrameRecord input = InputFromWorking(record, 0.5, 0.5, {640, 480});
+  EXPECT_DOUBLE_EQ(input.targets[0].disparity_px, 12.5);
+  EXPECT_DOUBLE_EQ(input.targets[0].disparity_sd_px, 1.0);
+  const std::string line = FrameRecordToJson(input);
+  EXPECT_NE(line.find("\"disparity_px\":12.5"), std::string::npos) << line;
+  EXPECT_NE(line.find("\"position_m\":[0.5,-0.25,3.0]"), std::string::npos) << line;
+  EXPECT_EQ(line.find("disparity_px", line.find("\"id\":2")), std::string::npos) << line;
+  const testing::TempDir dir;
+  const std::vector<FrameRecord> read = ReadFrameRecords(dir.Write("frames.jsonl", line + "\n"));
+  ASSERT_EQ(read[0].targets.size(), 2u);
+  EXPECT_DOUBLE_EQ(read[0].targets[0].disparity_px, 12.5);
+  EXPECT_DOUBLE_EQ(read[0].targets[0].disparity_sd_px, 1.0);
+  ASSERT_TRUE(read[0].targets[0].has_position);
+  EXPECT_DOUBLE_EQ(read[0].targets[0].position_m[2], 3.0);
+  EXPECT_DOUBLE_EQ(read[0].targets[0].position_sd_m[2], 0.25);
+  EXPECT_FALSE(read[0].targets[1].has_position);
+  EXPECT_FALSE(std::isfinite(read[0].targets[1].disparity_px));
+}
+
+TEST(FrameRecordJson, AMalformedPositionIsRefusedWithItsLine) {
+  const std::string head =
+      R"({"frame":0,"targets":[{"id":1,"bbox":[0,0,2,2],"area":4,"saliency":0.1,)"
+      R"("state":"tracked","kind":"object","similarity":"hsv",)";
+  const std::string tail = R"(}],"new":[],"timings_ms":{}})";
+  const testing::TempDir dir;
+  for (const std::string& field : {std::string(R"("position_m":[1,2])"),
+                                   std::string(R"("position_m":[1,"2",3])"),
+                                   std::string(R"("disparity_px":"7")")}) {
+    const std::string path = dir.Write("frames.jsonl", head + field + tail + "\n");
+    const std::string message = testing::InputErrorOf([&] { ReadFrameRecords(path); });
+    EXPECT_NE(message.find("frames.jsonl:1"), std::string::npos) << field << ": " << message;
+  }
 }
 
 }  // namespace

@@ -161,3 +161,30 @@ TEST(TargetDepths, FiltersEachTargetOnItsOwnAndForgets) {
 
 }  // namespace
 }  // namespace attend
+
+namespace attend {
+namespace {
+
+// depth.jump_px's test: a target whose template estimate moves from 6 to 14 px between frames
+// jumps by 8; one that stays does not.
+TEST(TargetDepths, AJumpOfTheTemplateEstimateIsMeasured) {
+  cv::Mat left, right6, right14;
+  ShiftedPair(6, &left, &right6);
+  ShiftedPair(14, &left, &right14);
+  const cv::Rect box(80, 30, 60, 50);
+  const cv::Mat mask = BoxMask(left.size(), box);
+  DepthOptions options;  // map records; the jump is the template's all the same
+  TargetDepths depths(options);
+  StereoInput stereo;
+  stereo.right = right6;
+  stereo.max_disparity = 32;
+  EXPECT_DOUBLE_EQ(depths.JumpOf(1, left, stereo, mask, box, {}), 0.0);  // its first frame
+  EXPECT_LT(depths.JumpOf(1, left, stereo, mask, box, {}), 0.3);
+  stereo.right = right14;
+  EXPECT_NEAR(depths.JumpOf(1, left, stereo, mask, box, {}), 8.0, 0.5);
+  depths.Forget(1);
+  EXPECT_DOUBLE_EQ(depths.JumpOf(1, left, stereo, mask, box, {}), 0.0);  // starts again
+}
+
+}  // namespace
+}  // namespace attend
