@@ -152,7 +152,7 @@ void CheckProjections(const CalibrationReader& file, const StereoCalibration& c)
   }
   const double tx = c.P2.at<double>(0, 3);
   const double ty = c.P2.at<double>(1, 3);
-  if (std::abs(ty) > 1e-9 * std::max(1.0, std::abs(tx)) && std::abs(ty) > std::abs(tx)) {
+  if (std::abs(ty) > std::abs(tx)) {
     file.Fail("P2", "is a vertical pair's (P2(1,3) is not zero); attend reads side-by-side pairs");
   }
   if (tx == 0.0) file.Fail("P2", "has a zero baseline (P2(0,3) = 0)");

@@ -167,6 +167,11 @@ TEST(CalibrateCli, ConvertsEurocAndKittiProjections) {
                    dir.File("b.yaml")});
   EXPECT_EQ(r.status, 3);
   EXPECT_TRUE(Contains(r.err, "P_left must hold 12 numbers")) << r.err;
+  // An output that cannot be written: OutputError.
+  r = Attend(dir, {"calibrate", "--from-euroc", dir.File("euroc.txt"), "--out",
+                   dir.File("no/such/folder/c.yaml")});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "cannot write the calibration")) << r.err;
 }
 
 // The shared data's EuRoC calib.txt: its focal length and baseline come back.
