@@ -23,6 +23,8 @@ AttendOptions ResolveRunOptions(const AttentionRunRequest& request) {
   }
   // Alone, it applies to the configuration's live source.
   if (source.live.side_by_side) sequence.source.live.side_by_side = true;
+  // --calib applies to the source given with it, or alone to the configuration's.
+  if (!source.calib.empty()) sequence.source.calib = source.calib;
   if (request.duration_s >= 0.0) {
     if (!sequence.source.IsLive()) {
       throw ConfigError("--duration bounds a live source (--camera, --gst, or the "
@@ -60,6 +62,7 @@ std::vector<std::string> RunSourceArguments(const SourceSpec& source) {
   if (source.camera_right >= 0) add("--camera-right", std::to_string(source.camera_right));
   add("--gst", source.gst);
   add("--gst-right", source.gst_right);
+  add("--calib", source.calib);
   if (source.live.side_by_side) arguments.push_back("--side-by-side-live");
   return arguments;
 }

@@ -21,7 +21,8 @@ struct AttentionRunRequest {
   // A source given beside the configuration (io/source_spec.h): when any is set (SourceSpec's
   // empty() is false) it replaces the configuration's whole source, but for the reading
   // settings of its `live` (queue, timeout_s, duration_s), which stay the configuration's.
-  // live.side_by_side set alone applies to the configuration's live source.
+  // live.side_by_side set alone applies to the configuration's live source, and so does calib
+  // (--calib): set, it replaces the configuration's sequence.calib.
   SourceSpec source;
   std::string frames;              // FIRST:LAST over the configuration's range; "": as it is
   double duration_s = -1.0;        // live.duration_s (--duration); < 0: as the configuration says
@@ -38,7 +39,8 @@ struct AttentionRunRequest {
 
 // The `attend run` arguments that give `source`, in the command's flags: {"--sequence", FOLDER},
 // {"--left", A, "--right", B}, {"--side-by-side", V}, {"--video", V}, {"--images", DIR},
-// {"--camera", "0", "--camera-right", "1"}, {"--gst", P}, ..., then "--side-by-side-live" when
+// {"--camera", "0", "--camera-right", "1"}, {"--gst", P}, ..., {"--calib", FILE} when calib is
+// set, then "--side-by-side-live" when
 // live.side_by_side is set; none for no source. The reading settings of `live` have no flag (the
 // configuration holds them). A sweep's cells run their inputs with these.
 std::vector<std::string> RunSourceArguments(const SourceSpec& source);

@@ -136,6 +136,11 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
   run->add_flag("--side-by-side-live", args->source.live.side_by_side,
                 "The live source's frames hold the left view in their left half and the right "
                 "view in their right half (live.side_by_side)");
+  run->add_option("--calib", args->source.calib,
+                  "Stereo calibration (calib.yaml as attend calibrate writes it; "
+                  "docs/STEREO3D.md): a raw pair is rectified on the fly; wins over SEQ/calib.yaml "
+                  "(sequence.calib)")
+      ->type_name("FILE");
   run->add_option("--duration", args->duration,
                   "Live sources: stop capturing S seconds after the first frame "
                   "(live.duration_s); the frames queued are still processed")

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "io/native_frame.h"
+#include "io/sequence_calibration.h"
 #include "io/working_size.h"
 #include "util/error.h"
 #include "util/opencv_extra.h"
@@ -284,6 +285,7 @@ class LiveSource final : public FrameSource {
     if (options.source.live.side_by_side) native.width /= 2;
     lock.unlock();
     SizeSequence(options, native, &info_);
+    rectifier_ = AttachCalibration(options, &info_);
   }
 
   ~LiveSource() override { StopCapture(); }
@@ -395,6 +397,10 @@ class LiveSource final : public FrameSource {
     }
     CheckFrameSizes(index, left, paths[0], right, right.empty() ? std::string() : paths[1],
                     info_.native_size);
+    if (rectifier_ != nullptr && !right.empty()) {
+      // Rectified at the native size, into new buffers (a side-by-side half stays untouched).
+      rectifier_->Apply(&left, &right);
+    }
     frame->index = index;
     // ToWorkingSize copies a view that is not continuous (a half of a side-by-side frame).
     frame->left = ToWorkingSize(left, info_.size);
@@ -411,6 +417,7 @@ class LiveSource final : public FrameSource {
   std::string what_;
   const std::atomic<bool>* stop_ = nullptr;
   bool done_ = false;
+  std::shared_ptr<const Rectifier> rectifier_;  // a full calibration's; null otherwise
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "io/sequence_calibration.h"
 #include "io/working_size.h"
 #include "util/error.h"
 
@@ -44,6 +45,7 @@ class RangedSource final : public FrameSource {
     }
     SizeSequence(options, first.left.size(), &info_);
     CheckSizes(options.first_frame, first);
+    rectifier_ = AttachCalibration(options, &info_);
     first_ = std::move(first);
   }
 
@@ -78,6 +80,10 @@ class RangedSource final : public FrameSource {
       return false;
     }
     CheckSizes(index, native);
+    // A raw pair is rectified at its native size, before the working size.
+    if (rectifier_ != nullptr && !native.right.empty()) {
+      rectifier_->Apply(&native.left, &native.right);
+    }
     frame->index = index;
     frame->left = ToWorkingSize(native.left, info_.size);
     frame->right = native.right.empty() ? cv::Mat() : ToWorkingSize(native.right, info_.size);
@@ -100,6 +106,7 @@ class RangedSource final : public FrameSource {
   std::string what_;  // the source, for messages
   bool finished_ = false;
   std::optional<NativeFrame> first_;
+  std::shared_ptr<const Rectifier> rectifier_;  // a full calibration's; null otherwise
 };
 
 }  // namespace

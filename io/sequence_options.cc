@@ -19,7 +19,9 @@ const OptionFields<SequenceOptions>& SequenceOptions::Fields() {
       {"width", &O::width, Range::AboveUpTo(0, 16384), "working width, px"},
       {"height", &O::height, Range::AboveUpTo(0, 16384), "working height, px"},
       {"resize", &O::resize, "fit: keep the aspect ratio; stretch: exactly; native: no scaling",
-       &SequenceOptions::ResizeModes}};
+       &SequenceOptions::ResizeModes},
+      {"check_rows", &O::check_rows,
+       "refuse a stereo pair whose first frame's rows do not match (not rectified)"}};
   return fields;
 }
 

@@ -27,6 +27,10 @@ struct SequenceOptions {
   int height = 240;
   std::string resize = "fit";
 
+  // `attend run` measures the rows of the first stereo frame (stereo/row_check.h) and refuses a
+  // pair whose rows do not match (not rectified); false skips the check.
+  bool check_rows = true;
+
   // Empty when valid; otherwise names the field and the broken constraint: the source's
   // (SourceSpec::Check) and the range's and size's.
   std::string Check() const;

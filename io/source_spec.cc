@@ -15,7 +15,9 @@ const OptionFields<SourceSpec>& SourceSpec::Fields() {
       {"camera_right", &S::camera_right, Range::Closed(-1, 4095),
        "the right camera of a live stereo pair; -1: none"},
       {"gst", &S::gst, "a live GStreamer pipeline (ending in an appsink)"},
-      {"gst_right", &S::gst_right, "the right pipeline of a live stereo pair"}};
+      {"gst_right", &S::gst_right, "the right pipeline of a live stereo pair"},
+      {"calib", &S::calib,
+       "the stereo calibration (calib.yaml, docs/STEREO3D.md); wins over SEQ/calib.yaml"}};
   return fields;
 }
 
@@ -40,7 +42,7 @@ SourceKind SourceSpec::Kind() const {
 }
 
 std::vector<std::string*> SourceSpec::Paths() {
-  return {&folder, &left_video, &right_video, &side_by_side_video, &video, &images};
+  return {&folder, &left_video, &right_video, &side_by_side_video, &video, &images, &calib};
 }
 
 std::string SourceSpec::Check() const {

@@ -40,10 +40,13 @@ struct SourceSpec {
   int camera_right = -1;
   std::string gst;  // a pipeline ending in an appsink (one is appended when it has none)
   std::string gst_right;
+  // The stereo calibration of the source (io/sequence_calibration.h): a calib.yaml that wins
+  // over SEQ/calib.yaml; "" for none. Not a source of its own: SourceCount ignores it.
+  std::string calib;
   LiveOptions live;  // the live section: queue, timeout, duration, side by side
 
   // The source fields (util/option_fields.h), the configuration's sequence.folder ...
-  // sequence.gst_right; `live` has its own table (LiveOptions::Fields).
+  // sequence.gst_right and sequence.calib; `live` has its own table (LiveOptions::Fields).
   static const OptionFields<SourceSpec>& Fields();
 
   // How many sources are set (a video pair and a live source with its right view count once).
@@ -53,7 +56,8 @@ struct SourceSpec {
   bool IsLive() const;
   // The kind set; kNone when none is (or, for a source that fails Check(), the first set).
   SourceKind Kind() const;
-  // The file and folder paths that are set, to be made absolute by a caller that stores them.
+  // The file and folder paths that are set (calib too), to be made absolute by a caller that
+  // stores them.
   std::vector<std::string*> Paths();
 
   // Empty when valid (also when no source is set); otherwise names the keys and what is wrong.

@@ -14,6 +14,7 @@
 #include "pipeline/options_io.h"
 #include "pipeline/overlay.h"
 #include "pipeline/run_folder.h"
+#include "pipeline/stereo_check.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -183,6 +184,7 @@ nlohmann::ordered_json RunSummaryJson(const RunSummary& summary, const SequenceI
     }
     json["detectors"] = detectors;
   }
+  if (summary.stereo.has_value()) json["stereo"] = StereoSummaryJson(*summary.stereo);
   if (summary.live.has_value()) {
     const LiveStatus& live = *summary.live;
     json["live"] = {{"source", live.source},
@@ -328,6 +330,8 @@ void FinishRun(const RunRequest& request, const FrameSource& source, const RunTo
 RunSummary RunSequence(const RunRequest& request) {
   AttendOptions options = request.options;
   std::unique_ptr<FrameSource> source = OpenFrameSource(options.sequence);
+  // A stereo pair whose rows do not match is refused before anything is written.
+  std::optional<StereoSummary> stereo = CheckStereoSource(options.sequence.check_rows, &source);
   const SequenceInfo& info = source->info();
   // Everything that can reject the configuration runs before the run folder exists.
   ExecutionContext execution(options.threads);
@@ -339,6 +343,7 @@ RunSummary RunSequence(const RunRequest& request) {
   }
   const FeatureRegistry registry = LoadFeatureRegistry(options.plugins);
   RunSummary summary;
+  summary.stereo = std::move(stereo);
   const FeatureSetup setup = SetUpFeatures(request, info, registry, &options, &summary);
   FramePipeline pipeline(options, registry, setup, &execution);
   pipeline.SetCamera(info);

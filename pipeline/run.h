@@ -12,6 +12,7 @@
 
 #include "io/live_options.h"
 #include "pipeline/attend_options.h"
+#include "pipeline/stereo_check.h"
 #include "util/timer.h"
 
 namespace attend {
@@ -73,6 +74,8 @@ struct RunSummary {
   // The top-down channels' detectors (FeatureMap::searched_pixels): by feature name, the mean
   // pixels searched a frame, at the working size's scale of each search.
   std::vector<std::pair<std::string, double>> searched_pixels;
+  // A stereo source: its calibration and the row check of its first frame.
+  std::optional<StereoSummary> stereo;
 
   // Two lines for the terminal: frames, fps, the slowest stages, where the outputs are.
   std::string BriefReport() const;

@@ -268,6 +268,7 @@ py::dict Run(const py::dict& source, const std::string& config,
   spec.camera_right = number("camera_right");
   spec.gst = text("gst");
   spec.gst_right = text("gst_right");
+  spec.calib = text("calib");
   spec.live.side_by_side =
       source.contains("side_by_side_live") && source["side_by_side_live"].cast<bool>();
   request.frames = frames;

@@ -10,6 +10,7 @@ packages=(
   libjs-chart.js  # the charts of attend compare's report, inlined (docs/COMPARE.md)
   chromium        # renders the report in its test (tests/cli/compare_cli_test.cc)
   opencv-data     # the cascade models of the faces channel (features/detectors.h)
+  opencv-doc      # its chessboard stereo pairs (left01.jpg...): the test of attend calibrate
   libspng-dev libjpeg62-turbo-dev  # PNG and JPEG without OpenCV's imgcodecs (io/image_codecs.h)
   libdeflate-dev  # the image data of common PNG frames, twice as fast as zlib (io/png_fast.h)
   # the Python module attend (python/, docs/PYTHON.md), its tests and its example

@@ -16,6 +16,7 @@
 #include "io/ground_truth.h"
 #include "io/image_file.h"
 #include "io/pfm.h"
+#include "io/stereo_calibration.h"
 #include "synth/renderer.h"
 #include "util/error.h"
 #include "util/output_folder.h"
@@ -58,7 +59,8 @@ std::string QuotedYaml(const std::string& text) {
 void PrepareFolder(const fs::path& folder, bool overwrite) {
   OutputFolderRules rules;
   rules.what = "sequence";
-  rules.own_entries = {"left", "right", "gt/disparity", "gt/objects.csv", "sequence.yaml"};
+  rules.own_entries = {"left", "right", "gt/disparity", "gt/objects.csv", "sequence.yaml",
+                       "calib.yaml"};
   rules.is_previous_output = [](const std::string& existing) {
     std::ifstream in(fs::path(existing) / "sequence.yaml");
     std::string line;
@@ -103,6 +105,18 @@ void WriteSequenceYaml(const fs::path& path, const Scene& scene) {
       << "generator: attend synth\n"
       << "frames: " << scene.frames << "\n";
   if (!out) throw OutputError(path.string() + ": error while writing the sequence description");
+}
+
+// SEQ/calib.yaml in the rectified form (docs/STEREO3D.md). The renderer places an object by
+// its left-view pixel (x, y), pixel centres at whole coordinates, and its depth Z, and draws it
+// in the right view at x - f B / Z on the same row: the rectified pair of P1, P2 below. Its
+// objects have no X, Y of their own; the principal point is the image centre ((width - 1) / 2,
+// (height - 1) / 2), so an object drawn there is on the optical axis and X = (x - cx) Z / f.
+void WriteCalibrationYaml(const fs::path& path, const Scene& scene) {
+  StereoCalibration calibration =
+      NominalCalibration(scene.focal_px, scene.baseline_m, {scene.width, scene.height}, "");
+  calibration.form = StereoCalibration::Form::kRectified;
+  WriteStereoCalibration(calibration, path.string());
 }
 
 }  // namespace
@@ -173,6 +187,7 @@ SynthSummary RenderSequence(const Scene& scene, const std::string& out_folder,
     ground_truth.insert(ground_truth.end(), objects.begin(), objects.end());
   }
   WriteObjectsCsv((folder / "gt" / "objects.csv").string(), ground_truth);
+  WriteCalibrationYaml(folder / "calib.yaml", used);
   // Last, so that a folder with a sequence.yaml is a complete render.
   WriteSequenceYaml(folder / "sequence.yaml", used);
 

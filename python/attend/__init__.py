@@ -198,12 +198,13 @@ class Tracker:
 def run(sequence=None, *, config=None, set=(), video=None, left_video=None, right_video=None,
         side_by_side_video=None, images=None, camera=None, camera_right=None, gst=None,
         gst_right=None, side_by_side_live=False, duration=None, frames="", out="",
-        overwrite=False):
+        overwrite=False, calib=None):
     """`attend run`: the pipeline over a source into a run folder; returns the folder's Run.
 
     The sources are those of `attend run` (a sequence folder, videos, an image folder, a live
     V4L2 camera or GStreamer pipeline and its right twin, docs/LIVE.md); none runs the
-    configuration's own source. `duration` (seconds) bounds a live run as --duration does.
+    configuration's own source. `duration` (seconds) bounds a live run as --duration does;
+    `calib` is a stereo calibration file as --calib (docs/STEREO3D.md).
     With no `config`, a monocular source leaves the stereo features out, as the command does.
     KeyboardInterrupt stops it after the current frame, with the run folder closed as
     interrupted, and is raised again.
@@ -220,7 +221,7 @@ def run(sequence=None, *, config=None, set=(), video=None, left_video=None, righ
         config_path = "" if config is None else _os.fspath(config)
     source = {"sequence": sequence, "video": video, "left_video": left_video,
               "right_video": right_video, "side_by_side_video": side_by_side_video,
-              "images": images}
+              "images": images, "calib": calib}
     source = {k: _os.fspath(v) for k, v in source.items() if v is not None}
     live = {"camera": camera, "camera_right": camera_right, "gst": gst, "gst_right": gst_right}
     source.update({k: v for k, v in live.items() if v is not None})

@@ -57,10 +57,15 @@ TEST(SourceSpec, PathsAreTheFileAndFolderFields) {
   spec.side_by_side_video = "s";
   spec.video = "v";
   spec.images = "i";
+  spec.calib = "c";
   spec.gst = "videotestsrc";  // a pipeline, not a path
   std::string joined;
   for (std::string* path : spec.Paths()) joined += *path;
-  EXPECT_EQ(joined, "flrsvi");
+  EXPECT_EQ(joined, "flrsvic");
+  // The calibration is not a source.
+  spec = {};
+  spec.calib = "c";
+  EXPECT_EQ(spec.SourceCount(), 0);
 }
 
 // SequenceOptions::Check reports in the order of the keys: the source's kinds and ranges, then

@@ -10,6 +10,7 @@
 
 #include "io/ground_truth.h"
 #include "io/pfm.h"
+#include "io/stereo_calibration.h"
 #include "synth/renderer.h"
 #include "tests/support/temp_dir.h"
 #include "util/error.h"
@@ -82,7 +83,8 @@ TEST(SynthRenderSequence, WritesTheLayoutByteIdenticallyForTheSameSeed) {
   three_threads.threads = 3;
   RenderSequence(scene, dir.File("b"), three_threads);
   const std::vector<std::string> files = FilesBelow(dir.File("a"));
-  const std::vector<std::string> expected = {"gt/disparity/000000.pfm", "gt/disparity/000001.pfm",
+  const std::vector<std::string> expected = {"calib.yaml",
+                                             "gt/disparity/000000.pfm", "gt/disparity/000001.pfm",
                                              "gt/disparity/000002.pfm", "gt/disparity/000003.pfm",
                                              "gt/objects.csv",          "left/000000.png",
                                              "left/000001.png",         "left/000002.png",
@@ -108,6 +110,15 @@ TEST(SynthRenderSequence, WritesTheLayoutByteIdenticallyForTheSameSeed) {
                            "generator: attend synth\n", "frames: 4\n"}) {
     EXPECT_NE(yaml.find(line), std::string::npos) << line << " in\n" << yaml;
   }
+  // SEQ/calib.yaml: the rectified pair of the scene's focal length and baseline, the principal
+  // point at the image centre (docs/STEREO3D.md).
+  const StereoCalibration calibration = ReadStereoCalibration(dir.File("a/calib.yaml"));
+  EXPECT_EQ(calibration.form, StereoCalibration::Form::kRectified);
+  EXPECT_EQ(calibration.image_size, cv::Size(48, 36));
+  EXPECT_DOUBLE_EQ(calibration.focal_px(), 80.0);
+  EXPECT_DOUBLE_EQ(calibration.baseline_m(), 0.125);
+  EXPECT_DOUBLE_EQ(calibration.cx(), 23.5);
+  EXPECT_DOUBLE_EQ(calibration.cy(), 17.5);
   // The images are what the renderer makes.
   const RenderedFrame frame2 = SceneRenderer(scene).Render(2);
   const cv::Mat left = cv::imread(dir.File("a/left/000002.png"), cv::IMREAD_UNCHANGED);
