@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <opencv2/imgproc.hpp>
 #include <string>
 
@@ -39,6 +40,19 @@ void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::str
   DrawLabel(image, label, cv::Point(box.x, std::max(10, box.y - 3)), TargetColour(id), font_scale);
 }
 
+std::string TargetDepthLabel(const TargetRecord& target) {
+  char text[48];
+  if (target.has_position && std::isfinite(target.position_m[2])) {
+    std::snprintf(text, sizeof(text), " Z %.2f m", target.position_m[2]);
+    return text;
+  }
+  if (std::isfinite(target.disparity_px)) {
+    std::snprintf(text, sizeof(text), " d %.1f px", target.disparity_px);
+    return text;
+  }
+  return "";
+}
+
 cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record) {
   cv::Mat overlay = left.clone();
   const double font_scale = OverlayFontScale(left.cols);
@@ -51,6 +65,7 @@ cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record) {
                   visible ? cv::LINE_8 : cv::LINE_4);
     std::string suffix = target.kind == "skin" ? " skin" : "";
     if (!target.label.empty()) suffix.append(" ").append(target.label);
+    suffix += TargetDepthLabel(target);
     if (!visible || target.state == TargetState::kResumed) {
       suffix.append(" (").append(TargetStateName(target.state)).append(")");
     }
