@@ -441,11 +441,11 @@ std::string ReportHtml(const ReportInput& input) {
   html += ConfigTable(input);
   html += MetricsTable(input);
   html += AttentionTable(input);
+  html += Charts(input);
+  html += Thumbnails(input);
   std::vector<std::string> labels;
   for (std::size_t i = 0; i < input.runs.size(); ++i) labels.push_back(RunLabel(input.runs[i], i));
   html += DepthSectionHtml(input.runs, input.comparisons, labels);
-  html += Charts(input);
-  html += Thumbnails(input);
   html += TargetTables(input);
   html += HtmlPageEnd();
   return html;

@@ -230,10 +230,10 @@ std::string Path(const Axis& x_axis, const Axis& y_axis, const Frame& f, const P
   flush();
   std::string svg = "<g>" + lines + dots;
   if (std::isfinite(last_x) && !series.label.empty()) {
-    // The overlay's look: the colour on a dark outline.
+    // Dark on a white halo: legible over any line; the line and dots carry the colour.
     svg += Text(last_x + 6, last_y - 6, series.label,
-                "font-size=\"12\" font-weight=\"bold\" fill=\"" + colour +
-                    "\" stroke=\"#222\" stroke-width=\"2.5\" paint-order=\"stroke\"");
+                "font-size=\"12\" font-weight=\"bold\" fill=\"#222\" stroke=\"#fff\" "
+                "stroke-width=\"3\" paint-order=\"stroke\"");
   }
   return svg + "</g>";
 }

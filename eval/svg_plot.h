@@ -33,7 +33,8 @@ struct LinePlot {
 // The plot as one <svg> element (with a <title> for screen readers), text escaped for HTML.
 std::string SvgLinePlot(const LinePlot& plot);
 
-// A path of points in the plane: its polyline, dots at chosen points and a label at its end.
+// A path of points in the plane: its polyline and dots in its colour, and a label (dark on a
+// white halo) at its last point.
 struct PathSeries {
   std::string label;      // drawn beside its last point
   std::string colour;     // a CSS colour

@@ -37,7 +37,13 @@ void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::str
   std::string label = "#";
   label += std::to_string(id);
   label += suffix;
-  DrawLabel(image, label, cv::Point(box.x, std::max(10, box.y - 3)), TargetColour(id), font_scale);
+  // Kept inside the image where it fits: a box at the right edge with a long label (its depth)
+  // moves its label left rather than losing the end of it.
+  int baseline = 0;
+  const int width =
+      cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, font_scale, 3, &baseline).width;
+  const int x = std::max(0, std::min(box.x, image->cols - width));
+  DrawLabel(image, label, cv::Point(x, std::max(10, box.y - 3)), TargetColour(id), font_scale);
 }
 
 std::string TargetDepthLabel(const TargetRecord& target) {

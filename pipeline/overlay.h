@@ -31,7 +31,8 @@ void DrawLabel(cv::Mat* image, const std::string& text, cv::Point at, const cv::
                double font_scale);
 // the caption in the bottom-left corner (white on a dark outline),
 void DrawCaption(cv::Mat* image, const std::string& text, double font_scale);
-// and a target's label above its box: "#ID", then `suffix`.
+// and a target's label above its box: "#ID", then `suffix` (moved left, as far as the image's
+// left edge, where it would run over the right edge).
 void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::string& suffix,
                      double font_scale);
 

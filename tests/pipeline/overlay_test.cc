@@ -55,5 +55,21 @@ TEST(Overlay, DrawsTheDepthBesideTheId) {
   EXPECT_EQ(cv::countNonZero(difference), 0);
 }
 
+// A box at the right edge: its label, longer with the depth, moves left to stay whole.
+TEST(Overlay, ALabelAtTheRightEdgeMovesLeftToStayInTheImage) {
+  const cv::Mat left(120, 240, CV_8UC3, cv::Scalar(90, 90, 90));
+  FrameRecord record;
+  record.targets.push_back(Target(1, {220, 50, 20, 40}));
+  record.targets[0].has_position = true;
+  record.targets[0].position_m = cv::Vec3d(0.0, 0.0, 12.5);
+  const cv::Mat overlay = DrawOverlay(left, record);
+  cv::Mat difference;
+  cv::absdiff(overlay(cv::Rect(0, 30, 240, 20)), left(cv::Rect(0, 30, 240, 20)), difference);
+  cv::cvtColor(difference, difference, cv::COLOR_BGR2GRAY);
+  // Drawn left of the box, and not cut at the right edge: its last column is background.
+  EXPECT_GT(cv::countNonZero(difference(cv::Rect(150, 0, 70, 20))), 30);
+  EXPECT_LT(cv::countNonZero(difference(cv::Rect(239, 0, 1, 20))), 3);
+}
+
 }  // namespace
 }  // namespace attend
