@@ -137,6 +137,8 @@ std::vector<TopViewTrack> TopViewTracks(const std::vector<FrameRecord>& frames) 
   for (const FrameRecord& record : frames) {
     for (const TargetRecord& target : record.targets) {
       if (!Visible(target.state) || !target.has_position) continue;
+      // The reader refuses non-finite positions; records made in memory are held to it too.
+      if (!std::isfinite(target.position_m[0]) || !std::isfinite(target.position_m[2])) continue;
       TopViewTrack& track = by_id[target.id];
       track.id = target.id;
       track.frames.push_back(record.frame);

@@ -78,7 +78,7 @@ struct TopViewTrack {
   std::vector<double> x_m, z_m;
 };
 
-// The tracks of the targets with a position, by id.
+// The tracks of the targets seen with a (finite) position, by id.
 std::vector<TopViewTrack> TopViewTracks(const std::vector<FrameRecord>& frames);
 
 }  // namespace attend

@@ -171,6 +171,10 @@ TEST(TopView, OneLineATargetInItsOverlayColour) {
   frames[3].targets[0].position_m[2] = 400.0;
   TopViewSvg(frames, "t", "tv", 0, &clipped);
   EXPECT_EQ(clipped, 1);
+  // A non-finite position (made in memory; the reader refuses them) is left out.
+  frames[4].targets[0].position_m[0] = std::nan("");
+  EXPECT_NE(TopViewSvg(frames, "t", "tv", 0, &clipped), "");
+  EXPECT_EQ(TopViewTracks(frames)[0].frames.size(), 29u);
   // No positions: no view.
   EXPECT_EQ(TopViewSvg({Frame(0, {Seen(1, 3.0, 0.1)})}, "t", "tv"), "");
 }
