@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "eval/run_comparison.h"
+#include "eval/run_depth.h"
 #include "eval/run_report.h"
 #include "util/error.h"
 #include "util/json_text.h"
@@ -18,6 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 nlohmann::ordered_json RunJson(const RunData& run) {
+  const RunDepth depth = SummariseDepth(run.frames);
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
   for (const auto& [stage, ms] : run.mean_timings_ms) timings[stage] = ms;
   return {{"dir", run.dir},
@@ -28,6 +30,7 @@ nlohmann::ordered_json RunJson(const RunData& run) {
           {"ground_truth", run.ground_truth.empty() ? nlohmann::ordered_json()
                                                     : nlohmann::ordered_json(run.ground_truth)},
           {"attention", AttentionToJson(run.attention)},
+          {"depth", depth.any() ? RunDepthToJson(depth) : nlohmann::ordered_json()},
           {"targets", TargetsToJson(SummariseTargets(run.frames))}};
 }
 

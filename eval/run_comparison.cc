@@ -398,6 +398,11 @@ RunComparison CompareRuns(const RunData& a, const RunData& b) {
   CompareFrames(a, b, &comparison, &pair_frames);
   MatchTargets(a, b, pair_frames, &comparison);
   CompareTimings(a, b, &comparison);
+  std::vector<std::pair<int, int>> matched;
+  for (const TargetMatch& m : comparison.matches) {
+    if (m.id_a >= 0 && m.id_b >= 0) matched.emplace_back(m.id_a, m.id_b);
+  }
+  comparison.depth = CompareDepth(a.frames, b.frames, matched);
   return comparison;
 }
 
@@ -482,6 +487,7 @@ nlohmann::ordered_json ComparisonToJson(const RunComparison& c) {
             {"a", TargetsToJson(c.targets_a)},
             {"b", TargetsToJson(c.targets_b)}}},
           {"timings_ms", timings},
+          {"depth", DepthComparisonToJson(c.depth)},
           {"frames", frames},
           {"notes", c.notes}};
 }

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/run_depth.h"
 #include "eval/run_evaluation.h"
 #include "io/frame_record.h"
 
@@ -136,6 +137,8 @@ struct RunComparison {
   std::vector<TargetMatch> matches;  // matched pairs first (by A's order), then the unmatched
   bool same_order = true;            // matched targets first attended in the same order
   std::vector<StageTiming> timings;
+  // The targets' depth (eval/run_depth.h): none when neither run has one.
+  std::optional<DepthComparison> depth;
   std::vector<std::string> notes;  // what could not be compared, and why
 };
 

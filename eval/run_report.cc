@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "eval/depth_report.h"
 #include "io/image_file.h"
 #include "io/pfm.h"
 #include "util/json_text.h"
@@ -442,6 +443,9 @@ std::string ReportHtml(const ReportInput& input) {
   html += AttentionTable(input);
   html += Charts(input);
   html += Thumbnails(input);
+  std::vector<std::string> labels;
+  for (std::size_t i = 0; i < input.runs.size(); ++i) labels.push_back(RunLabel(input.runs[i], i));
+  html += DepthSectionHtml(input.runs, input.comparisons, labels);
   html += TargetTables(input);
   html += HtmlPageEnd();
   return html;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <opencv2/imgproc.hpp>
 #include <string>
 
@@ -36,7 +37,26 @@ void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::str
   std::string label = "#";
   label += std::to_string(id);
   label += suffix;
-  DrawLabel(image, label, cv::Point(box.x, std::max(10, box.y - 3)), TargetColour(id), font_scale);
+  // Kept inside the image where it fits: a box at the right edge with a long label (its depth)
+  // moves its label left rather than losing the end of it.
+  int baseline = 0;
+  const int width =
+      cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, font_scale, 3, &baseline).width;
+  const int x = std::max(0, std::min(box.x, image->cols - width));
+  DrawLabel(image, label, cv::Point(x, std::max(10, box.y - 3)), TargetColour(id), font_scale);
+}
+
+std::string TargetDepthLabel(const TargetRecord& target) {
+  char text[48];
+  if (target.has_position && std::isfinite(target.position_m[2])) {
+    std::snprintf(text, sizeof(text), " Z %.2f m", target.position_m[2]);
+    return text;
+  }
+  if (std::isfinite(target.disparity_px)) {
+    std::snprintf(text, sizeof(text), " d %.1f px", target.disparity_px);
+    return text;
+  }
+  return "";
 }
 
 cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record) {
@@ -51,6 +71,7 @@ cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record) {
                   visible ? cv::LINE_8 : cv::LINE_4);
     std::string suffix = target.kind == "skin" ? " skin" : "";
     if (!target.label.empty()) suffix.append(" ").append(target.label);
+    suffix += TargetDepthLabel(target);
     if (!visible || target.state == TargetState::kResumed) {
       suffix.append(" (").append(TargetStateName(target.state)).append(")");
     }

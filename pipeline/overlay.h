@@ -12,8 +12,16 @@ namespace attend {
 // A colour per target id, far apart for consecutive ids (golden-angle hue steps).
 cv::Scalar TargetColour(int id);
 
-// Draws `record` over a copy of `left` (8-bit BGR).
+// Draws `record` over a copy of `left` (8-bit BGR): each target's box, and above it its id,
+// kind, label, state and depth (TargetDepthLabel).
 cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record);
+
+// A target's depth as the overlay shows it after its id: " Z 2.41 m" with a position (metres,
+// whatever the image's size), else " d 12.3 px" with a disparity, "" with neither. The
+// disparity is the record's as given: attend run draws its overlay at the working size from
+// the record before InputFromWorking, so it is in the pixels of the image drawn on (which
+// frames.jsonl's disparity_px, in input pixels, is not when the run scales its frames).
+std::string TargetDepthLabel(const TargetRecord& target);
 
 // The pieces every overlay is drawn with (DrawOverlay, attend track's overlay):
 // the font scale for an image `width` pixels wide,
@@ -23,7 +31,8 @@ void DrawLabel(cv::Mat* image, const std::string& text, cv::Point at, const cv::
                double font_scale);
 // the caption in the bottom-left corner (white on a dark outline),
 void DrawCaption(cv::Mat* image, const std::string& text, double font_scale);
-// and a target's label above its box: "#ID", then `suffix`.
+// and a target's label above its box: "#ID", then `suffix` (moved left, as far as the image's
+// left edge, where it would run over the right edge).
 void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::string& suffix,
                      double font_scale);
 

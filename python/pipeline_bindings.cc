@@ -5,7 +5,9 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <ctime>
 #include <memory>
 #include <string>
@@ -15,6 +17,7 @@
 #include "app/run_attention.h"
 #include "io/frame_record.h"
 #include "io/sequence.h"
+#include "io/stereo_calibration.h"
 #include "pipeline/frame_pipeline.h"
 #include "python/arrays.h"
 #include "python/bindings.h"
@@ -33,12 +36,54 @@ py::dict TimingsDict(const StageTimes& times) {
   return timings;
 }
 
+// A stereo camera given by its rectified focal length, baseline and principal point (the
+// nominal form of io/stereo_calibration.h) for attend.Pipeline's keywords; focal_px 0: none.
+struct NominalCamera {
+  double focal_px = 0.0;  // pixels of the input frames
+  double baseline_m = 0.0;
+  // The principal point, input pixels; NaN: the image centre ((width - 1) / 2, (height - 1) / 2).
+  double cx = std::numeric_limits<double>::quiet_NaN();
+  double cy = std::numeric_limits<double>::quiet_NaN();
+
+  // ConfigError naming the keyword that is wrong.
+  void Check() const {
+    if (focal_px == 0.0 && baseline_m == 0.0) return;
+    if (!(focal_px > 0.0) || !std::isfinite(focal_px)) {
+      throw ConfigError("focal_px: must be a positive number of pixels (with baseline_m)");
+    }
+    if (baseline_m == 0.0 || !std::isfinite(baseline_m)) {
+      throw ConfigError("baseline_m: must be a non-zero number of metres (with focal_px)");
+    }
+  }
+
+  // The calibration of frames of `size`: the rectified pair's projections P1 = K [I | 0] and
+  // P2 = K [I | -B e_x] (what NominalCalibration gives, built here so that the module needs no
+  // more of io/stereo_calibration than its struct), and the matching Q.
+  std::shared_ptr<const StereoCalibration> Calibration(cv::Size size) const {
+    auto calibration = std::make_shared<StereoCalibration>();
+    calibration->form = StereoCalibration::Form::kNominal;
+    calibration->source = "attend.Pipeline(focal_px, baseline_m)";
+    calibration->image_size = size;
+    const double u = std::isnan(cx) ? (size.width - 1) / 2.0 : cx;
+    const double v = std::isnan(cy) ? (size.height - 1) / 2.0 : cy;
+    calibration->P1 = (cv::Mat_<double>(3, 4) << focal_px, 0, u, 0, 0, focal_px, v, 0, 0, 0, 1, 0);
+    calibration->P2 = calibration->P1.clone();
+    calibration->P2.at<double>(0, 3) = -focal_px * baseline_m;
+    calibration->R1 = cv::Mat::eye(3, 3, CV_64F);
+    calibration->R2 = cv::Mat::eye(3, 3, CV_64F);
+    calibration->Q = (cv::Mat_<double>(4, 4) << 1, 0, 0, -u, 0, 1, 0, -v, 0, 0, 0, focal_px, 0, 0,
+                      1 / baseline_m, 0);
+    return calibration;
+  }
+};
+
 // The pipeline over frames handed in one at a time (attend.Pipeline). It is made when the
 // first frame shows whether the source is stereo, and again by Reset.
 class Pipeline {
  public:
-  explicit Pipeline(const AttendOptions& options)
-      : options_(options), execution_(options.threads) {
+  Pipeline(const AttendOptions& options, const NominalCamera& camera)
+      : options_(options), camera_(camera), execution_(options.threads) {
+    camera_.Check();
     registry_ = std::make_unique<FeatureRegistry>(LoadFeatureRegistry(options_.plugins));
     Make(/*stereo=*/true);  // so that a bad feature or parameter is reported now
   }
@@ -97,6 +142,14 @@ class Pipeline {
     info["stereo"] = stereo_;
     info["input_size"] = py::make_tuple(info_.native_size.width, info_.native_size.height);
     info["working_size"] = py::make_tuple(info_.size.width, info_.size.height);
+    if (info_.calibration != nullptr) {
+      const StereoCalibration& c = *info_.calibration;
+      info["calibration"] = py::dict(py::arg("focal_px") = c.focal_px(),
+                                     py::arg("baseline_m") = c.baseline_m(),
+                                     py::arg("principal_point") = py::make_tuple(c.cx(), c.cy()));
+    } else {
+      info["calibration"] = py::none();
+    }
     return info;
   }
 
@@ -133,6 +186,10 @@ class Pipeline {
     if (stereo != stereo_) Make(stereo);
     SizeSequence(options_.sequence, left.size(), &info_);
     info_.stereo = stereo;
+    // The camera's calibration is for the input frames; the pipeline takes the targets'
+    // centroids and disparities there from the working size.
+    info_.calibration = stereo && camera_.focal_px > 0.0 ? camera_.Calibration(left.size()) : nullptr;
+    pipeline_->SetCamera(info_);
     if (next_index_ < 0) next_index_ = options_.sequence.first_frame;
     pipeline_->BeginSequence({"python", info_.size, stereo, next_index_});
     started_ = true;
@@ -165,6 +222,7 @@ class Pipeline {
   }
 
   const AttendOptions options_;
+  const NominalCamera camera_;
   ExecutionContext execution_;  // the pipeline's threads and pools; outlives pipeline_
   std::unique_ptr<FeatureRegistry> registry_;  // outlives pipeline_, whose features it made
   std::unique_ptr<FramePipeline> pipeline_;
@@ -304,7 +362,14 @@ py::dict Run(const py::dict& source, const std::string& config,
 
 void RegisterPipeline(py::module_& m) {
   py::class_<Pipeline>(m, "Pipeline")
-      .def(py::init([](const Configuration& c) { return std::make_unique<Pipeline>(c.options); }))
+      .def(py::init([](const Configuration& c, double focal_px, double baseline_m, double cx,
+                       double cy) {
+             return std::make_unique<Pipeline>(c.options,
+                                               NominalCamera{focal_px, baseline_m, cx, cy});
+           }),
+           py::arg("configuration"), py::arg("focal_px") = 0.0, py::arg("baseline_m") = 0.0,
+           py::arg("cx") = std::numeric_limits<double>::quiet_NaN(),
+           py::arg("cy") = std::numeric_limits<double>::quiet_NaN())
       .def("process", &Pipeline::Process, py::arg("left"), py::arg("right"), py::arg("index"))
       .def("reset", &Pipeline::Reset)
       .def("info", &Pipeline::info)

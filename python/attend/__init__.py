@@ -102,7 +102,9 @@ class FrameResult:
     saliency, inhibition, inhibited: float32 maps at the working size; features and normalised:
     each feature's raw and normalised map by name; feature_ms: each feature's milliseconds
     (its compute and the shared work it started); record: the frame's frames.jsonl record (a
-    dict; boxes in input pixels), targets its targets; timings: milliseconds by stage. The maps
+    dict; boxes and disparities in input pixels), targets its targets (on stereo frames with
+    disparity_px and disparity_sd_px; with the Pipeline's camera, position_m and position_sd_m
+    too); timings: milliseconds by stage. The maps
     share the pipeline's buffers: no copy is made, and a map you keep keeps its values (the
     pipeline writes the next frame into new buffers while you hold one).
     """
@@ -128,11 +130,28 @@ class Pipeline:
     config: a configuration file, a dict of configuration keys, or None for
     configs/default.yaml; set: "key.path=value" overrides. The GIL is released while a frame is
     processed, so pipelines in several threads run at once.
+
+    focal_px and baseline_m (with principal_point, (cx, cy), default the image centre; all in
+    the pixels of the frames handed in) describe a rectified stereo camera: each target seen in
+    a stereo frame then has "position_m" [X, Y, Z] (metres, left camera's frame: X right, Y
+    down, Z forward) and "position_sd_m" besides its "disparity_px" (SPEC 3.3), as `attend run`
+    gives them with sequence.yaml's focal_px and baseline_m.
     """
 
-    def __init__(self, config=None, set=()):
+    def __init__(self, config=None, set=(), *, focal_px=None, baseline_m=None,
+                 principal_point=None):
+        if (focal_px is None) != (baseline_m is None):
+            raise ConfigError("focal_px and baseline_m: give both (a stereo camera) or neither")
+        if principal_point is not None and focal_px is None:
+            raise ConfigError("principal_point: needs focal_px and baseline_m")
+        camera = {}
+        if focal_px is not None:
+            camera = {"focal_px": float(focal_px), "baseline_m": float(baseline_m)}
+        if principal_point is not None:
+            cx, cy = principal_point
+            camera.update(cx=float(cx), cy=float(cy))
         self._options = _configuration(config, set)
-        self._core = _attend.Pipeline(self._options)
+        self._core = _attend.Pipeline(self._options, **camera)
 
     def process(self, left, right=None, index=None):
         """Runs one frame (left and optional right: H x W x 3 uint8 BGR or H x W grey)."""
@@ -154,6 +173,8 @@ class Pipeline:
 
     @property
     def info(self):
+        """started, stereo, input_size, working_size, and calibration (focal_px, baseline_m,
+        principal_point; None without a camera or on monocular frames)."""
         return self._core.info()
 
 

@@ -6,10 +6,31 @@ import os
 from . import _attend
 
 
+# The columns a target's depth gives a row (issue 44, SPEC 3.3): its disparity and standard
+# deviation (input pixels), and with a calibration its position in the left camera's frame
+# (metres; X right, Y down, Z forward) and each coordinate's standard deviation.
+DEPTH_COLUMNS = ("disparity_px", "disparity_sd_px", "x_m", "y_m", "z_m", "x_sd_m", "y_sd_m",
+                 "z_sd_m")
+TARGET_COLUMNS = ["frame", "id", "x", "y", "w", "h", "area", "saliency", "state", "kind"]
+
+
+def target_depth(target):
+    """A target dict's depth (a frames.jsonl target) as the values of DEPTH_COLUMNS, None for
+    each that the record does not have."""
+    position = target.get("position_m") or (None, None, None)
+    sd = target.get("position_sd_m") or (None, None, None)
+    return {"disparity_px": target.get("disparity_px"),
+            "disparity_sd_px": target.get("disparity_sd_px"),
+            "x_m": position[0], "y_m": position[1], "z_m": position[2],
+            "x_sd_m": sd[0], "y_sd_m": sd[1], "z_sd_m": sd[2]}
+
+
 class Run:
     """A run folder: its effective configuration, summary, frame records and scan path.
 
-    frames: one dict a frame, as in frames.jsonl (boxes in input pixels); targets_frame() and
+    frames: one dict a frame, as in frames.jsonl (boxes in input pixels; a stereo run's targets
+    have disparity_px and disparity_sd_px, with a calibration position_m and position_sd_m,
+    absent otherwise); targets_frame() and
     frames_frame(): the same as pandas DataFrames (one row a target a frame; one row a frame);
     map(kind, frame): a dumped map ("saliency", "inhibition", "inhibited", "features/mcg").
     """
@@ -49,7 +70,9 @@ class Run:
         return f"<attend.Run {self.dir}: {len(self.frames)} frames>"
 
     def target_rows(self):
-        """One dict a target a frame: frame, id, x, y, w, h, area, saliency, state, kind, ..."""
+        """One dict a target a frame: frame, id, x, y, w, h, area, saliency, state, kind, ...,
+        and the depth columns of DEPTH_COLUMNS (None where the record has no depth: a mono
+        run, a target not seen in the frame, an older record)."""
         rows = []
         for record in self.frames:
             for target in record.get("targets", []):
@@ -57,18 +80,23 @@ class Run:
                 for key, value in target.items():
                     if key == "bbox":
                         row.update(zip(("x", "y", "w", "h"), value))
-                    else:
+                    elif key not in ("position_m", "position_sd_m"):
                         row[key] = value
+                row.update(target_depth(target))
                 row["new"] = target["id"] in record.get("new", [])
                 rows.append(row)
         return rows
 
     def targets_frame(self):
-        """The targets as a pandas DataFrame (pandas must be installed)."""
+        """The targets as a pandas DataFrame (pandas must be installed); the depth columns
+        (DEPTH_COLUMNS) are floats, NaN where a record has none."""
         import pandas
-        columns = ["frame", "id", "x", "y", "w", "h", "area", "saliency", "state", "kind"]
         frame = pandas.DataFrame(self.target_rows())
-        return frame if not frame.empty else pandas.DataFrame(columns=columns)
+        if frame.empty:
+            return pandas.DataFrame(columns=TARGET_COLUMNS + list(DEPTH_COLUMNS))
+        for column in DEPTH_COLUMNS:
+            frame[column] = pandas.to_numeric(frame[column], errors="coerce").astype(float)
+        return frame
 
     def frames_frame(self):
         """One row a frame: frame, targets, visible targets, new, inhibited fraction and each
