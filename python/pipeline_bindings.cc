@@ -51,28 +51,22 @@ struct NominalCamera {
     if (!(focal_px > 0.0) || !std::isfinite(focal_px)) {
       throw ConfigError("focal_px: must be a positive number of pixels (with baseline_m)");
     }
-    if (baseline_m == 0.0 || !std::isfinite(baseline_m)) {
-      throw ConfigError("baseline_m: must be a non-zero number of metres (with focal_px)");
+    if (!(baseline_m > 0.0) || !std::isfinite(baseline_m)) {
+      throw ConfigError("baseline_m: must be a positive number of metres (with focal_px)");
     }
   }
 
-  // The calibration of frames of `size`: the rectified pair's projections P1 = K [I | 0] and
-  // P2 = K [I | -B e_x] (what NominalCalibration gives, built here so that the module needs no
-  // more of io/stereo_calibration than its struct), and the matching Q.
+  // The calibration of frames of `size`: NominalCalibration's, its principal point moved to
+  // (cx, cy) when given.
   std::shared_ptr<const StereoCalibration> Calibration(cv::Size size) const {
-    auto calibration = std::make_shared<StereoCalibration>();
-    calibration->form = StereoCalibration::Form::kNominal;
-    calibration->source = "attend.Pipeline(focal_px, baseline_m)";
-    calibration->image_size = size;
-    const double u = std::isnan(cx) ? (size.width - 1) / 2.0 : cx;
-    const double v = std::isnan(cy) ? (size.height - 1) / 2.0 : cy;
-    calibration->P1 = (cv::Mat_<double>(3, 4) << focal_px, 0, u, 0, 0, focal_px, v, 0, 0, 0, 1, 0);
-    calibration->P2 = calibration->P1.clone();
-    calibration->P2.at<double>(0, 3) = -focal_px * baseline_m;
-    calibration->R1 = cv::Mat::eye(3, 3, CV_64F);
-    calibration->R2 = cv::Mat::eye(3, 3, CV_64F);
-    calibration->Q = (cv::Mat_<double>(4, 4) << 1, 0, 0, -u, 0, 1, 0, -v, 0, 0, 0, focal_px, 0, 0,
-                      1 / baseline_m, 0);
+    auto calibration = std::make_shared<StereoCalibration>(
+        NominalCalibration(focal_px, baseline_m, size, "attend.Pipeline(focal_px, baseline_m)"));
+    for (cv::Mat* p : {&calibration->P1, &calibration->P2}) {
+      if (!std::isnan(cx)) p->at<double>(0, 2) = cx;
+      if (!std::isnan(cy)) p->at<double>(1, 2) = cy;
+    }
+    if (!std::isnan(cx)) calibration->Q.at<double>(0, 3) = -calibration->cx();
+    if (!std::isnan(cy)) calibration->Q.at<double>(1, 3) = -calibration->cy();
     return calibration;
   }
 };

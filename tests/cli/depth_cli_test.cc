@@ -42,13 +42,22 @@ TEST(DepthCli, AStereoRunRecordsEachTargetsDisparityAndEvalScoresIt) {
                    "output.dump=[]"});
   ASSERT_EQ(r.status, 0) << r.err;
   int with_disparity = 0;
+  // synth writes seq/calib.yaml: every position's depth is f B / d, one constant for all.
+  double focal_baseline = -1.0;
   for (const nlohmann::json& t : Targets(dir, "run")) {
     const std::string state = t["state"];
     if (state == "new" || state == "tracked" || state == "resumed") {
       if (t.contains("disparity_px")) {
         ++with_disparity;
-        EXPECT_GE(t["disparity_px"].get<double>(), 0.0) << t.dump();
+        const double d = t["disparity_px"].get<double>();
+        EXPECT_GE(d, 0.0) << t.dump();
         EXPECT_GT(t["disparity_sd_px"].get<double>(), 0.0) << t.dump();
+        if (d <= 0.5) continue;
+        ASSERT_TRUE(t.contains("position_m")) << t.dump();
+        const double fb = t["position_m"][2].get<double>() * d;
+        if (focal_baseline < 0) focal_baseline = fb;
+        EXPECT_NEAR(fb, focal_baseline, 0.01 * focal_baseline + 1e-3 * d) << t.dump();
+        EXPECT_GT(t["position_sd_m"][2].get<double>(), 0.0) << t.dump();
       }
     } else {
       EXPECT_FALSE(t.contains("disparity_px")) << t.dump();
