@@ -75,7 +75,10 @@ namespace {
 // values (an unknown standard deviation) as null.
 nlohmann::ordered_json Rounded(double value, double step) {
   if (!std::isfinite(value)) return nullptr;
-  return std::round(value / step) * step;
+  // Divided by the whole number 1 / step, the result is the double nearest the rounded
+  // decimal, which prints as that decimal (21.15, not 21.150000000000002).
+  const double per_unit = std::round(1.0 / step);
+  return std::round(value * per_unit) / per_unit;
 }
 
 nlohmann::ordered_json Rounded3(const cv::Vec3d& v, double step) {

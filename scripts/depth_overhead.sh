@@ -28,6 +28,6 @@ for method in ("off", "map", "template"):
         ms[method].append(1000.0 * s["wall_seconds"] / s["frames"])
 for method, values in ms.items():
     median = statistics.median(values)
-    print(f"{method}: ms a frame {' '.join(f'{v:.2f}' for v in values)}; median {median:.2f}; "
+    print(f"{method}: ms a frame {' '.join(f'{v:.2f}' for v in values)}; median {median:.2f}; min {min(values):.2f} (ratio {min(values) / min(ms['off']):.3f}); "
           f"ratio to off {median / statistics.median(ms['off']):.3f}")
 PY

@@ -273,7 +273,9 @@ double TargetDepths::JumpOf(int id, const cv::Mat& left, const StereoInput& ster
   if (it == jumps_.end()) {
     it = jumps_.emplace(id, JumpTrack(options_.low_pass)).first;
   } else {
-    jump = std::abs(estimate.disparity - it->second.last);
+    // A move within three of the estimate's own standard deviations is not a jump: a flat or
+    // repeating template's peak wanders by itself.
+    jump = std::max(0.0, std::abs(estimate.disparity - it->second.last) - 3.0 * estimate.sd);
   }
   it->second.last = it->second.filter.Step(estimate.disparity);
   return jump;

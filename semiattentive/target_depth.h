@@ -59,7 +59,8 @@ struct DepthOptions {
   // a found target whose raw disparity leaves its filtered one by more than `jump_px` is a
   // switch to another object, and is released ("depth_jump"); the test is always on the
   // thesis's template estimate, filtered at low_pass, whatever `method` records (it measured
-  // best so on the rendered scenes, docs/STEREO3D.md; the map's jumped on its own noise);
+  // best so on the rendered scenes, docs/STEREO3D.md; the map's jumped on its own noise), and
+  // a move within three of the raw estimate's standard deviations is not a jump;
   float jump_px = 3.f;
   // a target inhibits only the pixels whose disparity is within `inhibit_band_px` of its own
   // (an object passing in front of it is not inhibited by it).
@@ -147,7 +148,8 @@ class TargetDepths {
   // Its last filtered disparity (invalid when it has none).
   DisparityEstimate Last(int id) const;
   // depth.jump_px: how far the template estimate of target `id` on `mask` leaves its filtered
-  // series (0 when it has none yet), which then takes the estimate in. `raw` is this frame's
+  // series beyond three of its own standard deviations (0 when it has no series yet, or moves
+  // less), which then takes the estimate in. `raw` is this frame's
   // estimate when `method` is template (measured already), ignored otherwise.
   double JumpOf(int id, const cv::Mat& left, const StereoInput& stereo, const cv::Mat& mask,
                 const cv::Rect& box, const DisparityEstimate& raw);
