@@ -15,6 +15,7 @@
 #include "io/ground_truth.h"
 #include "io/pfm.h"
 #include "util/error.h"
+#include "util/json_text.h"
 
 namespace attend {
 
@@ -95,17 +96,15 @@ cv::Mat ReadSaliency(const std::string& run, int frame) {
   return ReadPfmOneChannel(path, "a saliency map");
 }
 
-nlohmann::ordered_json Number(double value) {
-  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json();
-}
-
 nlohmann::ordered_json OptionalNumber(const std::optional<double>& value) {
-  return value ? Number(*value) : nlohmann::ordered_json();
+  return value ? FiniteOrNull(*value) : nlohmann::ordered_json();
 }
 
 nlohmann::ordered_json MetricsJson(const std::optional<SaliencyMetrics>& metrics) {
   if (!metrics) return nullptr;
-  return {{"cc", Number(metrics->cc)}, {"sim", Number(metrics->sim)}, {"kl", Number(metrics->kl)}};
+  return {{"cc", FiniteOrNull(metrics->cc)},
+          {"sim", FiniteOrNull(metrics->sim)},
+          {"kl", FiniteOrNull(metrics->kl)}};
 }
 
 }  // namespace

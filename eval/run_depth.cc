@@ -1,15 +1,15 @@
 #include "eval/run_depth.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
-
 #include <opencv2/core.hpp>
+
+#include "util/json_text.h"
 
 namespace attend {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A running mean of finite values.
 struct Mean {
@@ -18,12 +18,10 @@ struct Mean {
   void Add(double value) {
     if (std::isfinite(value)) sum += value, ++count;
   }
-  double value() const { return count > 0 ? sum / count : kNaN; }
+  double value() const {
+    return count > 0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
+  }
 };
-
-nlohmann::ordered_json Number(double value) {
-  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json();
-}
 
 // The target `id` of `record` when it is seen there; null otherwise.
 const TargetRecord* SeenTarget(const FrameRecord& record, int id) {
@@ -108,9 +106,9 @@ nlohmann::ordered_json RunDepthToJson(const RunDepth& depth) {
   return {{"target_frames", depth.target_frames},
           {"with_disparity", depth.with_disparity},
           {"with_position", depth.with_position},
-          {"mean_disparity_sd_px", Number(depth.mean_disparity_sd_px)},
-          {"mean_depth_m", Number(depth.mean_depth_m)},
-          {"mean_depth_sd_m", Number(depth.mean_depth_sd_m)}};
+          {"mean_disparity_sd_px", FiniteOrNull(depth.mean_disparity_sd_px)},
+          {"mean_depth_m", FiniteOrNull(depth.mean_depth_m)},
+          {"mean_depth_sd_m", FiniteOrNull(depth.mean_depth_sd_m)}};
 }
 
 nlohmann::ordered_json DepthComparisonToJson(const std::optional<DepthComparison>& comparison) {
@@ -120,15 +118,15 @@ nlohmann::ordered_json DepthComparisonToJson(const std::optional<DepthComparison
     targets.push_back({{"a", t.id_a},
                        {"b", t.id_b},
                        {"disparity_frames", t.disparity_frames},
-                       {"mean_disparity_difference_px", Number(t.mean_disparity_difference_px)},
+                       {"mean_disparity_difference_px", FiniteOrNull(t.mean_disparity_difference_px)},
                        {"position_frames", t.position_frames},
-                       {"mean_distance_m", Number(t.mean_distance_m)},
-                       {"mean_depth_difference_m", Number(t.mean_depth_difference_m)}});
+                       {"mean_distance_m", FiniteOrNull(t.mean_distance_m)},
+                       {"mean_depth_difference_m", FiniteOrNull(t.mean_depth_difference_m)}});
   }
   return {{"a", RunDepthToJson(comparison->a)},
           {"b", RunDepthToJson(comparison->b)},
-          {"mean_abs_disparity_difference_px", Number(comparison->mean_abs_disparity_difference_px)},
-          {"mean_distance_m", Number(comparison->mean_distance_m)},
+          {"mean_abs_disparity_difference_px", FiniteOrNull(comparison->mean_abs_disparity_difference_px)},
+          {"mean_distance_m", FiniteOrNull(comparison->mean_distance_m)},
           {"targets", targets}};
 }
 
