@@ -7,7 +7,7 @@
 namespace attend {
 namespace {
 
-GtObject Object(int frame, int id, cv::Rect2d box, double disparity) {
+GtObject KnownObject(int frame, int id, cv::Rect2d box, double disparity) {
   GtObject object;
   object.frame = frame;
   object.id = id;
@@ -17,7 +17,7 @@ GtObject Object(int frame, int id, cv::Rect2d box, double disparity) {
   return object;
 }
 
-TargetRecord Target(int id, cv::Rect box, double disparity, double sd) {
+TargetRecord DepthTarget(int id, cv::Rect box, double disparity, double sd) {
   TargetRecord target;
   target.id = id;
   target.bbox = box;
@@ -29,17 +29,17 @@ TargetRecord Target(int id, cv::Rect box, double disparity, double sd) {
 
 TEST(TargetDepthScores, ErrorsOfTheMatchedTargetsOnly) {
   // Object 1 at 10 px, object 2 at 4 px (farther than near_disparity 8).
-  const std::vector<GtObject> truth = {Object(0, 1, {0, 0, 20, 20}, 10.0),
-                                       Object(0, 2, {50, 50, 20, 20}, 4.0),
-                                       Object(1, 1, {0, 0, 20, 20}, 10.0)};
+  const std::vector<GtObject> truth = {KnownObject(0, 1, {0, 0, 20, 20}, 10.0),
+                                       KnownObject(0, 2, {50, 50, 20, 20}, 4.0),
+                                       KnownObject(1, 1, {0, 0, 20, 20}, 10.0)};
   FrameRecord f0, f1;
   f0.frame = 0;
   f1.frame = 1;
-  f0.targets = {Target(1, {0, 0, 20, 20}, 10.1, 0.2),     // error 0.1, within 1 sd
-                Target(2, {50, 50, 20, 20}, 4.5, 0.2),    // error 0.5, beyond 2 sd
-                Target(3, {100, 100, 9, 9}, 7.0, 0.2)};   // on no object
-  f1.targets = {Target(1, {1, 1, 20, 20}, 9.5, 0.3)};     // error 0.5, within 2 sd
-  TargetRecord released = Target(1, {0, 0, 20, 20}, 3.0, 0.1);
+  f0.targets = {DepthTarget(1, {0, 0, 20, 20}, 10.1, 0.2),     // error 0.1, within 1 sd
+                DepthTarget(2, {50, 50, 20, 20}, 4.5, 0.2),    // error 0.5, beyond 2 sd
+                DepthTarget(3, {100, 100, 9, 9}, 7.0, 0.2)};   // on no object
+  f1.targets = {DepthTarget(1, {1, 1, 20, 20}, 9.5, 0.3)};     // error 0.5, within 2 sd
+  TargetRecord released = DepthTarget(1, {0, 0, 20, 20}, 3.0, 0.1);
   released.state = TargetState::kReleased;                // not seen: not scored
   f1.targets.push_back(released);
   const DepthScores s = EvaluateTargetDepth({f0, f1}, truth);
@@ -56,9 +56,9 @@ TEST(TargetDepthScores, ErrorsOfTheMatchedTargetsOnly) {
 }
 
 TEST(TargetDepthScores, NothingToScoreWithoutDisparities) {
-  const std::vector<GtObject> truth = {Object(0, 1, {0, 0, 20, 20}, 10.0)};
+  const std::vector<GtObject> truth = {KnownObject(0, 1, {0, 0, 20, 20}, 10.0)};
   FrameRecord f0;
-  TargetRecord mono = Target(1, {0, 0, 20, 20}, 0.0, 0.0);
+  TargetRecord mono = DepthTarget(1, {0, 0, 20, 20}, 0.0, 0.0);
   mono.disparity_px = std::numeric_limits<double>::quiet_NaN();
   f0.targets = {mono};
   EXPECT_EQ(EvaluateTargetDepth({f0}, truth).matches, 0);
