@@ -54,6 +54,11 @@ FitWeightsResult FitFeatureWeights(const FitWeightsRequest& request) {
   WeightFitOptions fit_options;
   fit_options.saliency = options.saliency;
   fit_options.step = request.step;
+  for (const std::string& name : names) {
+    for (const FeatureSpec& spec : options.features) {
+      if (spec.name == name) fit_options.additive.push_back(spec.additive);
+    }
+  }
   const WeightFit fit = FitWeights(samples, fit_options);
   for (FeatureSpec& spec : options.features) {
     const auto at = std::find(names.begin(), names.end(), spec.name);

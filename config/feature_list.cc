@@ -14,6 +14,7 @@ std::vector<FeatureSpec> ReadFeatureList(const ParamBlock& root, const std::stri
     spec.weight = entry.GetDouble("weight", 1.0, Range::AtLeast(0.0));
     spec.enabled = entry.GetBool("enabled", true);
     spec.normalisation = entry.GetString("normalisation", "");
+    spec.additive = entry.GetBool("additive", false);
     if (!names.insert(spec.name).second) {
       entry.Fail("name", "feature '" + spec.name + "' is listed twice");
     }

@@ -20,7 +20,13 @@ struct FeatureSpec {
   // The normalisation of this feature's map before the sum: a name in the feature registry's
   // normalisations (minmax, local_maxima, or one a plugin added); "" is saliency.normalisation.
   std::string normalisation;
-  // The whole entry; `name`, `weight`, `enabled` and `normalisation` are already marked as read, so
+  // With `saliency.combination: product`: this map is added to the weighted geometric mean of
+  // the other maps instead of being a factor in it (MultiplyMaps). A channel that is 0 on most
+  // images (faces) then leaves those images' maps as they are instead of flattening them. No
+  // effect in `sum`.
+  bool additive = false;
+  // The whole entry; `name`, `weight`, `enabled`, `normalisation` and `additive` are already marked
+  // as read, so
   // a plugin reads its own keys and then calls params.CheckNoUnknownKeys().
   ParamBlock params;
 };

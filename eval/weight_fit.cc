@@ -12,10 +12,11 @@ namespace {
 
 // The combined map of `sample` under `weights`, by the saliency stage's own functions.
 void Combine(const FitSample& sample, const std::vector<double>& weights,
-             const SaliencyOptions& saliency, cv::Mat* out) {
+             const WeightFitOptions& options, cv::Mat* out) {
+  const SaliencyOptions& saliency = options.saliency;
   const cv::Size size = sample.features[0].size();
   if (saliency.combination == SaliencyCombination::kProduct) {
-    MultiplyMaps(sample.features, weights, size, out);
+    MultiplyMaps(sample.features, weights, options.additive, size, out);
   } else {
     CombineMaps(sample.features, weights, size, out);
   }
@@ -61,7 +62,7 @@ WeightFit FitWeights(const std::vector<FitSample>& samples, const WeightFitOptio
     int counted = 0;
     for (const FitSample& sample : samples) {
       if (sample.fixations.empty()) continue;
-      Combine(sample, weights, options.saliency, &combined);
+      Combine(sample, weights, options, &combined);
       sum += Nss(combined, sample.fixations);
       ++counted;
     }

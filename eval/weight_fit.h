@@ -20,6 +20,8 @@ struct FitSample {
 struct WeightFitOptions {
   SaliencyOptions saliency;  // how the maps combine and blur (its combination and blur)
   double step = 0.1;         // grid step of the weights, in (0, 1]
+  // Per feature: added to the product's geometric mean (FeatureSpec::additive); empty: none.
+  std::vector<bool> additive;
 };
 
 struct WeightFit {

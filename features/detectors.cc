@@ -157,6 +157,11 @@ std::unique_ptr<FeatureMap> MakeNetworkChannel(const ParamBlock& params, const F
       std::make_unique<ObjectChannel>(channel, geometry, label, std::move(search)));
 }
 
+constexpr EnumTable<DetectionShape, 2> kShapes = {{{
+    {DetectionShape::kBox, "box"},
+    {DetectionShape::kGaussian, "gaussian"},
+}}};
+
 constexpr EnumTable<DetectorGate, 2> kGates = {{{
     {DetectorGate::kAttended, "attended"},
     {DetectorGate::kFrame, "frame"},
@@ -178,7 +183,17 @@ const OptionFields<ObjectChannelOptions>& ObjectChannelOptions::Fields() {
       {"max_height", &O::max_height, Range::Closed(0, 10000),
        "largest object searched for, px; 0: no bound"},
       {"blur", &O::blur, Range::Closed(0, 1),
-       "sigma of a Gaussian on the map, share of the larger side; 0: none"}};
+       "sigma of a Gaussian on the map, share of the larger side; 0: none"},
+      {"shape", EnumField<&O::shape, kShapes>(),
+       "each detection in the map: box, filled with its confidence; gaussian, a Gaussian over "
+       "its box peaking at its confidence"},
+      {"shape_sigma", &O::shape_sigma, Range::AboveUpTo(0, 4),
+       "gaussian shape: sigma, share of the box's width and height"},
+      {"shape_centre_y", &O::shape_centre_y, Range::Closed(0, 1),
+       "gaussian shape: the centre's height in the box, share from its top"},
+      {"size_power", &O::size_power, Range::Closed(-4, 4),
+       "each detection's value: its confidence x (box height / map height) to this power; 0: "
+       "the confidence"}};
   return fields;
 }
 
@@ -354,7 +369,7 @@ void ObjectChannel::Compute(const cv::Mat& bgr, const std::vector<cv::Rect>& reg
     }
     SuppressOverlaps(kMergeIou, &detections_);
   }
-  PaintDetections(detections_, options_.blur, bgr.size(), map);
+  PaintDetections(detections_, options_, bgr.size(), map);
 }
 
 std::vector<std::pair<cv::Rect, double>> MergeCrops(std::vector<std::pair<cv::Rect, double>> crops,
@@ -415,17 +430,55 @@ void SuppressOverlaps(double max_iou, std::vector<Detection>* detections) {
   *detections = std::move(kept);
 }
 
-void PaintDetections(const std::vector<Detection>& detections, double blur, cv::Size size,
-                     cv::Mat* map) {
+namespace {
+
+// A Gaussian over `box` (sigma `share` times its width and height, centred across it and at
+// `centre_y` of its height from the top) up to `peak`, to 3 sigma, into `map` by the maximum.
+void PaintGaussian(const cv::Rect& box, double share, double centre_y, float peak, cv::Mat* map) {
+  const double sx = std::max(0.5, share * box.width);
+  const double sy = std::max(0.5, share * box.height);
+  const double cx = box.x + box.width / 2.0 - 0.5;
+  const double cy = box.y + box.height * centre_y - 0.5;
+  const cv::Rect reach = cv::Rect(cv::Point(static_cast<int>(std::floor(cx - 3 * sx)),
+                                            static_cast<int>(std::floor(cy - 3 * sy))),
+                                  cv::Point(static_cast<int>(std::ceil(cx + 3 * sx)) + 1,
+                                            static_cast<int>(std::ceil(cy + 3 * sy)) + 1)) &
+                         cv::Rect(0, 0, map->cols, map->rows);
+  for (int y = reach.y; y < reach.y + reach.height; ++y) {
+    float* row = map->ptr<float>(y);
+    const double dy = (y - cy) / sy;
+    for (int x = reach.x; x < reach.x + reach.width; ++x) {
+      const double dx = (x - cx) / sx;
+      const float value = peak * static_cast<float>(std::exp(-0.5 * (dx * dx + dy * dy)));
+      row[x] = std::max(row[x], value);
+    }
+  }
+}
+
+}  // namespace
+
+void PaintDetections(const std::vector<Detection>& detections, const ObjectChannelOptions& options,
+                     cv::Size size, cv::Mat* map) {
   map->create(size, CV_32FC1);
   map->setTo(0.f);
   const cv::Rect frame(0, 0, size.width, size.height);
   for (const Detection& detection : detections) {
+    if (detection.box.empty()) continue;
+    float value = detection.confidence;
+    if (options.size_power != 0.0) {
+      value *= static_cast<float>(
+          std::pow(static_cast<double>(detection.box.height) / size.height, options.size_power));
+    }
+    if (options.shape == DetectionShape::kGaussian) {
+      PaintGaussian(detection.box, options.shape_sigma, options.shape_centre_y, value, map);
+      continue;
+    }
     const cv::Rect box = detection.box & frame;
     if (box.empty()) continue;
     cv::Mat inside = (*map)(box);
-    cv::max(inside, static_cast<double>(detection.confidence), inside);
+    cv::max(inside, static_cast<double>(value), inside);
   }
+  const double blur = options.blur;
   if (blur > 0.0 && !detections.empty()) {
     const double sigma = blur * std::max(size.width, size.height);
     cv::GaussianBlur(*map, *map, cv::Size(), sigma, sigma, cv::BORDER_CONSTANT);

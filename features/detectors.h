@@ -35,6 +35,12 @@ namespace attend {
 
 enum class DetectorGate { kAttended, kFrame };
 
+// How a detection is painted into its channel's map: its box filled with its confidence, or a
+// Gaussian over the box (centred on it, sigma `shape_sigma` times its width and height, peak
+// its confidence), which is highest where people look on a face or a body and falls off
+// towards its edges.
+enum class DetectionShape { kBox, kGaussian };
+
 // What both channels share: where the detector looks and how its detections become a map.
 struct ObjectChannelOptions {
   DetectorGate gate = DetectorGate::kAttended;
@@ -48,6 +54,15 @@ struct ObjectChannelOptions {
   int min_height = 40;  // smallest object searched for, px of the frame
   int max_height = 0;   // largest object searched for, px of the frame; 0: no bound
   double blur = 0.0;    // sigma of a Gaussian on the map, share of the larger side; 0: none
+  DetectionShape shape = DetectionShape::kBox;
+  double shape_sigma = 0.5;  // gaussian shape: sigma, share of the box's width and height
+  // gaussian shape: the centre's height in the box, a share of it from its top (0.5: the
+  // middle; a person's head is near the top of its box).
+  double shape_centre_y = 0.5;
+  // Each detection's value is its confidence times (its box's height / the map's height) to
+  // this power: 0, the confidence alone; below 0, small objects (far faces in a crowd, each
+  // looked at about as often as a near one) weigh more per pixel.
+  double size_power = 0.0;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
   // The fields (util/option_fields.h), which Check and the configuration apply.
@@ -161,10 +176,11 @@ cv::Rect GateCrop(const cv::Rect& region, double margin, cv::Size window, cv::Si
 // kept box of the same label exceeds `max_iou` is dropped. Keeps the order of confidence.
 void SuppressOverlaps(double max_iou, std::vector<Detection>* detections);
 
-// The map of `detections`: each box filled with its confidence (the maximum where boxes
-// overlap), 0 elsewhere, then blurred by a Gaussian of `blur` times the larger side (0: none).
-void PaintDetections(const std::vector<Detection>& detections, double blur, cv::Size size,
-                     cv::Mat* map);
+// The map of `detections`: each painted as `options.shape` says with its confidence (the
+// maximum where they overlap), 0 elsewhere, then blurred by a Gaussian of `options.blur` times
+// the larger side (0: none).
+void PaintDetections(const std::vector<Detection>& detections, const ObjectChannelOptions& options,
+                     cv::Size size, cv::Mat* map);
 
 // A monotone map of a detector's score (an SVM margin, a cascade's final stage sum) into
 // (0, 1]: the logistic function, 0.5 at a score of 0.

@@ -83,6 +83,7 @@ SaliencyStage MakeSaliencyStage(const AttendOptions& options, const FeatureRegis
     SaliencyInput input;
     input.name = spec.name;
     input.weight = spec.weight;
+    input.additive = spec.additive;
     if (!spec.normalisation.empty()) {
       input.normalisation = *FindNormalisation(
           normalisations, spec.normalisation,

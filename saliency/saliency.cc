@@ -37,7 +37,9 @@ const OptionFields<SaliencyOptions>& SaliencyOptions::Fields() {
       {"blur", &O::blur, Range::Closed(0, 1),
        "the combined map's Gaussian blur, a share of the image's larger side; 0: none"},
       {"combination", EnumField<&O::combination, kCombinations>(),
-       "sum: the weighted mean (the thesis); product: the weighted geometric mean"}};
+       "sum: the weighted mean (the thesis); product: the weighted geometric mean"},
+      {"gamma", &O::gamma, Range::Closed(0.1, 10),
+       "the combined (and blurred) map to this power; 1: as it is"}};
   return fields;
 }
 
@@ -74,32 +76,50 @@ void CombineMaps(const std::vector<cv::Mat>& normalised, const std::vector<doubl
 }
 
 void MultiplyMaps(const std::vector<cv::Mat>& normalised, const std::vector<double>& weights,
-                  cv::Size size, cv::Mat* out) {
+                  const std::vector<bool>& additive, cv::Size size, cv::Mat* out) {
   ATTEND_CHECK(normalised.size() == weights.size()) << "one weight per map";
+  ATTEND_CHECK(additive.empty() || additive.size() == weights.size()) << "one flag per map";
   constexpr double kFloor = 0.01;  // so that a 0 somewhere is a strong veto, not -infinity
+  const auto is_added = [&additive](size_t i) { return !additive.empty() && additive[i]; };
   out->create(size, CV_32FC1);
   out->setTo(0.f);
-  double total = 0.0;
-  for (const double weight : weights) total += weight;
-  if (!(total > 0.0)) return;
-  cv::Mat logs;
-  for (size_t i = 0; i < normalised.size(); ++i) {
-    if (weights[i] == 0.0) continue;
-    cv::log(normalised[i] + kFloor, logs);
-    cv::scaleAdd(logs, static_cast<float>(weights[i] / total), *out, *out);
+  double total = 0.0, factors = 0.0;
+  for (size_t i = 0; i < weights.size(); ++i) {
+    total += weights[i];
+    if (!is_added(i)) factors += weights[i];
   }
-  cv::exp(*out, *out);
-  // From [kFloor, 1 + kFloor] to [0, 1].
-  *out = (*out - kFloor) / 1.0;
-  cv::max(*out, 0.0, *out);
-  cv::min(*out, 1.0, *out);
+  if (!(total > 0.0)) return;
+  if (factors > 0.0) {
+    cv::Mat logs;
+    for (size_t i = 0; i < normalised.size(); ++i) {
+      if (weights[i] == 0.0 || is_added(i)) continue;
+      cv::log(normalised[i] + kFloor, logs);
+      cv::scaleAdd(logs, static_cast<float>(weights[i] / factors), *out, *out);
+    }
+    cv::exp(*out, *out);
+    // From [kFloor, 1 + kFloor] to [0, 1].
+    *out = (*out - kFloor) / 1.0;
+    cv::max(*out, 0.0, *out);
+    cv::min(*out, 1.0, *out);
+    *out *= factors / total;
+  }
+  for (size_t i = 0; i < normalised.size(); ++i) {
+    if (weights[i] == 0.0 || !is_added(i)) continue;
+    cv::scaleAdd(normalised[i], static_cast<float>(weights[i] / total), *out, *out);
+  }
 }
 
 void SmoothSaliency(const SaliencyOptions& options, cv::Mat* map) {
-  if (options.blur <= 0.0 || map->empty()) return;
+  if (map->empty()) return;
+  if (options.blur > 0.0) BlurSaliency(options.blur, map);
+  // The map is in [0, 1], so its power stays there and keeps its order.
+  if (options.gamma != 1.0) cv::pow(*map, options.gamma, *map);
+}
+
+void BlurSaliency(double blur, cv::Mat* map) {
   double low = 0.0, high = 0.0;
   cv::minMaxLoc(*map, &low, &high);
-  const double sigma = options.blur * std::max(map->cols, map->rows);
+  const double sigma = blur * std::max(map->cols, map->rows);
   cv::GaussianBlur(*map, *map, cv::Size(), sigma, sigma, cv::BORDER_REPLICATE);
   double blurred_high = 0.0;
   cv::minMaxLoc(*map, nullptr, &blurred_high);

@@ -28,11 +28,16 @@ void CombineMaps(const std::vector<cv::Mat>& normalised, const std::vector<doubl
                  cv::Size size, cv::Mat* out);
 
 // The weighted geometric mean of the maps as `combination` "product" defines it (CV_32FC1,
-// [0, 1]); no maps, or weights summing to 0, give a zero map of `size`.
+// [0, 1]); no maps, or weights summing to 0, give a zero map of `size`. The maps marked in
+// `additive` (empty: none) are not factors: with W_g the weights of the others, G their
+// geometric mean and W the sum of all weights, the map is (W_g G + sum_a w_a n_a) / W.
 void MultiplyMaps(const std::vector<cv::Mat>& normalised, const std::vector<double>& weights,
-                  cv::Size size, cv::Mat* out);
+                  const std::vector<bool>& additive, cv::Size size, cv::Mat* out);
 
-// Blurs `map` (CV_32FC1) in place as `options.blur` says (nothing when it is 0).
+// Blurs `map` (CV_32FC1, [0, 1]) in place as `options.blur` says (nothing when it is 0), then
+// raises it to `options.gamma`.
 void SmoothSaliency(const SaliencyOptions& options, cv::Mat* map);
+// A Gaussian of `blur` times the map's larger side, then scaled back to its maximum.
+void BlurSaliency(double blur, cv::Mat* map);
 
 }  // namespace attend

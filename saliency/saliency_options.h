@@ -22,6 +22,10 @@ struct SaliencyOptions {
   // hard edges, and people look near a salient thing, not exactly at it; not in the
   // thesis.
   double blur = 0.0;
+  // The combined map, after its blur, to this power (a pointwise calibration that keeps the
+  // order of its values, so every AUC; NSS and CC prefer a map as peaked as the fixations'
+  // density). 1: the map as it is; not in the thesis.
+  double gamma = 1.0;
   // How the normalised maps combine: sum (SPEC 2.3, the thesis: the weighted mean) or
   // product (the weighted geometric mean, prod_i (n_i + 0.01)^(w_i / sum w), less its value
   // where every map is 0: a map that is low somewhere, such as a centre bias, vetoes there

@@ -45,6 +45,7 @@ void SaliencyStage::Combine(const std::vector<const cv::Mat*>& maps, bool grey, 
   for (cv::Mat& map : normalised_) ReleaseIfShared(&map);
   ReleaseIfShared(&saliency_);
   frame_weights_.resize(inputs_.size());
+  additive_.resize(inputs_.size());
   for (size_t i = 0; i < inputs_.size(); ++i) {
     const SaliencyInput& input = inputs_[i];
     input.normalisation.normalise(*maps[i], options_, &normalised_[i]);
@@ -55,6 +56,7 @@ void SaliencyStage::Combine(const std::vector<const cv::Mat*>& maps, bool grey, 
     // select.min_saliency for a plainly bright object. Colour frames keep the weights as
     // configured.
     frame_weights_[i] = input.weight;
+    additive_[i] = input.additive;
     if (grey) {
       double low = 0.0, high = 0.0;
       cv::minMaxLoc(*maps[i], &low, &high);
@@ -62,7 +64,7 @@ void SaliencyStage::Combine(const std::vector<const cv::Mat*>& maps, bool grey, 
     }
   }
   if (options_.combination == SaliencyCombination::kProduct) {
-    MultiplyMaps(normalised_, frame_weights_, size, &saliency_);
+    MultiplyMaps(normalised_, frame_weights_, additive_, size, &saliency_);
   } else {
     CombineMaps(normalised_, frame_weights_, size, &saliency_);
   }

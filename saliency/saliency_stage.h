@@ -21,6 +21,7 @@ struct SaliencyInput {
   // Its normalisation (a copy of the registry's entry); without a `normalise`, that of
   // saliency.normalisation.
   NormalisationRegistry::Entry normalisation;
+  bool additive = false;  // FeatureSpec::additive
 };
 
 class SaliencyStage {
@@ -45,6 +46,7 @@ class SaliencyStage {
   std::vector<SaliencyInput> inputs_;
   std::vector<cv::Mat> normalised_;
   std::vector<double> frame_weights_;
+  std::vector<bool> additive_;
   cv::Mat saliency_;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <opencv2/imgproc.hpp>
 #include <utility>
 
@@ -122,6 +123,8 @@ struct AttentionStage::Impl {
   // Per detection of the frame: a target is on it (recognised, or started on it).
   std::vector<uint8_t> detection_used_;
   std::vector<cv::Rect> look_regions_;
+  // Where attention is: the centre of the last target started (select.proximity).
+  std::optional<cv::Point2d> focus_;
 };
 
 AttentionStage::Impl::Impl(const AttentionOptions& options, SkinModel skin_model, BipPool* pool)
@@ -307,7 +310,9 @@ void AttentionStage::Impl::StartTargets(const Frame& in, int inhibited_pixels,
                                         AttentionFrame* frame, std::vector<cv::Rect>* looked) {
   const int free_slots = options_.select.max_targets - targets_.size();
   if (free_slots <= 0) return;
-  const Candidates candidates = candidates_.Find(inhibition_.inhibited());
+  Candidates candidates = candidates_.Find(inhibition_.inhibited());
+  RankCandidates(options_.select, focus_ ? &*focus_ : nullptr, in.detections, in.bgr.size(),
+                 &candidates);
   for (size_t k = 0; k < candidates.ranked.size() && k < kLookCandidates; ++k) {
     looked->push_back(candidates.Box(candidates.ranked[k].second));
   }
@@ -416,6 +421,7 @@ bool AttentionStage::Impl::Start(const Frame& in, const Seed& seed, bool skin,
   target.saliency = MeanOver(in.saliency, own);
   target.state = TargetState::kNew;
   target.skin = skin;
+  focus_ = cv::Point2d(target.box.x + target.box.width / 2.0, target.box.y + target.box.height / 2.0);
   FollowedTarget followed;
   followed.tracker_id = tracker_id;
   followed.skin = skin;

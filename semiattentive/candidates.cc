@@ -1,5 +1,8 @@
 #include "semiattentive/candidates.h"
 
+#include <cmath>
+#include <tuple>
+
 #include <algorithm>
 
 #include "pyramid/similarity.h"
@@ -64,6 +67,38 @@ Candidates CandidateFinder::Find(const cv::Mat& inhibited) {
   std::stable_sort(c.ranked.begin(), c.ranked.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
   return c;
+}
+
+void RankCandidates(const SelectOptions& options, const cv::Point2d* focus,
+                    const std::vector<Detection>& detections, cv::Size image,
+                    Candidates* candidates) {
+  Candidates& c = *candidates;
+  const double diagonal = std::hypot(image.width, image.height);
+  const double s = options.proximity * diagonal;
+  std::vector<std::tuple<int, double, int>> ranked;  // (face, score, region)
+  for (const auto& [mass, r] : c.ranked) {
+    double score = mass;
+    if (options.order == CandidateOrder::kPeak) score = c.peak_value[r];
+    if (options.order == CandidateOrder::kMean) score = c.sum[r] / c.area[r];
+    if (focus != nullptr && s > 0.0) {
+      const double dx = c.peak[r].x - focus->x, dy = c.peak[r].y - focus->y;
+      score *= std::exp(-(dx * dx + dy * dy) / (2.0 * s * s));
+    }
+    int face = 0;
+    if (options.faces_first) {
+      for (const Detection& d : detections) {
+        if (d.label == "face" && d.box.contains(c.peak[r])) face = 1;
+      }
+    }
+    ranked.emplace_back(face, score, r);
+  }
+  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
+    if (std::get<0>(a) != std::get<0>(b)) return std::get<0>(a) > std::get<0>(b);
+    return std::get<1>(a) > std::get<1>(b);
+  });
+  for (size_t k = 0; k < ranked.size(); ++k) {
+    c.ranked[k] = {std::get<1>(ranked[k]), std::get<2>(ranked[k])};
+  }
 }
 
 CandidateRegions RegionsUnder(const Candidates& c, const Segmentation& segmentation,

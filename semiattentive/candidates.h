@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "features/feature_map.h"
 #include "pyramid/bip.h"
 #include "pyramid/regions.h"
 #include "semiattentive/select_options.h"
@@ -47,6 +48,14 @@ class CandidateFinder {
   float t_max_;
   BipBuilder builder_;
 };
+
+// Ranks `candidates` (best first) as the order of attention says (SelectOptions::order,
+// proximity, faces_first): `focus` is where attention is (the last target started; nullptr:
+// nowhere yet, no proximity), `detections` the frame's (those labelled "face" count for
+// faces_first). Ties keep the regions' order.
+void RankCandidates(const SelectOptions& options, const cv::Point2d* focus,
+                    const std::vector<Detection>& detections, cv::Size image,
+                    Candidates* candidates);
 
 // The colour regions under each candidate and those a target holds.
 struct CandidateRegions {

@@ -6,6 +6,12 @@ namespace attend {
 
 namespace {
 
+constexpr EnumTable<CandidateOrder, 3> kOrders = {{{
+    {CandidateOrder::kMass, "mass"},
+    {CandidateOrder::kPeak, "peak"},
+    {CandidateOrder::kMean, "mean"},
+}}};
+
 constexpr EnumTable<SeedKind, 3> kSeedKinds = {{{
     {SeedKind::kRegion, "region"},
     {SeedKind::kObject, "object"},
@@ -26,6 +32,14 @@ const OptionFields<SelectOptions>& SelectOptions::Fields() {
       {"max_targets", &O::max_targets, Range::Closed(1, 1000), "targets active at once"},
       {"max_area_fraction", &O::max_area_fraction, Range::Closed(0.001, 1),
        "a colour region larger than this share of the image is background"},
+      {"order", EnumField<&O::order, kOrders>(),
+       "what ranks the candidates: mass (mean inhibited saliency x area, the thesis), peak "
+       "(highest inhibited saliency), mean"},
+      {"proximity", &O::proximity, Range::Closed(0, 10),
+       "> 0: each candidate's score x exp(-d^2 / 2 s^2), d its peak's distance from the last "
+       "target started, s this share of the image diagonal; 0: off"},
+      {"faces_first", &O::faces_first,
+       "candidates whose peak lies in a face detection (the faces channel) come first"},
       {"max_inhibited_fraction", &O::max_inhibited_fraction, Range::Closed(0.001, 1),
        "no new target while the inhibition would cover more of the image; 1: no bound"},
       {"saliency_t_max", &O::saliency_t_max, Range::Closed(0.001, 1000),

@@ -1,7 +1,8 @@
 // The `select` section of the configuration: how the attention stage chooses what to attend
 // next and what a new target starts from (thesis 5.1.2, SPEC 2.4). One struct, because one
 // section holds these keys; each group of fields below is read by one step of the stage:
-//   candidates (semiattentive/candidates.h)       min_saliency, min_area, saliency_t_max
+//   candidates (semiattentive/candidates.h)       min_saliency, min_area, saliency_t_max,
+//                                                  order, proximity, faces_first
 //   the selection (semiattentive/attention.cc)     max_new, max_targets, max_area_fraction,
 //                                                  max_inhibited_fraction
 //   seeds (semiattentive/seeds.h)                  seed, seed_share, seed_level,
@@ -16,6 +17,11 @@
 
 namespace attend {
 
+// What ranks the candidates (SelectOptions::order): the thesis's mean inhibited saliency times
+// area (`mass`), the region's highest inhibited saliency (`peak`, a winner-take-all on the map),
+// or its mean (`mean`).
+enum class CandidateOrder { kMass, kPeak, kMean };
+
 // What a candidate starts as (SelectOptions::seed).
 enum class SeedKind { kRegion, kObject, kDetection };
 // "region", "object", "detection" (the select.seed key).
@@ -28,6 +34,14 @@ struct SelectOptions {
   int max_targets = 12;       // targets active at once
   // A colour region larger than this share of the image is background, never a target.
   float max_area_fraction = 0.2f;
+  // The order of attention (semiattentive/candidates.h, RankCandidates): what ranks the
+  // candidates; then, with `proximity` > 0, each score times exp(-d^2 / (2 s^2)), d the distance
+  // of the candidate's peak from the last target started (where attention is), s `proximity`
+  // times the image's diagonal; then, with `faces_first`, the candidates whose peak lies in a
+  // `face` detection before the others. The thesis: mass, 0, false.
+  CandidateOrder order = CandidateOrder::kMass;
+  float proximity = 0.f;
+  bool faces_first = false;
   // No new target starts while the inhibition (with the new region) would cover more than
   // this share of the image; 1: no bound (the thesis's).
   float max_inhibited_fraction = 0.3f;

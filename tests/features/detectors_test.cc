@@ -283,17 +283,64 @@ TEST(ObjectChannel, MapIsTheConfidenceInsideTheBoxesAndZeroOutside) {
   // Overlapping boxes: the larger confidence.
   const cv::Rect high(80, 60, 30, 30);
   cv::Mat painted;
-  PaintDetections({{low, "a", 0.6f}, {high, "a", 0.8f}}, 0.0, {200, 150}, &painted);
+  ObjectChannelOptions paint;
+  PaintDetections({{low, "a", 0.6f}, {high, "a", 0.8f}}, paint, {200, 150}, &painted);
   EXPECT_FLOAT_EQ(painted.at<float>(55, 55), 0.6f);
   EXPECT_FLOAT_EQ(painted.at<float>(70, 85), 0.8f);   // in both
   EXPECT_FLOAT_EQ(painted.at<float>(85, 105), 0.8f);  // high only
   EXPECT_FLOAT_EQ(painted.at<float>(10, 10), 0.f);
   // Blurred: spread beyond the box, no higher than the largest confidence.
-  PaintDetections({{low, "a", 0.6f}}, 0.02, {200, 150}, &painted);
+  paint.blur = 0.02;
+  PaintDetections({{low, "a", 0.6f}}, paint, {200, 150}, &painted);
   double max = 0.0;
   cv::minMaxLoc(painted, nullptr, &max);
   EXPECT_LE(max, 0.6 + 1e-6);
   EXPECT_GT(painted.at<float>(70, low.x - 2), 0.f);
+}
+
+TEST(ObjectChannel, AGaussianShapePeaksAtTheBoxCentreWithItsSigma) {
+  ObjectChannelOptions paint;
+  paint.shape = DetectionShape::kGaussian;
+  paint.shape_sigma = 0.25;
+  // A 40x20 box at (20, 30): centre (39.5, 39.5) in pixel centres, sigma 10 by 5.
+  const cv::Rect box(20, 30, 40, 20);
+  cv::Mat painted;
+  PaintDetections({{box, "face", 0.9f}}, paint, {100, 80}, &painted);
+  double max = 0.0;
+  cv::minMaxLoc(painted, nullptr, &max);
+  // The pixels nearest the centre are half a pixel from it both ways.
+  EXPECT_NEAR(max, 0.9 * std::exp(-0.5 * (0.25 / 100.0 + 0.25 / 25.0)), 1e-5);
+  const auto at = [&painted](double x, double y) {
+    return 0.9 * std::exp(-0.5 * ((x - 39.5) * (x - 39.5) / 100.0 + (y - 39.5) * (y - 39.5) / 25.0));
+  };
+  EXPECT_NEAR(painted.at<float>(39, 50), at(50, 39), 1e-5);
+  EXPECT_NEAR(painted.at<float>(44, 39), at(39, 44), 1e-5);
+  // 10.5 against 0.5 px from the centre along x: exp(-(10.5^2 - 0.5^2) / (2 x 100)).
+  EXPECT_NEAR(painted.at<float>(39, 50) / painted.at<float>(39, 39), std::exp(-0.55), 1e-4);
+  // Beyond 3 sigma: nothing; the corners of the box are far below the peak.
+  EXPECT_EQ(painted.at<float>(39, 75), 0.f);
+  EXPECT_LT(painted.at<float>(30, 20), 0.1f * 0.9f);
+  // Two Gaussians: the maximum, not the sum.
+  PaintDetections({{box, "face", 0.9f}, {box, "face", 0.5f}}, paint, {100, 80}, &painted);
+  double both = 0.0;
+  cv::minMaxLoc(painted, nullptr, &both);
+  EXPECT_DOUBLE_EQ(both, max);
+  // Centred at a quarter of the box's height: the peak moves up to y 34.5.
+  paint.shape_centre_y = 0.25;
+  PaintDetections({{box, "person", 0.9f}}, paint, {100, 80}, &painted);
+  cv::Point peak;
+  cv::minMaxLoc(painted, nullptr, nullptr, nullptr, &peak);
+  EXPECT_EQ(peak.x, 39);
+  EXPECT_TRUE(peak.y == 34 || peak.y == 35) << peak;
+  paint.shape_centre_y = 0.5;
+  // size_power -1: a box a quarter of the map's height paints 4 x its confidence, one an eighth
+  // 8 x.
+  paint.shape = DetectionShape::kBox;
+  paint.size_power = -1.0;
+  PaintDetections({{cv::Rect(0, 0, 10, 20), "face", 0.5f}, {cv::Rect(50, 50, 10, 10), "face", 0.5f}},
+                  paint, {100, 80}, &painted);
+  EXPECT_NEAR(painted.at<float>(5, 5), 2.0f, 1e-5);
+  EXPECT_NEAR(painted.at<float>(55, 55), 4.0f, 1e-5);
 }
 
 TEST(ObjectChannel, FrameGateSearchesEveryNthFrameAndReusesTheDetections) {

@@ -154,13 +154,47 @@ TEST(Saliency, TheStageWeighsAConstantMapZeroOnAGreyFrame) {
 
 TEST(Saliency, ProductIsTheWeightedGeometricMeanAndAZeroVetoes) {
   cv::Mat out;
-  MultiplyMaps({Row({1.f, 0.25f, 1.f}), Row({1.f, 1.f, 0.f})}, {1.0, 1.0}, cv::Size(3, 1), &out);
+  MultiplyMaps({Row({1.f, 0.25f, 1.f}), Row({1.f, 1.f, 0.f})}, {1.0, 1.0}, {}, cv::Size(3, 1), &out);
   EXPECT_NEAR(out.at<float>(0), 1.f, 1e-5);  // (1.01 x 1.01)^(1/2) - 0.01
   EXPECT_NEAR(out.at<float>(1), std::sqrt(0.26f * 1.01f) - 0.01f, 1e-5);
   // Where one map is 0 the product is near 0, the sum would be 0.5.
   EXPECT_LT(out.at<float>(2), 0.1f);
   CombineMaps({Row({1.f, 0.25f, 1.f}), Row({1.f, 1.f, 0.f})}, {1.0, 1.0}, cv::Size(3, 1), &out);
   EXPECT_FLOAT_EQ(out.at<float>(2), 0.5f);
+}
+
+TEST(Saliency, AnAdditiveMapIsAddedToTheProductOfTheOthers) {
+  cv::Mat out;
+  // Weights 1, 1 (factors) and 2 (added): (2 G + 2 n) / 4, G the geometric mean of the first two.
+  const cv::Mat a = Row({1.f, 0.25f, 1.f, 0.f});
+  const cv::Mat b = Row({1.f, 1.f, 0.f, 0.f});
+  const cv::Mat faces = Row({0.f, 0.f, 0.f, 1.f});
+  MultiplyMaps({a, b, faces}, {1.0, 1.0, 2.0}, {false, false, true}, cv::Size(4, 1), &out);
+  EXPECT_NEAR(out.at<float>(0), 0.5f, 1e-5);
+  EXPECT_NEAR(out.at<float>(1), 0.5f * (std::sqrt(0.26f * 1.01f) - 0.01f), 1e-5);
+  EXPECT_NEAR(out.at<float>(2), 0.0f, 1e-5);
+  // Where the others veto, the added map still counts in full: no veto on it.
+  EXPECT_NEAR(out.at<float>(3), 0.5f, 1e-5);
+  // An added map that is 0 everywhere scales the product uniformly: the same map up to a factor.
+  cv::Mat alone, with_empty;
+  MultiplyMaps({a, b}, {1.0, 1.0}, {}, cv::Size(4, 1), &alone);
+  MultiplyMaps({a, b, cv::Mat::zeros(1, 4, CV_32FC1)}, {1.0, 1.0, 2.0}, {false, false, true},
+               cv::Size(4, 1), &with_empty);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(with_empty.at<float>(i), 0.5f * alone.at<float>(i), 1e-6);
+  // Only added maps: their weighted mean, as the sum would give.
+  MultiplyMaps({a, b}, {1.0, 3.0}, {true, true}, cv::Size(4, 1), &out);
+  EXPECT_NEAR(out.at<float>(1), (0.25f + 3.f) / 4.f, 1e-6);
+}
+
+TEST(Saliency, GammaRaisesTheMapToItsPowerAfterTheBlur) {
+  cv::Mat map = Row({0.f, 0.25f, 0.5f, 1.f});
+  SaliencyOptions options;
+  options.gamma = 2.0;
+  SmoothSaliency(options, &map);
+  EXPECT_FLOAT_EQ(map.at<float>(0), 0.f);
+  EXPECT_FLOAT_EQ(map.at<float>(1), 0.0625f);
+  EXPECT_FLOAT_EQ(map.at<float>(2), 0.25f);
+  EXPECT_FLOAT_EQ(map.at<float>(3), 1.f);
 }
 
 TEST(Saliency, BlurSpreadsAPeakAndKeepsItsHeight) {

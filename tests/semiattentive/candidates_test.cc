@@ -34,6 +34,53 @@ TEST(CandidateFinder, AMapWithNothingSalientHasNoCandidates) {
   EXPECT_TRUE(finder.Find(cv::Mat::zeros(40, 40, CV_32FC1)).ranked.empty());
 }
 
+TEST(RankCandidates, OrdersByMassPeakOrMeanThenNearnessThenFaces) {
+  // Three blocks: a large dim one (mass 0.4 x 1200 = 480), a small bright one (0.9 x 144 =
+  // 129.6) and a middling one (0.6 x 400 = 240).
+  cv::Mat saliency = cv::Mat::zeros(100, 200, CV_32FC1);
+  saliency(cv::Rect(0, 0, 40, 30)).setTo(0.4f);
+  saliency(cv::Rect(180, 80, 12, 12)).setTo(0.9f);
+  saliency(cv::Rect(90, 40, 20, 20)).setTo(0.6f);
+  SelectOptions options;
+  CandidateFinder finder(options);
+  const Candidates found = finder.Find(saliency);
+  ASSERT_EQ(found.ranked.size(), 3u);
+  const auto boxes = [](const Candidates& c) {
+    std::vector<cv::Rect> out;
+    for (const auto& ranked : c.ranked) out.push_back(c.Box(ranked.second));
+    return out;
+  };
+  const cv::Rect dim(0, 0, 40, 30), bright(180, 80, 12, 12), middle(90, 40, 20, 20);
+  const cv::Size image(200, 100);
+  Candidates c = found;
+  RankCandidates(options, nullptr, {}, image, &c);  // mass: the thesis, unchanged
+  EXPECT_EQ(boxes(c), (std::vector<cv::Rect>{dim, middle, bright}));
+  options.order = CandidateOrder::kPeak;
+  c = found;
+  RankCandidates(options, nullptr, {}, image, &c);
+  EXPECT_EQ(boxes(c), (std::vector<cv::Rect>{bright, middle, dim}));
+  EXPECT_FLOAT_EQ(static_cast<float>(c.ranked[0].first), 0.9f);
+  // Attention at the dim block's corner: with proximity 0.1 (s = 22.4 px) the bright block,
+  // 190 px away, falls to 0.9 x exp(-36) and the dim one comes first.
+  options.proximity = 0.1f;
+  const cv::Point2d focus(5, 5);
+  c = found;
+  RankCandidates(options, &focus, {}, image, &c);
+  EXPECT_EQ(boxes(c), (std::vector<cv::Rect>{dim, middle, bright}));
+  // Without a focus (the first target) proximity does nothing.
+  c = found;
+  RankCandidates(options, nullptr, {}, image, &c);
+  EXPECT_EQ(boxes(c).front(), bright);
+  // A face over the middle block's peak puts it first; a person's box does not.
+  options.faces_first = true;
+  c = found;
+  RankCandidates(options, &focus, {{cv::Rect(85, 35, 30, 30), "face", 0.9f}}, image, &c);
+  EXPECT_EQ(boxes(c), (std::vector<cv::Rect>{middle, dim, bright}));
+  c = found;
+  RankCandidates(options, &focus, {{cv::Rect(85, 35, 30, 30), "person", 0.9f}}, image, &c);
+  EXPECT_EQ(boxes(c), (std::vector<cv::Rect>{dim, middle, bright}));
+}
+
 TEST(RegionsUnder, CountsEachCandidatesColourRegionsAndMarksTheCoveredOnes) {
   // Two colour regions, the left and the right half; one candidate across the middle.
   Segmentation segmentation;
