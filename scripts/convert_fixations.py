@@ -22,8 +22,8 @@ the dataset unpacks to:
            a non-zero pixel, in raster order; the map has no order and no observers)
 
 (SRC may also be the data/ folder itself for osie and crowd, or the folder holding trainSet/
-for cat2000.) Needs only numpy and scipy (Debian's python3-numpy, python3-scipy); MATLAB v7.3
-(HDF5) files are refused with a message, none of these datasets ships one.
+for cat2000.) Needs only numpy and scipy (Debian's python3-numpy, python3-scipy); a MATLAB v7.3
+(HDF5) file is refused with a message (docs/FIXATIONS.md says which formats are known not to be).
 
 Exit status (SPEC 3.2): 0 done; 2 bad flags, or an output folder in the way (--overwrite);
 3 bad input data, named as `FILE: FIELD: what is wrong`; 1 internal error.
@@ -64,12 +64,24 @@ class Item:
 # ---------------------------------------------------------------------------------------------
 # MATLAB files
 
+def _plain(value):
+    """Structs as dicts and cells as lists, all the way down: scipy's simplify_cells leaves a
+    struct behind in a cell that also holds an empty matrix."""
+    if hasattr(value, "_fieldnames"):  # scipy.io.matlab's mat_struct
+        return {name: _plain(getattr(value, name)) for name in value._fieldnames}
+    if isinstance(value, dict):
+        return {key: _plain(item) for key, item in value.items()}
+    if isinstance(value, list) or (isinstance(value, np.ndarray) and value.dtype == object):
+        return [_plain(item) for item in (value if isinstance(value, list) else value.ravel())]
+    return value
+
+
 def load_mat(path):
-    """A MATLAB file's variables, structs as dicts and cells as lists (scipy's simplify_cells:
-    a one-element array or cell is its element)."""
+    """A MATLAB file's variables, structs as dicts and cells as lists (as scipy's
+    simplify_cells: a one-element array or cell is its element)."""
     from scipy.io import loadmat
     try:
-        return loadmat(str(path), simplify_cells=True)
+        return _plain(loadmat(str(path), simplify_cells=True))
     except NotImplementedError:
         raise InputError(f"{path}: a MATLAB v7.3 (HDF5) file, which this converter does not "
                          "read; save it again in MATLAB with save(..., '-v7')") from None
@@ -86,8 +98,6 @@ def as_list(value):
     """A cell array or struct array as a list (one element comes back squeezed)."""
     if isinstance(value, list):
         return value
-    if isinstance(value, np.ndarray) and value.dtype == object:
-        return list(value.ravel())
     if isinstance(value, np.ndarray) and value.size == 0:
         return []
     return [value]
@@ -203,6 +213,9 @@ def detect_fixations(samples, rule=SaccadeRule()):
     (x, y, onset_ms, duration_ms): each the median position of its samples. A missing sample
     belongs to no fixation (a blink ends one). A fixation that does not start the recording and
     lasts under min_fixation_ms is dropped."""
+    problem = rule.check()
+    if problem:
+        raise ValueError(f"SaccadeRule: {problem}")
     xy = np.array(samples, dtype=float).reshape(-1, 2)
     with np.errstate(invalid="ignore"):
         missing = ~np.isfinite(xy).all(axis=1) | (xy < 0).any(axis=1)
@@ -337,6 +350,9 @@ def _nus_items(images, path, stimuli_dir, label, skipped):
             if (ds < 0).any():
                 raise InputError(f"{path}: {at}.fix_duration({np.argmax(ds < 0) + 1}): negative")
             rows += [(j, x, y, d) for x, y, d in zip(xs, ys, ds)]
+        if not rows:
+            skipped.append(f"{name}: no subject's fixations")
+            continue
         if not stimulus.is_file():
             skipped.append(f"{name}: no stimulus {stimulus}")
             continue
@@ -391,6 +407,9 @@ def _cat2000_items(stimuli_dir, maps_dir, skipped):
                 continue
             rows_y, cols_x = np.nonzero(fixation_map(path))  # raster order
             rows = [(0, float(x + 1), float(y + 1)) for y, x in zip(rows_y, cols_x)]
+            if not rows:
+                skipped.append(f"{category.name}/{stimulus.name}: no fixated pixel in {path}")
+                continue
             header = (f"CAT2000 FIXATIONLOCS/{category.name}/{path.name}: every fixated pixel of "
                       "all observers pooled (no order, no observers), subject 0")
             yield Item(f"{category.name}_{stimulus.stem}", stimulus, rows, header)

@@ -183,6 +183,7 @@ NUS_PLAN = [  # (img, [subject: (fix_x, fix_y, fix_duration) or None for an empt
                   ([], [], [])]),
     ("1002.jpg", [([700], [500], [90]), ([1, 2], [3, 4], [100, 200])]),
     ("1003.jpg", [([1], [1], [1])]),  # no stimulus file: skipped
+    ("1004.jpg", [None, ([], [], [])]),  # nobody's fixations: skipped
 ]
 
 
@@ -216,7 +217,8 @@ def test_nus_fixations_keep_subjects_order_and_durations(fmt, tmp_path):
     result = convert("--format", fmt, src, "--out", out)
     assert result.returncode == 0, result.stderr
     assert "1003.jpg: no stimulus" in result.stderr
-    assert "2 stimuli" in result.stdout
+    assert "1004.jpg: no subject's fixations" in result.stderr
+    assert "2 stimuli" in result.stdout and "2 skipped" in result.stdout
     for name, subjects in NUS_PLAN[:2]:
         header, rows = read_fixations(out / "fixations" / (name[:-4] + ".txt"))
         assert header.startswith("# subject x y duration_ms")
@@ -288,9 +290,11 @@ def test_cat2000_binary_maps_become_subject_0_per_fixated_pixel(tmp_path):
         savemat(src / "FIXATIONLOCS" / category / f"{image}.mat", {"fixLocs": locations})
     touch(src / "Stimuli" / "Action" / "Output" / "001.jpg")  # not a stimulus
     touch(src / "Stimuli" / "Art" / "002.jpg")  # no map: skipped
+    touch(src / "Stimuli" / "Art" / "003.jpg")  # an empty map: skipped
+    savemat(src / "FIXATIONLOCS" / "Art" / "003.mat", {"fixLocs": np.zeros((5, 8))})
     result = convert("--format", "cat2000", tmp_path, "--out", out)
     assert result.returncode == 0, result.stderr
-    assert "Art/002.jpg: no" in result.stderr
+    assert "Art/002.jpg: no" in result.stderr and "Art/003.jpg: no fixated pixel" in result.stderr
     assert sorted(p.name for p in (out / "stimuli").iterdir()) == ["Action_001.jpg",
                                                                   "Art_001.jpg"]
     for (category, image), pixels in fixated.items():
