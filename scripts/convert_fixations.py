@@ -297,10 +297,10 @@ def _mit1003_items(stimuli, data_dir, subjects, keep_first, skipped):
         if not rows:
             skipped.append(f"{stimulus.name}: no subject's data")
             continue
-        header = (f"MIT1003 DATA/<subject>/{stimulus.stem}.mat, fixations of checkFixations' "
-                  f"rule (scripts/convert_fixations.py), "
-                  f"{'with' if keep_first else 'without'} the first (central) one; subjects: "
-                  f"{names}")
+        header = (f"MIT1003 DATA/<subject>/{stimulus.stem}.mat: fixations by checkFixations' "
+                  f"rule (scripts/convert_fixations.py), {'with' if keep_first else 'without'} "
+                  f"the first (central) one, one a line, each subject's in viewing order; "
+                  f"subjects: {names}")
         yield Item(stimulus.stem, stimulus, rows, header)
 
 
@@ -359,8 +359,8 @@ def _nus_items(images, path, stimuli_dir, label, skipped):
         if stimulus.suffix.lower() not in STIMULUS_EXTENSIONS:
             skipped.append(f"{name}: attend does not read {stimulus.suffix} stimuli")
             continue
-        header = (f"{label} {path.name} {where} ({name}); subject: position in its subjects "
-                  "cell, from 0")
+        header = (f"{label} {path.name} {where} ({name}): one fixation a line, each subject's "
+                  "in viewing order; subject: position in its subjects cell, from 0")
         yield Item(stimulus.stem, stimulus, rows, header)
 
 
@@ -410,8 +410,8 @@ def _cat2000_items(stimuli_dir, maps_dir, skipped):
             if not rows:
                 skipped.append(f"{category.name}/{stimulus.name}: no fixated pixel in {path}")
                 continue
-            header = (f"CAT2000 FIXATIONLOCS/{category.name}/{path.name}: every fixated pixel of "
-                      "all observers pooled (no order, no observers), subject 0")
+            header = (f"CAT2000 FIXATIONLOCS/{category.name}/{path.name}: one fixated pixel a "
+                      "line, all observers pooled without order or observer, subject 0")
             yield Item(f"{category.name}_{stimulus.stem}", stimulus, rows, header)
 
 
@@ -445,8 +445,8 @@ def prepare_output(out, overwrite):
 def fixation_text(item, stimulus_name):
     """The fixation file's text: the header, then one line a row."""
     columns = "subject x y duration_ms" if item.rows and len(item.rows[0]) == 4 else "subject x y"
-    lines = [f"# {columns}  ({item.header}; one fixation a line, each subject's in viewing "
-             f"order; x column, y row, 1-based pixels of stimuli/{stimulus_name})"]
+    lines = [f"# {columns}  ({item.header}; x column, y row, 1-based pixels of "
+             f"stimuli/{stimulus_name})"]
     for row in item.rows:
         text = [str(int(row[0])), _number(row[1], 3), _number(row[2], 3)]
         if len(row) == 4:
