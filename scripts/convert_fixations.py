@@ -36,7 +36,13 @@ import shutil
 import sys
 from pathlib import Path
 
-import numpy as np
+try:
+    import numpy as np
+    import scipy.io  # noqa: F401 (load_mat's loadmat)
+except ImportError as missing:
+    sys.exit(f"convert_fixations: error: {missing.name} is missing from {sys.executable}: this "
+             "script needs numpy and scipy (Debian's python3-numpy and python3-scipy, which "
+             "scripts/install_deps.sh installs); run it with /usr/bin/python3")
 
 # The stimulus extensions attend's reader takes (eval/fixation_data.cc), compared in lower case.
 STIMULUS_EXTENSIONS = (".jpg", ".jpeg", ".png", ".ppm", ".pgm", ".bmp")
