@@ -219,6 +219,23 @@ TEST(MultiMatch, AScanpathAgainstItsReverse) {
   EXPECT_NEAR(s->duration, 1.0, 1e-12);
 }
 
+TEST(MultiMatch, EachDimensionIsTheMedianOverTheAlignedPairsNotTheMean) {
+  // Three saccades of (200, 0) against (200, 0), (200, 0), (200, 300): pairs (0,0), (1,1),
+  // (2,2) with shape differences 0, 0, 300. The median is 0, so shape, direction and length
+  // are 1 (a mean would give 1 - 100 / (2 x diagonal) for shape).
+  const Scanpath a = {At(100, 100, 0.2), At(300, 100, 0.2), At(500, 100, 0.2), At(700, 100, 0.2)};
+  Scanpath b = a;
+  b[3].y = 400;
+  EXPECT_EQ(AlignSaccades(SaccadeVectors(a), SaccadeVectors(b)),
+            (std::vector<std::pair<int, int>>{{0, 0}, {1, 1}, {2, 2}}));
+  const std::optional<MultiMatchScores> s = MultiMatch(a, b, kImage, {});
+  ASSERT_TRUE(s.has_value());
+  EXPECT_DOUBLE_EQ(s->shape, 1.0);
+  EXPECT_DOUBLE_EQ(s->direction, 1.0);
+  EXPECT_DOUBLE_EQ(s->length, 1.0);
+  EXPECT_DOUBLE_EQ(s->position, 1.0);
+}
+
 TEST(MultiMatch, TheAlignmentTakesTheCheapestPathAndPairsDifferentLengths) {
   // a: (100,0), (0,100); b: (100,0), (60,40), (0,100). Differences: [0][1] = 56.6,
   // [1][1] = 84.9, [0][2] = [1][0] = 141.4, [0][0] = [1][2] = 0: through [0][1] (56.6) is
