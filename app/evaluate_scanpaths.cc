@@ -24,9 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr size_t kMeasures = 7;
-using Scores = std::array<double, kMeasures>;  // in the order of ScanpathMeasureNames()
-constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+constexpr size_t kPathMeasures = 7;
+using PathScores = std::array<double, kPathMeasures>;  // in the order of ScanpathMeasureNames()
+constexpr double kNoScore = std::numeric_limits<double>::quiet_NaN();
 
 enum class MethodKind { kModel, kPeaks, kCentre, kHuman };
 
@@ -35,20 +35,20 @@ struct ScanpathMethod {
   MethodKind kind = MethodKind::kModel;
   int model = -1;  // the model folder of kModel and kPeaks
   std::vector<std::string> ids;
-  std::vector<Scores> per_image;  // NaN where a measure has no value on that image
+  std::vector<PathScores> per_image;  // NaN where a measure has no value on that image
 };
 
 // What every comparison of the run shares.
-struct Setting {
+struct PathSetting {
   ScanMatchOptions scanmatch;
   MultiMatchOptions multimatch;
   int length = 8;
   double duration_s = -1.0;  // the models' and baselines' fixations
 };
 
-Scores Compare(const Scanpath& a, const Scanpath& b, cv::Size size, const Setting& setting) {
-  Scores scores;
-  scores.fill(kNone);
+PathScores ComparePaths(const Scanpath& a, const Scanpath& b, cv::Size size, const PathSetting& setting) {
+  PathScores scores;
+  scores.fill(kNoScore);
   scores[0] = ScanMatch(a, b, size, setting.scanmatch);
   scores[1] = SequenceScore(a, b, size, setting.scanmatch.grid);
   if (const std::optional<MultiMatchScores> mm = MultiMatch(a, b, size, setting.multimatch)) {
@@ -62,47 +62,47 @@ Scores Compare(const Scanpath& a, const Scanpath& b, cv::Size size, const Settin
 }
 
 // Each measure's mean over `list`, leaving out NaNs (NaN when all are).
-Scores MeanScores(const std::vector<Scores>& list) {
-  Scores mean;
-  for (size_t m = 0; m < kMeasures; ++m) {
+PathScores MeanPathScores(const std::vector<PathScores>& list) {
+  PathScores mean;
+  for (size_t m = 0; m < kPathMeasures; ++m) {
     double sum = 0.0;
     int n = 0;
-    for (const Scores& s : list) {
+    for (const PathScores& s : list) {
       if (std::isnan(s[m])) continue;
       sum += s[m];
       ++n;
     }
-    mean[m] = n > 0 ? sum / n : kNone;
+    mean[m] = n > 0 ? sum / n : kNoScore;
   }
   return mean;
 }
 
 // `path` against every observer of the image: the mean over observers.
-Scores AgainstObservers(const Scanpath& path, const ObservedImage& image,
-                        const Setting& setting) {
-  std::vector<Scores> list;
+PathScores AgainstObservers(const Scanpath& path, const ObservedImage& image,
+                        const PathSetting& setting) {
+  std::vector<PathScores> list;
   for (const Scanpath& observer : image.observers) {
-    list.push_back(Compare(path, observer, image.size, setting));
+    list.push_back(ComparePaths(path, observer, image.size, setting));
   }
-  return MeanScores(list);
+  return MeanPathScores(list);
 }
 
 // Every observer against every other (each pair once: the measures are symmetric up to ties
 // in the alignments): the mean over pairs, which is the mean over observers of each one's
 // mean against the others.
-Scores HumanCeiling(const ObservedImage& image, const Setting& setting) {
-  std::vector<Scores> list;
+PathScores HumanCeiling(const ObservedImage& image, const PathSetting& setting) {
+  std::vector<PathScores> list;
   for (size_t i = 0; i < image.observers.size(); ++i) {
     for (size_t j = i + 1; j < image.observers.size(); ++j) {
-      list.push_back(Compare(image.observers[i], image.observers[j], image.size, setting));
+      list.push_back(ComparePaths(image.observers[i], image.observers[j], image.size, setting));
     }
   }
   if (list.empty()) {
-    Scores none;
-    none.fill(kNone);
+    PathScores none;
+    none.fill(kNoScore);
     return none;
   }
-  return MeanScores(list);
+  return MeanPathScores(list);
 }
 
 // A draw of each image's centre scanpaths depends on the seed and the image's id only, so
@@ -113,19 +113,19 @@ uint64_t ImageSeed(uint64_t seed, const std::string& id) {
   return seed ^ hash;
 }
 
-Scores CentreScores(const ObservedImage& image, const EvalScanpathsRequest& request,
-                    const Setting& setting) {
+PathScores CentreScores(const ObservedImage& image, const EvalScanpathsRequest& request,
+                    const PathSetting& setting) {
   cv::RNG rng(ImageSeed(request.seed, image.id));
-  std::vector<Scores> draws;
+  std::vector<PathScores> draws;
   for (int d = 0; d < request.centre_draws; ++d) {
     const Scanpath path = CentreBiasScanpath(image.size, setting.length, setting.duration_s, &rng);
     draws.push_back(AgainstObservers(path, image, setting));
   }
-  return MeanScores(draws);
+  return MeanPathScores(draws);
 }
 
-Scores PeakScores(const ModelScanpaths& model, const ObservedImage& image,
-                  const EvalScanpathsRequest& request, const Setting& setting) {
+PathScores PeakScores(const ModelScanpaths& model, const ObservedImage& image,
+                  const EvalScanpathsRequest& request, const PathSetting& setting) {
   const fs::path map_path = fs::path(model.folder) / (image.id + ".pfm");
   std::error_code error;
   if (!fs::exists(map_path, error)) {
@@ -138,36 +138,36 @@ Scores PeakScores(const ModelScanpaths& model, const ObservedImage& image,
   return AgainstObservers(path, image, setting);
 }
 
-bool Has(const std::vector<std::string>& list, const std::string& name) {
+bool Lists(const std::vector<std::string>& list, const std::string& name) {
   return std::find(list.begin(), list.end(), name) != list.end();
 }
 
-std::vector<ScanpathMethod> MethodsOf(const EvalScanpathsRequest& request,
+std::vector<ScanpathMethod> ScanpathMethodsOf(const EvalScanpathsRequest& request,
                                       const std::vector<ModelScanpaths>& models) {
   std::vector<ScanpathMethod> methods;
   for (size_t m = 0; m < models.size(); ++m) {
     methods.push_back({models[m].name, MethodKind::kModel, static_cast<int>(m), {}, {}});
   }
-  if (Has(request.baselines, "peaks")) {
+  if (Lists(request.baselines, "peaks")) {
     for (size_t m = 0; m < models.size(); ++m) {
       methods.push_back({models[m].name + "_peaks", MethodKind::kPeaks, static_cast<int>(m), {}, {}});
     }
   }
-  if (Has(request.baselines, "centre")) methods.push_back({"centre", MethodKind::kCentre, -1, {}, {}});
-  if (Has(request.baselines, "human")) methods.push_back({"human", MethodKind::kHuman, -1, {}, {}});
+  if (Lists(request.baselines, "centre")) methods.push_back({"centre", MethodKind::kCentre, -1, {}, {}});
+  if (Lists(request.baselines, "human")) methods.push_back({"human", MethodKind::kHuman, -1, {}, {}});
   return methods;
 }
 
-void CheckRequest(const EvalScanpathsRequest& request) {
+void CheckScanpathRequest(const EvalScanpathsRequest& request) {
   for (const std::string& name : request.baselines) {
-    if (!Has(ScanpathBaselineNames(), name)) {
+    if (!Lists(ScanpathBaselineNames(), name)) {
       throw ConfigError("--baselines " + name + ": not one of human, centre, peaks");
     }
   }
   if (request.maps.empty() && request.baselines.empty()) {
     throw ConfigError("eval-scanpaths: give MAPS folders or --baselines");
   }
-  if (request.maps.empty() && Has(request.baselines, "peaks")) {
+  if (request.maps.empty() && Lists(request.baselines, "peaks")) {
     throw ConfigError("--baselines peaks: needs MAPS folders (their saliency maps' peaks)");
   }
   if (request.length < 1) throw ConfigError("--length: must be at least 1");
@@ -184,7 +184,7 @@ void CheckRequest(const EvalScanpathsRequest& request) {
 
 // The items of the split (--skip, then --first), read; images without any observer left are
 // left out with a note.
-std::vector<ObservedImage> ReadImages(const EvalScanpathsRequest& request,
+std::vector<ObservedImage> ReadObservedImages(const EvalScanpathsRequest& request,
                                       const ScanpathEvaluationObserver& observer) {
   std::vector<FixationItem> items = OpenFixationDataset(request.dataset).items;
   items.erase(items.begin(), items.begin() + std::min<size_t>(request.skip, items.size()));
@@ -208,7 +208,7 @@ std::vector<ObservedImage> ReadImages(const EvalScanpathsRequest& request,
 }
 
 // The ScanMatch threshold: the request's, or 2 sd of the compared observers' saccade amplitudes.
-double Threshold(const EvalScanpathsRequest& request, const std::vector<ObservedImage>& images) {
+double ScanMatchThresholdOf(const EvalScanpathsRequest& request, const std::vector<ObservedImage>& images) {
   if (request.scanmatch_threshold > 0.0) return request.scanmatch_threshold;
   std::vector<double> amplitudes;
   for (const ObservedImage& image : images) {
@@ -231,7 +231,7 @@ double Threshold(const EvalScanpathsRequest& request, const std::vector<Observed
 
 // The median of the observers' fixation durations over the scored images; -1 when the files
 // give none.
-double MedianDuration(const std::vector<ObservedImage>& images) {
+double MedianFixationDuration(const std::vector<ObservedImage>& images) {
   std::vector<double> all;
   for (const ObservedImage& image : images) {
     all.insert(all.end(), image.durations_s.begin(), image.durations_s.end());
@@ -242,15 +242,22 @@ double MedianDuration(const std::vector<ObservedImage>& images) {
   return all.size() % 2 == 1 ? all[middle] : 0.5 * (all[middle - 1] + all[middle]);
 }
 
-Scores ScoreMethod(const ScanpathMethod& method, size_t image_index,
+PathScores ScoreMethod(const ScanpathMethod& method, size_t image_index,
                    const std::vector<ObservedImage>& images,
                    const std::vector<ModelScanpaths>& models,
                    const std::vector<std::vector<Scanpath>>& model_paths,
-                   const EvalScanpathsRequest& request, const Setting& setting) {
+                   const EvalScanpathsRequest& request, const PathSetting& setting) {
   const ObservedImage& image = images[image_index];
   switch (method.kind) {
-    case MethodKind::kModel:
-      return AgainstObservers(model_paths[method.model][image_index], image, setting);
+    case MethodKind::kModel: {
+      const Scanpath& path = model_paths[method.model][image_index];
+      if (path.empty()) {  // only with --empty-scanpath zero
+        PathScores zero;
+        zero.fill(0.0);
+        return zero;
+      }
+      return AgainstObservers(path, image, setting);
+    }
     case MethodKind::kPeaks:
       return PeakScores(models[method.model], image, request, setting);
     case MethodKind::kCentre:
@@ -262,23 +269,23 @@ Scores ScoreMethod(const ScanpathMethod& method, size_t image_index,
 }
 
 // The values of measure `m` of `method` that exist, one per image.
-std::vector<double> Values(const ScanpathMethod& method, size_t m) {
+std::vector<double> MeasureValues(const ScanpathMethod& method, size_t m) {
   std::vector<double> values;
-  for (const Scores& s : method.per_image) {
+  for (const PathScores& s : method.per_image) {
     if (!std::isnan(s[m])) values.push_back(s[m]);
   }
   return values;
 }
 
-std::string Table(const std::vector<ScanpathMethod>& methods) {
+std::string ScanpathTable(const std::vector<ScanpathMethod>& methods) {
   std::ostringstream out;
   out << std::fixed << std::setprecision(3);
   out << "| method | images | ScanMatch | sequence | MM shape | MM direction | MM length | "
          "MM position | MM duration |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const ScanpathMethod& method : methods) {
-    out << "| " << method.name << " | " << Values(method, 0).size() << " |";
-    for (size_t m = 0; m < kMeasures; ++m) {
-      const std::vector<double> values = Values(method, m);
+    out << "| " << method.name << " | " << MeasureValues(method, 0).size() << " |";
+    for (size_t m = 0; m < kPathMeasures; ++m) {
+      const std::vector<double> values = MeasureValues(method, m);
       if (values.empty()) {
         out << " n/a |";
         continue;
@@ -291,7 +298,7 @@ std::string Table(const std::vector<ScanpathMethod>& methods) {
   return out.str();
 }
 
-const char* KindName(MethodKind kind) {
+const char* PathKindName(MethodKind kind) {
   switch (kind) {
     case MethodKind::kModel:
       return "scanpath.json";
@@ -305,14 +312,20 @@ const char* KindName(MethodKind kind) {
   return "";
 }
 
-nlohmann::json MethodsJson(const std::vector<ScanpathMethod>& methods,
-                           const std::vector<ModelScanpaths>& models) {
+nlohmann::json PathMethodsJson(const std::vector<ScanpathMethod>& methods,
+                           const std::vector<ModelScanpaths>& models,
+                           const std::vector<std::vector<Scanpath>>& model_paths) {
   nlohmann::json all = nlohmann::json::object();
   for (const ScanpathMethod& method : methods) {
-    nlohmann::json entry = {{"kind", KindName(method.kind)}};
+    nlohmann::json entry = {{"kind", PathKindName(method.kind)}};
     if (method.model >= 0) entry["maps"] = models[method.model].folder;
-    for (size_t m = 0; m < kMeasures; ++m) {
-      const std::vector<double> values = Values(method, m);
+    if (method.kind == MethodKind::kModel) {
+      const std::vector<Scanpath>& paths = model_paths[method.model];
+      entry["empty_scanpaths"] = std::count_if(paths.begin(), paths.end(),
+                                               [](const Scanpath& p) { return p.empty(); });
+    }
+    for (size_t m = 0; m < kPathMeasures; ++m) {
+      const std::vector<double> values = MeasureValues(method, m);
       nlohmann::json measure = {{"n", values.size()}, {"mean", nullptr}, {"ci95", nullptr}};
       if (!values.empty()) {
         const MeanInterval v = MeanWithInterval(values);
@@ -326,7 +339,7 @@ nlohmann::json MethodsJson(const std::vector<ScanpathMethod>& methods,
   return all;
 }
 
-nlohmann::json OptionsJson(const EvalScanpathsRequest& request, const Setting& setting) {
+nlohmann::json PathOptionsJson(const EvalScanpathsRequest& request, const PathSetting& setting) {
   return {{"length", request.length},
           {"drop_first", request.drop_first},
           {"grid", {setting.scanmatch.grid.columns, setting.scanmatch.grid.rows}},
@@ -342,12 +355,14 @@ nlohmann::json OptionsJson(const EvalScanpathsRequest& request, const Setting& s
            setting.duration_s >= 0.0 ? nlohmann::json(setting.duration_s) : nlohmann::json()},
           {"centre_draws", request.centre_draws},
           {"seed", request.seed},
-          {"peak_separation", request.peak_separation}};
+          {"peak_separation", request.peak_separation},
+          {"empty_scanpath", request.empty_scores_zero ? "zero" : "error"}};
 }
 
-void WriteReport(const EvalScanpathsRequest& request, const Setting& setting,
+void WriteScanpathReport(const EvalScanpathsRequest& request, const PathSetting& setting,
                  const std::vector<ObservedImage>& images,
                  const std::vector<ModelScanpaths>& models,
+                 const std::vector<std::vector<Scanpath>>& model_paths,
                  const std::vector<ScanpathMethod>& methods) {
   const fs::path out(request.out);
   std::error_code error;
@@ -380,9 +395,9 @@ void WriteReport(const EvalScanpathsRequest& request, const Setting& setting,
                                  {"images", images.size()},
                                  {"observers_left_out", left_out},
                                  {"fixations_outside_left_out", outside},
-                                 {"options", OptionsJson(request, setting)},
+                                 {"options", PathOptionsJson(request, setting)},
                                  {"command", request.command_line},
-                                 {"methods", MethodsJson(methods, models)}};
+                                 {"methods", PathMethodsJson(methods, models, model_paths)}};
   const fs::path json_path = out / "scanpaths.json";
   std::ofstream file(json_path);
   file << JsonText(report, 2) << "\n";
@@ -390,7 +405,7 @@ void WriteReport(const EvalScanpathsRequest& request, const Setting& setting,
 }
 
 // Temporal bins need every compared fixation's duration.
-void CheckDurations(const std::vector<ObservedImage>& images, const Setting& setting,
+void CheckDurations(const std::vector<ObservedImage>& images, const PathSetting& setting,
                     const std::string& dataset) {
   if (setting.scanmatch.temporal_bin_s <= 0.0) return;
   if (setting.duration_s < 0.0) {
@@ -413,26 +428,27 @@ void CheckDurations(const std::vector<ObservedImage>& images, const Setting& set
 
 ScanpathEvaluation EvaluateScanpaths(const EvalScanpathsRequest& request,
                                      const ScanpathEvaluationObserver& observer) {
-  CheckRequest(request);
+  CheckScanpathRequest(request);
   std::vector<ModelScanpaths> models;
   for (const std::string& spec : request.maps) models.push_back(ReadModelScanpaths(spec));
-  const std::vector<ObservedImage> images = ReadImages(request, observer);
-  Setting setting;
+  const std::vector<ObservedImage> images = ReadObservedImages(request, observer);
+  PathSetting setting;
   setting.length = request.length;
   setting.scanmatch = request.scanmatch;
   setting.multimatch = request.multimatch;
-  setting.duration_s = MedianDuration(images);  // what attend uses: docs/FIXATIONS.md
+  setting.duration_s = MedianFixationDuration(images);  // what attend uses: docs/FIXATIONS.md
   CheckDurations(images, setting, request.dataset);
-  setting.scanmatch.threshold = Threshold(request, images);
+  setting.scanmatch.threshold = ScanMatchThresholdOf(request, images);
   // Every model's scanpaths are read and checked before anything is scored.
   std::vector<std::vector<Scanpath>> model_paths(models.size());
   for (size_t m = 0; m < models.size(); ++m) {
     for (const ObservedImage& image : images) {
       model_paths[m].push_back(
-          ModelScanpath(models[m], image.id, request.length, setting.duration_s));
+          ModelScanpath(models[m], image.id, request.length, setting.duration_s,
+                        request.empty_scores_zero));
     }
   }
-  std::vector<ScanpathMethod> methods = MethodsOf(request, models);
+  std::vector<ScanpathMethod> methods = ScanpathMethodsOf(request, models);
   for (size_t i = 0; i < images.size(); ++i) {
     for (ScanpathMethod& method : methods) {
       method.per_image.push_back(
@@ -443,9 +459,9 @@ ScanpathEvaluation EvaluateScanpaths(const EvalScanpathsRequest& request,
       observer.on_progress(static_cast<int>(i + 1), static_cast<int>(images.size()));
     }
   }
-  if (!request.out.empty()) WriteReport(request, setting, images, models, methods);
+  if (!request.out.empty()) WriteScanpathReport(request, setting, images, models, model_paths, methods);
   ScanpathEvaluation result;
-  result.table = Table(methods);
+  result.table = ScanpathTable(methods);
   result.threshold_cells = setting.scanmatch.threshold;
   result.model_duration_s = setting.duration_s;
   result.images = static_cast<int>(images.size());

@@ -34,6 +34,9 @@ struct EvalScanpathsRequest {
   int centre_draws = 10;          // centre-bias scanpaths drawn per image, scores averaged
   uint64_t seed = 1;              // of the centre draws
   double peak_separation = 0.05;  // share of the map's larger side (SaliencyPeaks)
+  // An image whose scanpath.json lists no region: an InputError (false), or 0 in every
+  // measure for that model (true: a model that attends nothing there predicts nothing).
+  bool empty_scores_zero = false;
   std::string command_line;
 };
 

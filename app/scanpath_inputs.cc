@@ -85,15 +85,16 @@ ModelScanpaths ReadModelScanpaths(const std::string& spec) {
 }
 
 Scanpath ModelScanpath(const ModelScanpaths& model, const std::string& id, int length,
-                       double duration_s) {
+                       double duration_s, bool allow_empty) {
   if (!model.paths.contains(id)) {
     throw InputError(model.file + ": no scanpath for image " + id +
                      " (attend saliency --scanpath on the dataset's stimuli writes one per image)");
   }
   const nlohmann::json& regions = model.paths.at(id);
   if (!regions.is_array()) throw InputError(model.file + ": image " + id + ": not a list");
-  if (regions.empty()) {
-    throw InputError(model.file + ": image " + id + ": empty scanpath (no region attended)");
+  if (regions.empty() && !allow_empty) {
+    throw InputError(model.file + ": image " + id +
+                     ": empty scanpath (no region attended; --empty-scanpath zero scores it 0)");
   }
   Scanpath path;
   for (size_t i = 0; i < regions.size() && static_cast<int>(path.size()) < length; ++i) {

@@ -50,8 +50,9 @@ ModelScanpaths ReadModelScanpaths(const std::string& spec);
 
 // The first `length` regions of image `id` in `model`, each lasting its "duration_s" when the
 // file gives one, else `duration_s`. InputError naming the file and the image when the image is
-// missing, its scanpath empty or a region without numeric "x" and "y".
+// missing, its scanpath empty (unless `allow_empty`: then an empty scanpath) or a region
+// without numeric "x" and "y".
 Scanpath ModelScanpath(const ModelScanpaths& model, const std::string& id, int length,
-                       double duration_s);
+                       double duration_s, bool allow_empty);
 
 }  // namespace attend

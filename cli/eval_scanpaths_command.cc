@@ -21,6 +21,7 @@ struct EvalScanpathsArguments {
   double bin_ms = 0.0;
   std::string duration_column = "header";
   std::string duration_unit = "ms";
+  std::string empty_scanpath = "error";
   bool quiet = false;
 };
 
@@ -57,6 +58,7 @@ int EvalScanpaths(EvalScanpathsArguments args) {
   request.scanmatch.grid = ParseGrid(args.grid);
   request.scanmatch.temporal_bin_s = args.bin_ms / 1000.0;
   request.durations = ParseDurationColumn(args.duration_column, args.duration_unit);
+  request.empty_scores_zero = args.empty_scanpath == "zero";
   ScanpathEvaluationObserver observer;
   if (!args.quiet) {
     observer.on_note = [](const std::string& note) {
@@ -135,6 +137,10 @@ void AddEvalScanpathsCommand(CLI::App& app, const std::string& command_line,
                   "none, or a column number (4 = the one after subject x y)");
   cmd->add_option("--duration-unit", args->duration_unit,
                   "Unit of a numbered --duration-column: ms or s");
+  cmd->add_option("--empty-scanpath", args->empty_scanpath,
+                  "An image whose scanpath.json lists no region: error (exit 3) or zero (it "
+                  "scores 0 in every measure)")
+      ->check(CLI::IsMember({"error", "zero"}));
   cmd->add_flag("--quiet", args->quiet, "No progress or notes");
   r.command_line = command_line;
   cmd->callback([args, action] { *action = [args] { return EvalScanpaths(*args); }; });

@@ -113,6 +113,13 @@ TEST(EvalScanpathsCli, BadInputIsExitThreeNamingTheFile) {
   r = Attend(dir, {"eval-scanpaths", "maps", "--dataset", "data", "--quiet"});
   EXPECT_EQ(r.status, 3);
   EXPECT_NE(r.err.find("image b: empty scanpath"), std::string::npos) << r.err;
+  // Scored 0 when asked.
+  r = Attend(dir, {"eval-scanpaths", "maps", "--dataset", "data", "--quiet", "--empty-scanpath",
+                   "zero", "--out", "zero"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json zero = nlohmann::json::parse(ReadText(dir.File("zero/scanpaths.json")));
+  EXPECT_EQ(zero.at("methods").at("maps").at("empty_scanpaths").get<int>(), 1);
+  EXPECT_NEAR(Mean(zero.at("methods"), "maps", "scanmatch"), 0.5, 1e-9);  // image a: 1, b: 0
   // No scanpath.json at all.
   std::filesystem::remove(dir.File("maps/scanpath.json"));
   r = Attend(dir, {"eval-scanpaths", "maps", "--dataset", "data", "--quiet"});

@@ -11,10 +11,10 @@ namespace attend {
 namespace {
 
 // 1200 x 800 with the default 12 x 8 grid: cells of 100 x 100 px.
-const cv::Size kImage(1200, 800);
+const cv::Size kGridImage(1200, 800);
 
-// A fixation at the centre of cell (column, row) of kImage's grid.
-Fixation AtCell(int column, int row, double duration_s = 0.2) {
+// A fixation at the centre of cell (column, row) of kGridImage's grid.
+Fixation InCell(int column, int row, double duration_s = 0.2) {
   Fixation f;
   f.x = 100.0 * column + 49.5;
   f.y = 100.0 * row + 49.5;
@@ -22,7 +22,7 @@ Fixation AtCell(int column, int row, double duration_s = 0.2) {
   return f;
 }
 
-Fixation At(double x, double y, double duration_s) {
+Fixation FixationAt(double x, double y, double duration_s) {
   Fixation f;
   f.x = x;
   f.y = y;
@@ -30,7 +30,7 @@ Fixation At(double x, double y, double duration_s) {
   return f;
 }
 
-ScanMatchOptions Threshold(double threshold) {
+ScanMatchOptions WithThreshold(double threshold) {
   ScanMatchOptions options;
   options.threshold = threshold;
   return options;
@@ -54,17 +54,17 @@ TEST(ScanpathOptions, DefaultsAreValid) {
 }
 
 TEST(GridCodes, CodeCellsRowMajorAndClampFixationsOutsideTheImage) {
-  const Scanpath path = {AtCell(0, 0), AtCell(11, 7), AtCell(3, 2), At(-10.0, 900.0, 0.2),
-                         At(99.4, 0.0, 0.2), At(99.6, 0.0, 0.2)};
-  EXPECT_EQ(GridCodes(path, kImage, {}), (std::vector<int>{0, 95, 27, 84, 0, 1}));
+  const Scanpath path = {InCell(0, 0), InCell(11, 7), InCell(3, 2), FixationAt(-10.0, 900.0, 0.2),
+                         FixationAt(99.4, 0.0, 0.2), FixationAt(99.6, 0.0, 0.2)};
+  EXPECT_EQ(GridCodes(path, kGridImage, {}), (std::vector<int>{0, 95, 27, 84, 0, 1}));
   // Another grid: 2 x 2 cells of 600 x 400.
-  EXPECT_EQ(GridCodes(path, kImage, {2, 2}), (std::vector<int>{0, 3, 0, 2, 0, 0}));
+  EXPECT_EQ(GridCodes(path, kGridImage, {2, 2}), (std::vector<int>{0, 3, 0, 2, 0, 0}));
 }
 
 TEST(ScanMatchThreshold, IsTwoStandardDeviationsOfTheAmplitudesInCells) {
   // Saccades of 1 cell right, then 3 cells down: amplitudes 1 and 3, mean 2, sd 1.
-  const Scanpath path = {AtCell(0, 0), AtCell(1, 0), AtCell(1, 3)};
-  const std::vector<double> amplitudes = SaccadeAmplitudesInCells(path, kImage, {});
+  const Scanpath path = {InCell(0, 0), InCell(1, 0), InCell(1, 3)};
+  const std::vector<double> amplitudes = SaccadeAmplitudesInCells(path, kGridImage, {});
   ASSERT_EQ(amplitudes.size(), 2u);
   EXPECT_NEAR(amplitudes[0], 1.0, 1e-12);
   EXPECT_NEAR(amplitudes[1], 3.0, 1e-12);
@@ -72,7 +72,7 @@ TEST(ScanMatchThreshold, IsTwoStandardDeviationsOfTheAmplitudesInCells) {
 }
 
 TEST(ScanMatch, SubstitutionIsTheThresholdLessTheDistanceBetweenCells) {
-  const ScanMatchOptions options = Threshold(3.5);
+  const ScanMatchOptions options = WithThreshold(3.5);
   EXPECT_DOUBLE_EQ(ScanMatchSubstitution(0, 0, options), 3.5);
   EXPECT_DOUBLE_EQ(ScanMatchSubstitution(0, 12, options), 2.5);  // one row down
   EXPECT_DOUBLE_EQ(ScanMatchSubstitution(0, 3 + 12 * 4, options), -1.5);  // 3-4-5: 5 cells
@@ -80,61 +80,61 @@ TEST(ScanMatch, SubstitutionIsTheThresholdLessTheDistanceBetweenCells) {
 }
 
 TEST(ScanMatch, IdenticalScanpathsScoreOne) {
-  const Scanpath path = {AtCell(2, 3), AtCell(7, 1), AtCell(7, 6), AtCell(0, 0)};
-  EXPECT_DOUBLE_EQ(ScanMatch(path, path, kImage, Threshold(3.5)), 1.0);
-  ScanMatchOptions binned = Threshold(2.0);
+  const Scanpath path = {InCell(2, 3), InCell(7, 1), InCell(7, 6), InCell(0, 0)};
+  EXPECT_DOUBLE_EQ(ScanMatch(path, path, kGridImage, WithThreshold(3.5)), 1.0);
+  ScanMatchOptions binned = WithThreshold(2.0);
   binned.temporal_bin_s = 0.05;
-  EXPECT_DOUBLE_EQ(ScanMatch(path, path, kImage, binned), 1.0);
+  EXPECT_DOUBLE_EQ(ScanMatch(path, path, kGridImage, binned), 1.0);
 }
 
 TEST(ScanMatch, SequencesOneCellApartScoreTheHandComputedAlignment) {
   // Each fixation of b one cell below a's: the best alignment pairs them in order, each pair
   // scoring 3.5 - 1 = 2.5 (no pair is closer than one cell), 7.5 over the maximum 3 x 3.5.
-  const Scanpath a = {AtCell(0, 0), AtCell(1, 0), AtCell(2, 0)};
-  const Scanpath b = {AtCell(0, 1), AtCell(1, 1), AtCell(2, 1)};
-  const ScanMatchOptions options = Threshold(3.5);
+  const Scanpath a = {InCell(0, 0), InCell(1, 0), InCell(2, 0)};
+  const Scanpath b = {InCell(0, 1), InCell(1, 1), InCell(2, 1)};
+  const ScanMatchOptions options = WithThreshold(3.5);
   EXPECT_DOUBLE_EQ(
-      NeedlemanWunschScore(GridCodes(a, kImage, {}), GridCodes(b, kImage, {}), options), 7.5);
-  EXPECT_NEAR(ScanMatch(a, b, kImage, options), 7.5 / 10.5, 1e-12);
+      NeedlemanWunschScore(GridCodes(a, kGridImage, {}), GridCodes(b, kGridImage, {}), options), 7.5);
+  EXPECT_NEAR(ScanMatch(a, b, kGridImage, options), 7.5 / 10.5, 1e-12);
 }
 
 TEST(ScanMatch, GapsAlignScanpathsOfDifferentLengths) {
   // a = cells 0, 1, 2 of row 0; b = 0, 2. Best: 0-0 and 2-2 (3.5 each) with a's 1 against a
   // gap: 7 with gap 0 (2/3 of 3 x 3.5), 6 with gap -1. Aligning 1 with 0 or 2 instead gives
   // 3.5 + 2.5 = 6 at best, then a gap too.
-  const Scanpath a = {AtCell(0, 0), AtCell(1, 0), AtCell(2, 0)};
-  const Scanpath b = {AtCell(0, 0), AtCell(2, 0)};
-  ScanMatchOptions options = Threshold(3.5);
-  EXPECT_NEAR(ScanMatch(a, b, kImage, options), 2.0 / 3.0, 1e-12);
-  EXPECT_NEAR(ScanMatch(b, a, kImage, options), 2.0 / 3.0, 1e-12);
+  const Scanpath a = {InCell(0, 0), InCell(1, 0), InCell(2, 0)};
+  const Scanpath b = {InCell(0, 0), InCell(2, 0)};
+  ScanMatchOptions options = WithThreshold(3.5);
+  EXPECT_NEAR(ScanMatch(a, b, kGridImage, options), 2.0 / 3.0, 1e-12);
+  EXPECT_NEAR(ScanMatch(b, a, kGridImage, options), 2.0 / 3.0, 1e-12);
   options.gap = -1.0;
   EXPECT_DOUBLE_EQ(
-      NeedlemanWunschScore(GridCodes(a, kImage, {}), GridCodes(b, kImage, {}), options), 6.0);
+      NeedlemanWunschScore(GridCodes(a, kGridImage, {}), GridCodes(b, kGridImage, {}), options), 6.0);
 }
 
 TEST(ScanMatch, AScanpathAgainstItsReverseKeepsOnlyItsMiddle) {
   // Cells 0, 5, 10 of row 0 against 10, 5, 0: only one pair can be aligned in order with a
   // positive score (5-5, or an end with the other's opposite end: 3.5 each); any second pair
   // is 5 or 10 cells apart. 3.5 / (3 x 3.5) = 1/3.
-  const Scanpath path = {AtCell(0, 0), AtCell(5, 0), AtCell(10, 0)};
+  const Scanpath path = {InCell(0, 0), InCell(5, 0), InCell(10, 0)};
   const Scanpath reversed(path.rbegin(), path.rend());
-  EXPECT_NEAR(ScanMatch(path, reversed, kImage, Threshold(3.5)), 1.0 / 3.0, 1e-12);
+  EXPECT_NEAR(ScanMatch(path, reversed, kGridImage, WithThreshold(3.5)), 1.0 / 3.0, 1e-12);
   // Levenshtein: two substitutions (the ends) of three.
-  EXPECT_NEAR(SequenceScore(path, reversed, kImage, {}), 1.0 / 3.0, 1e-12);
+  EXPECT_NEAR(SequenceScore(path, reversed, kGridImage, {}), 1.0 / 3.0, 1e-12);
 }
 
 TEST(ScanMatch, TemporalBinsRepeatEachFixationPerBin) {
   // One fixation in the same cell, 100 ms against 200 ms: 2 and 4 letters with 50 ms bins;
   // the two align (2 x 3.5) and the longer sequence's maximum is 4 x 3.5: 0.5.
-  const Scanpath a = {AtCell(4, 4, 0.1)};
-  const Scanpath b = {AtCell(4, 4, 0.2)};
-  ScanMatchOptions options = Threshold(3.5);
-  EXPECT_DOUBLE_EQ(ScanMatch(a, b, kImage, options), 1.0);  // no bins: durations do not count
+  const Scanpath a = {InCell(4, 4, 0.1)};
+  const Scanpath b = {InCell(4, 4, 0.2)};
+  ScanMatchOptions options = WithThreshold(3.5);
+  EXPECT_DOUBLE_EQ(ScanMatch(a, b, kGridImage, options), 1.0);  // no bins: durations do not count
   options.temporal_bin_s = 0.05;
-  EXPECT_EQ(ScanMatchSequence(b, kImage, options), (std::vector<int>{52, 52, 52, 52}));
-  EXPECT_DOUBLE_EQ(ScanMatch(a, b, kImage, options), 0.5);
+  EXPECT_EQ(ScanMatchSequence(b, kGridImage, options), (std::vector<int>{52, 52, 52, 52}));
+  EXPECT_DOUBLE_EQ(ScanMatch(a, b, kGridImage, options), 0.5);
   // A fixation shorter than half a bin still counts once.
-  EXPECT_EQ(ScanMatchSequence({AtCell(0, 0, 0.01)}, kImage, options).size(), 1u);
+  EXPECT_EQ(ScanMatchSequence({InCell(0, 0, 0.01)}, kGridImage, options).size(), 1u);
 }
 
 TEST(SequenceScore, LevenshteinKnownCases) {
@@ -150,20 +150,20 @@ TEST(SequenceScore, LevenshteinKnownCases) {
 }
 
 TEST(SequenceScore, IsOneLessTheDistanceOverTheLongerLength) {
-  const Scanpath a = {AtCell(0, 0), AtCell(1, 0), AtCell(2, 0), AtCell(3, 0)};
-  const Scanpath b = {AtCell(0, 0), AtCell(2, 0)};  // two deletions
-  EXPECT_DOUBLE_EQ(SequenceScore(a, a, kImage, {}), 1.0);
-  EXPECT_DOUBLE_EQ(SequenceScore(a, b, kImage, {}), 0.5);
-  EXPECT_DOUBLE_EQ(SequenceScore(b, a, kImage, {}), 0.5);
+  const Scanpath a = {InCell(0, 0), InCell(1, 0), InCell(2, 0), InCell(3, 0)};
+  const Scanpath b = {InCell(0, 0), InCell(2, 0)};  // two deletions
+  EXPECT_DOUBLE_EQ(SequenceScore(a, a, kGridImage, {}), 1.0);
+  EXPECT_DOUBLE_EQ(SequenceScore(a, b, kGridImage, {}), 0.5);
+  EXPECT_DOUBLE_EQ(SequenceScore(b, a, kGridImage, {}), 0.5);
 }
 
 TEST(MultiMatch, IdenticalScanpathsScoreOneInEveryDimension) {
-  const Scanpath path = {At(100, 100, 0.2), At(700, 150, 0.35), At(650, 600, 0.15),
-                         At(200, 500, 0.3)};
+  const Scanpath path = {FixationAt(100, 100, 0.2), FixationAt(700, 150, 0.35), FixationAt(650, 600, 0.15),
+                         FixationAt(200, 500, 0.3)};
   for (const bool simplify : {false, true}) {
     MultiMatchOptions options;
     options.simplify = simplify;
-    const std::optional<MultiMatchScores> s = MultiMatch(path, path, kImage, options);
+    const std::optional<MultiMatchScores> s = MultiMatch(path, path, kGridImage, options);
     ASSERT_TRUE(s.has_value());
     EXPECT_DOUBLE_EQ(s->shape, 1.0);
     EXPECT_DOUBLE_EQ(s->direction, 1.0);
@@ -181,8 +181,8 @@ TEST(MultiMatch, HandBuiltScanpathsScoreTheHandComputedValues) {
   // [1][1] |(-100,100)| = 141.4: the cheapest path is the diagonal, pairs (0,0) and (1,1).
   const cv::Size image(1000, 1000);
   const double diagonal = 1000.0 * std::sqrt(2.0);
-  const Scanpath a = {At(100, 100, 0.2), At(400, 100, 0.3), At(400, 500, 0.2)};
-  const Scanpath b = {At(100, 200, 0.2), At(500, 200, 0.1), At(600, 500, 0.4)};
+  const Scanpath a = {FixationAt(100, 100, 0.2), FixationAt(400, 100, 0.3), FixationAt(400, 500, 0.2)};
+  const Scanpath b = {FixationAt(100, 200, 0.2), FixationAt(500, 200, 0.1), FixationAt(600, 500, 0.4)};
   const std::vector<std::pair<int, int>> pairs = AlignSaccades(SaccadeVectors(a), SaccadeVectors(b));
   EXPECT_EQ(pairs, (std::vector<std::pair<int, int>>{{0, 0}, {1, 1}}));
   const std::optional<MultiMatchScores> s = MultiMatch(a, b, image, {});
@@ -207,10 +207,10 @@ TEST(MultiMatch, AScanpathAgainstItsReverse) {
   // twice against (-500, 0) twice, every difference 1000, pairs (0,0), (1,1). Shape
   // 1 - 1000 / (2 x 1442.2); direction 0 (opposite); length 1; positions 1000 and 0, median 500;
   // durations equal.
-  const Scanpath path = {AtCell(0, 0), AtCell(5, 0), AtCell(10, 0)};
+  const Scanpath path = {InCell(0, 0), InCell(5, 0), InCell(10, 0)};
   const Scanpath reversed(path.rbegin(), path.rend());
   const double diagonal = std::hypot(1200.0, 800.0);
-  const std::optional<MultiMatchScores> s = MultiMatch(path, reversed, kImage, {});
+  const std::optional<MultiMatchScores> s = MultiMatch(path, reversed, kGridImage, {});
   ASSERT_TRUE(s.has_value());
   EXPECT_NEAR(s->shape, 1.0 - 1000.0 / (2.0 * diagonal), 1e-12);
   EXPECT_NEAR(s->direction, 0.0, 1e-12);
@@ -223,12 +223,12 @@ TEST(MultiMatch, EachDimensionIsTheMedianOverTheAlignedPairsNotTheMean) {
   // Three saccades of (200, 0) against (200, 0), (200, 0), (200, 300): pairs (0,0), (1,1),
   // (2,2) with shape differences 0, 0, 300. The median is 0, so shape, direction and length
   // are 1 (a mean would give 1 - 100 / (2 x diagonal) for shape).
-  const Scanpath a = {At(100, 100, 0.2), At(300, 100, 0.2), At(500, 100, 0.2), At(700, 100, 0.2)};
+  const Scanpath a = {FixationAt(100, 100, 0.2), FixationAt(300, 100, 0.2), FixationAt(500, 100, 0.2), FixationAt(700, 100, 0.2)};
   Scanpath b = a;
   b[3].y = 400;
   EXPECT_EQ(AlignSaccades(SaccadeVectors(a), SaccadeVectors(b)),
             (std::vector<std::pair<int, int>>{{0, 0}, {1, 1}, {2, 2}}));
-  const std::optional<MultiMatchScores> s = MultiMatch(a, b, kImage, {});
+  const std::optional<MultiMatchScores> s = MultiMatch(a, b, kGridImage, {});
   ASSERT_TRUE(s.has_value());
   EXPECT_DOUBLE_EQ(s->shape, 1.0);
   EXPECT_DOUBLE_EQ(s->direction, 1.0);
@@ -249,13 +249,13 @@ TEST(MultiMatch, TheAlignmentTakesTheCheapestPathAndPairsDifferentLengths) {
 }
 
 TEST(MultiMatch, NeedsASaccadeInEachScanpathAndKnownDurationsForDuration) {
-  const Scanpath one = {At(10, 10, 0.2)};
-  const Scanpath two = {At(10, 10, 0.2), At(500, 300, 0.2)};
-  EXPECT_FALSE(MultiMatch(one, two, kImage, {}).has_value());
-  EXPECT_FALSE(MultiMatch(two, one, kImage, {}).has_value());
+  const Scanpath one = {FixationAt(10, 10, 0.2)};
+  const Scanpath two = {FixationAt(10, 10, 0.2), FixationAt(500, 300, 0.2)};
+  EXPECT_FALSE(MultiMatch(one, two, kGridImage, {}).has_value());
+  EXPECT_FALSE(MultiMatch(two, one, kGridImage, {}).has_value());
   Scanpath unknown = two;
   for (Fixation& f : unknown) f.duration_s = -1.0;
-  const std::optional<MultiMatchScores> s = MultiMatch(two, unknown, kImage, {});
+  const std::optional<MultiMatchScores> s = MultiMatch(two, unknown, kGridImage, {});
   ASSERT_TRUE(s.has_value());
   EXPECT_DOUBLE_EQ(s->position, 1.0);
   EXPECT_TRUE(std::isnan(s->duration));
@@ -264,8 +264,8 @@ TEST(MultiMatch, NeedsASaccadeInEachScanpathAndKnownDurationsForDuration) {
 TEST(MultiMatch, SimplificationMergesSaccadesInOneDirectionOrShortOnes) {
   MultiMatchOptions options;  // 45 degrees, 0.1 x diagonal (144 px here), 0.3 s
   // Three saccades to the right with short fixations between them: one saccade (300, 0).
-  const Scanpath straight = {At(0, 0, 0.1), At(100, 0, 0.1), At(200, 10, 0.1), At(300, 0, 0.1)};
-  std::vector<Saccade> merged = SimplifySaccades(SaccadeVectors(straight), kImage, options);
+  const Scanpath straight = {FixationAt(0, 0, 0.1), FixationAt(100, 0, 0.1), FixationAt(200, 10, 0.1), FixationAt(300, 0, 0.1)};
+  std::vector<Saccade> merged = SimplifySaccades(SaccadeVectors(straight), kGridImage, options);
   ASSERT_EQ(merged.size(), 1u);
   EXPECT_DOUBLE_EQ(merged[0].dx, 300.0);
   EXPECT_DOUBLE_EQ(merged[0].dy, 0.0);
@@ -273,16 +273,16 @@ TEST(MultiMatch, SimplificationMergesSaccadesInOneDirectionOrShortOnes) {
   // The same with long fixations between them: nothing merges.
   Scanpath slow = straight;
   for (Fixation& f : slow) f.duration_s = 0.5;
-  EXPECT_EQ(SimplifySaccades(SaccadeVectors(slow), kImage, options).size(), 3u);
+  EXPECT_EQ(SimplifySaccades(SaccadeVectors(slow), kGridImage, options).size(), 3u);
   // Two short saccades at a right angle: merged by amplitude into (20, 30).
-  const Scanpath small = {At(500, 500, 0.1), At(520, 500, 0.1), At(520, 530, 0.1)};
-  merged = SimplifySaccades(SaccadeVectors(small), kImage, options);
+  const Scanpath small = {FixationAt(500, 500, 0.1), FixationAt(520, 500, 0.1), FixationAt(520, 530, 0.1)};
+  merged = SimplifySaccades(SaccadeVectors(small), kGridImage, options);
   ASSERT_EQ(merged.size(), 1u);
   EXPECT_DOUBLE_EQ(merged[0].dx, 20.0);
   EXPECT_DOUBLE_EQ(merged[0].dy, 30.0);
   // Long saccades at a right angle stay two.
-  const Scanpath corner = {At(100, 100, 0.1), At(600, 100, 0.1), At(600, 700, 0.1)};
-  EXPECT_EQ(SimplifySaccades(SaccadeVectors(corner), kImage, options).size(), 2u);
+  const Scanpath corner = {FixationAt(100, 100, 0.1), FixationAt(600, 100, 0.1), FixationAt(600, 700, 0.1)};
+  EXPECT_EQ(SimplifySaccades(SaccadeVectors(corner), kGridImage, options).size(), 2u);
 }
 
 }  // namespace
