@@ -3,7 +3,15 @@
 //   DIR/stimuli/<id>.<ext>    the image shown (jpg, jpeg, png, ppm, pgm or bmp)
 //   DIR/fixations/<id>.txt    its fixations, one a line: "subject x y [further columns]"
 // Lines starting with '#' are comments and blank lines are skipped. x (column) and y (row) are
-// 1-based pixels of the stimulus, as MATLAB-era datasets store them.
+// 1-based pixels of the stimulus, as MATLAB-era datasets store them. Each subject's lines are
+// in that subject's viewing order (the lines of different subjects may interleave).
+//
+// Durations (for scanpaths, eval/scanpath_metrics.h) come from one further column, found by
+// DurationColumn: given by number, or named in the header, the comment lines before the first
+// data line: the words after '#' are the columns' names, and the column named `duration_ms`
+// (milliseconds) or `duration_s` (seconds) holds the durations, e.g.
+//   # subject x y duration_ms            (crowd200: the 4th column, ms)
+//   # subject x y onset_s duration_s     (NUS Scene500: the 5th column, s)
 #pragma once
 
 #include <string>
@@ -18,12 +26,37 @@ struct Fixation {
   // (eval/fixation_metrics.h) drop them, since only they know the map's size.
   double x = 0.0;
   double y = 0.0;
+  // Seconds; negative when the file gives no durations.
+  double duration_s = -1.0;
+};
+
+// Where ReadFixationFile finds durations.
+struct DurationColumn {
+  enum class Source {
+    kNone,    // no durations: every duration_s stays -1
+    kHeader,  // the column the header names duration_ms or duration_s; none without one
+    kColumn,  // `column` in `seconds_per_unit`
+  };
+  Source source = Source::kNone;
+  int column = 3;                  // 0-based (3: the fourth, after subject x y); kColumn only
+  double seconds_per_unit = 1e-3;  // kColumn only
 };
 
 // Reads one fixation file. Throws InputError naming "<path>:<line>: <what is wrong>" for a bad
 // line (too few columns, not a number, a negative or non-integer subject, a non-finite
-// coordinate) and naming the path when the file cannot be read. An empty file gives no fixations.
-std::vector<Fixation> ReadFixationFile(const std::string& path);
+// coordinate, a missing or negative duration where durations are read) and naming the path when
+// the file cannot be read. An empty file gives no fixations.
+std::vector<Fixation> ReadFixationFile(const std::string& path,
+                                       const DurationColumn& durations = {});
+
+// One subject's fixations in viewing order.
+struct SubjectFixations {
+  int subject = 0;
+  std::vector<Fixation> fixations;
+};
+
+// `fixations` grouped by subject (subjects ascending), each in the order of `fixations`.
+std::vector<SubjectFixations> GroupBySubject(const std::vector<Fixation>& fixations);
 
 struct FixationItem {
   std::string id;              // the file stem shared by the stimulus and its fixation file

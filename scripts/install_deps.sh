@@ -16,6 +16,7 @@ packages=(
   # the Python module attend (python/, docs/PYTHON.md), its tests and its example
   pybind11-dev python3-dev python3-numpy python3-pytest python3-pandas python3-matplotlib
   python3-onnx    # builds the small ONNX network of the dnn backend's test (tests/features)
+  python3-scipy   # scipy.io reads the MATLAB files of scripts/convert_fixations.py and its tests
   # attend sweep --slurm and the one-node cluster its tests start (scripts/slurm_local.sh)
   slurm-wlm munge
   # live input through OpenCV's GStreamer backend and its tests' videotestsrc pipelines

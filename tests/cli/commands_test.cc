@@ -13,7 +13,7 @@ namespace {
 // The commands of SPEC 3.2, in the order `attend --help` lists them.
 const std::vector<std::string> kCommands = {
     "run",   "synth",      "calibrate", "segment", "disparity", "track", "eval-tracking",  "track-detections",
-    "eval",  "skin-train", "compare", "report",    "saliency", "eval-fixations", "fit-weights",
+    "eval",  "skin-train", "compare", "report",    "saliency", "eval-fixations", "eval-scanpaths", "fit-weights",
     "sweep", "options-doc"};
 
 TEST(Commands, EveryCommandIsAddedInItsOrder) {

@@ -83,6 +83,66 @@ TEST(ReadFixationFile, BadInputMapsToTheBadInputExitStatus) {
   }
 }
 
+TEST(ReadFixationFile, DurationsComeFromTheColumnTheHeaderNames) {
+  TempDir dir;
+  const DurationColumn header{DurationColumn::Source::kHeader};
+  // crowd200's layout: milliseconds in the 4th column.
+  const std::string crowd = dir.Write("crowd.txt",
+                                      "# subject x y duration_ms  (viewing order)\n"
+                                      "0 10 20 250\n"
+                                      "1 11 21 120.5\n");
+  std::vector<Fixation> fixations = ReadFixationFile(crowd, header);
+  ASSERT_EQ(fixations.size(), 2u);
+  EXPECT_DOUBLE_EQ(fixations[0].duration_s, 0.25);
+  EXPECT_DOUBLE_EQ(fixations[1].duration_s, 0.1205);
+  // NUS Scene500's: seconds in the 5th, after the onset.
+  const std::string nus = dir.Write("nus.txt",
+                                    "# subject_index(0-based) x_col_px y_row_px onset_s duration_s\n"
+                                    "0 49.78 118.47 0.334 0.134\n");
+  fixations = ReadFixationFile(nus, header);
+  ASSERT_EQ(fixations.size(), 1u);
+  EXPECT_DOUBLE_EQ(fixations[0].duration_s, 0.134);
+  // No header naming a duration: durations unknown. Without asking: unknown too.
+  EXPECT_DOUBLE_EQ(ReadFixationFile(dir.Write("plain.txt", "# subject x y\n0 1 1 5\n"), header)[0]
+                       .duration_s,
+                   -1.0);
+  EXPECT_DOUBLE_EQ(ReadFixationFile(crowd)[0].duration_s, -1.0);
+  // A given column overrides the header: the 4th column read as seconds.
+  const DurationColumn given{DurationColumn::Source::kColumn, 3, 1.0};
+  EXPECT_DOUBLE_EQ(ReadFixationFile(crowd, given)[0].duration_s, 250.0);
+}
+
+TEST(ReadFixationFile, BadDurationsNameThePathAndLine) {
+  TempDir dir;
+  const DurationColumn header{DurationColumn::Source::kHeader};
+  const std::string missing = dir.Write("m.txt", "# subject x y duration_ms\n0 1 1 200\n0 2 2\n");
+  EXPECT_NE(InputErrorOf([&] { ReadFixationFile(missing, header); }).find("m.txt:3: no duration"),
+            std::string::npos);
+  const std::string negative = dir.Write("n.txt", "# subject x y duration_ms\n0 1 1 -5\n");
+  EXPECT_NE(InputErrorOf([&] { ReadFixationFile(negative, header); }).find("n.txt:2: duration -5"),
+            std::string::npos);
+  const std::string text = dir.Write("t.txt", "# subject x y duration_ms\n0 1 1 long\n");
+  EXPECT_NE(InputErrorOf([&] { ReadFixationFile(text, header); }).find("t.txt:2: duration 'long'"),
+            std::string::npos);
+  const std::string clash = dir.Write("c.txt", "# duration_ms x y\n0 1 1\n");
+  EXPECT_NE(InputErrorOf([&] { ReadFixationFile(clash, header); }).find("c.txt:1"),
+            std::string::npos);
+}
+
+TEST(GroupBySubject, KeepsEachSubjectsViewingOrder) {
+  TempDir dir;
+  const std::string path = dir.Write("f.txt", "2 1 1\n0 5 5\n2 2 2\n0 6 6\n2 3 3\n");
+  const std::vector<SubjectFixations> groups = GroupBySubject(ReadFixationFile(path));
+  ASSERT_EQ(groups.size(), 2u);
+  EXPECT_EQ(groups[0].subject, 0);
+  ASSERT_EQ(groups[0].fixations.size(), 2u);
+  EXPECT_DOUBLE_EQ(groups[0].fixations[0].x, 4.0);
+  EXPECT_DOUBLE_EQ(groups[0].fixations[1].x, 5.0);
+  EXPECT_EQ(groups[1].subject, 2);
+  ASSERT_EQ(groups[1].fixations.size(), 3u);
+  EXPECT_DOUBLE_EQ(groups[1].fixations[2].x, 2.0);
+}
+
 TEST(ReadFixationFile, UnreadableFileNamesThePath) {
   TempDir dir;
   const std::string path = dir.File("missing.txt");
