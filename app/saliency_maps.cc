@@ -55,7 +55,8 @@ SaliencyMapsResult WriteSaliencyMaps(const SaliencyMapsRequest& request,
       result.failed.push_back(path);
       continue;
     }
-    const StillMaps maps = still.Compute(bgr, request.features, request.scanpath);
+    const StillMaps maps = still.Compute(bgr, request.features, request.scanpath,
+                                         request.scanpath_point);
     WriteMaps(out, stem, maps.saliency);
     for (size_t i = 0; i < maps.features.size(); ++i) {
       WriteMaps(out / "features" / maps.feature_names[i], stem, maps.features[i]);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pipeline/attend_options.h"
+#include "pipeline/still_saliency.h"
 #include "util/error.h"
 
 namespace attend {
@@ -21,6 +22,7 @@ struct SaliencyMapsRequest {
   std::string home;          // the attend home (plugins' relative data paths)
   bool features = false;     // also every feature's normalised map
   int scanpath = 0;          // also the first K attended regions of each image
+  ScanpathPoint scanpath_point = ScanpathPoint::kCentre;  // where each step lands
   std::string config_path;   // recorded in saliency.json
   std::string command_line;  // recorded in saliency.json
 };

@@ -27,6 +27,7 @@ struct SaliencyArguments {
   std::vector<std::string> sets;
   bool features = false;
   int scanpath = 0;
+  std::string scanpath_point = "centre";
   bool quiet = false;
   std::string command_line;
 };
@@ -59,6 +60,8 @@ int Saliency(const SaliencyArguments& args) {
   request.home = AttendHome();
   request.features = args.features;
   request.scanpath = args.scanpath;
+  request.scanpath_point =
+      args.scanpath_point == "peak" ? ScanpathPoint::kPeak : ScanpathPoint::kCentre;
   request.command_line = args.command_line;
   SaliencyMapsObserver observer;
   observer.on_left_out = [&args](const std::string& name) {
@@ -102,6 +105,10 @@ void AddSaliencyCommand(CLI::App& app, const std::string& command_line, CommandA
   cmd->add_option("--scanpath", args->scanpath,
                   "Also write the first K attended regions of each image (scanpath.json)")
       ->check(CLI::Range(0, 100));
+  cmd->add_option("--scanpath-point", args->scanpath_point,
+                  "Where a step lands in its target: centre (of its box) or peak (the most "
+                  "salient pixel in its box)")
+      ->check(CLI::IsMember({"centre", "peak"}));
   cmd->add_flag("--quiet", args->quiet, "No report; errors only");
   args->command_line = command_line;
   cmd->callback([args, action] { *action = [args] { return Saliency(*args); }; });

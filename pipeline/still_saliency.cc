@@ -37,7 +37,8 @@ StillSaliency::StillSaliency(const AttendOptions& options, const std::string& ho
   FramePipeline check(options_, registry_, setup, execution_.get());
 }
 
-StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features, int scanpath_steps) const {
+StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features, int scanpath_steps,
+                                 ScanpathPoint point) const {
   CV_Assert(bgr.type() == CV_8UC3 && !bgr.empty());
   // A pipeline per image: nothing (motion background, targets, inhibition) carries over.
   FeatureSetup setup;
@@ -79,7 +80,16 @@ StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features, int sca
         if (target.id != id) continue;
         const cv::Rect box = InputFromWorkingBox(target.bbox, sx, sy, maps.image_size);
         maps.scanpath_boxes.push_back(box);
-        maps.scanpath.emplace_back(box.x + box.width / 2.0, box.y + box.height / 2.0);
+        const cv::Rect inside = target.bbox & cv::Rect(cv::Point(), maps.working_size);
+        if (point == ScanpathPoint::kPeak && !inside.empty()) {
+          cv::Point peak;
+          cv::minMaxLoc(pipeline.saliency()(inside), nullptr, nullptr, nullptr, &peak);
+          // The working pixel's centre in input pixels.
+          maps.scanpath.emplace_back((inside.x + peak.x + 0.5) / sx - 0.5,
+                                     (inside.y + peak.y + 0.5) / sy - 0.5);
+        } else {
+          maps.scanpath.emplace_back(box.x + box.width / 2.0, box.y + box.height / 2.0);
+        }
       }
     }
   }

@@ -15,15 +15,20 @@
 
 namespace attend {
 
+// Where a scanpath's step lands in its attended target (StillSaliency::Compute): the centre of
+// the target's box, or the most salient pixel of the saliency map in that box (where the eyes
+// would go within the object attention selected).
+enum class ScanpathPoint { kCentre, kPeak };
+
 struct StillMaps {
   cv::Size image_size;    // the input image's
   cv::Size working_size;  // where the maps were computed (sequence.width/height/resize)
   cv::Mat saliency;       // CV_32FC1 at image_size, [0, 1]
   std::vector<std::string> feature_names;
   std::vector<cv::Mat> features;  // each normalised to [0, 1], CV_32FC1 at image_size
-  // With `scanpath_steps` > 0: the centres of the targets attention selects, in the order it
-  // selects them (image pixels), and their boxes; the image is shown again as a still frame
-  // until that many targets were selected or a frame selects none.
+  // With `scanpath_steps` > 0: a point of each target attention selects (ScanpathPoint), in the
+  // order it selects them (image pixels), and their boxes; the image is shown again as a still
+  // frame until that many targets were selected or a frame selects none.
   std::vector<cv::Point2d> scanpath;
   std::vector<cv::Rect> scanpath_boxes;
 };
@@ -37,7 +42,8 @@ class StillSaliency {
                 std::vector<std::string>* dropped = nullptr);
 
   // `bgr`: 8-bit BGR of any size. `with_features`: also return each feature's map.
-  StillMaps Compute(const cv::Mat& bgr, bool with_features, int scanpath_steps) const;
+  StillMaps Compute(const cv::Mat& bgr, bool with_features, int scanpath_steps,
+                    ScanpathPoint point = ScanpathPoint::kCentre) const;
 
  private:
   AttendOptions options_;

@@ -61,6 +61,41 @@ TEST(SaliencyCli, TheSaturatedObjectHasTheHighestSaliencyAtTheImagesOwnSize) {
   EXPECT_TRUE(object.contains({scanpath["red"][0]["x"].get<int>(), scanpath["red"][0]["y"].get<int>()}));
 }
 
+TEST(SaliencyCli, AScanpathStepLandsOnItsTargetsCentreOrOnItsMostSalientPixel) {
+  testing::TempDir dir;
+  // A long red bar from the image's centre to its right edge; times a narrow centre bias the
+  // saliency along the bar is highest at its left end, while its box's centre is 90 px right.
+  const cv::Rect bar(200, 130, 180, 40);
+  ASSERT_TRUE(cv::imwrite(dir.File("bar.png"), ObjectOnGrey({400, 300}, bar, 3)));
+  dir.Write("c.yaml",
+            "features:\n  - {name: colour_contrast, weight: 1}\n"
+            "  - {name: centre_bias, weight: 1, sigma: 0.15}\n"
+            "saliency: {combination: product}\n");
+  for (const std::string point : {"centre", "peak"}) {
+    const Result r = Attend(dir, {"saliency", "bar.png", "--out", point, "--config", "c.yaml",
+                                  "--scanpath", "1", "--scanpath-point", point, "--quiet"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const nlohmann::json step =
+        nlohmann::json::parse(ReadText(dir.File(point + "/scanpath.json")))["bar"].at(0);
+    const std::vector<int> box = step["bbox"];
+    ASSERT_EQ(box.size(), 4u);
+    // The target is the bar (its colour region), within a pixel of the working size's rounding.
+    EXPECT_NEAR(box[0], bar.x, 2);
+    EXPECT_NEAR(box[2], bar.width, 3);
+    const double x = step["x"], y = step["y"];
+    EXPECT_TRUE(cv::Rect(bar.x - 2, bar.y - 2, bar.width + 4, bar.height + 4).contains({int(x), int(y)}))
+        << point << " " << x << "," << y;
+    if (point == "centre") {
+      EXPECT_NEAR(x, bar.x + bar.width / 2.0, 2.0);
+    } else {
+      EXPECT_LT(x, bar.x + 30) << "the bar's most salient pixel is at its left end";
+    }
+  }
+  // Another word is a bad flag.
+  EXPECT_EQ(Attend(dir, {"saliency", "bar.png", "--out", "x", "--scanpath", "1",
+                         "--scanpath-point", "middle"}).status, 2);
+}
+
 TEST(SaliencyCli, AnImageThatCannotBeDecodedIsNamedAndTheOthersAreDone) {
   testing::TempDir dir;
   ASSERT_TRUE(cv::imwrite(dir.File("good.png"), ObjectOnGrey({160, 120}, {40, 30, 30, 20}, 2)));
