@@ -172,7 +172,7 @@ TEST(Saliency, AnAdditiveMapIsAddedToTheProductOfTheOthers) {
   MultiplyMaps({a, b, faces}, {1.0, 1.0, 2.0}, {false, false, true}, cv::Size(4, 1), &out);
   EXPECT_NEAR(out.at<float>(0), 0.5f, 1e-5);
   EXPECT_NEAR(out.at<float>(1), 0.5f * (std::sqrt(0.26f * 1.01f) - 0.01f), 1e-5);
-  EXPECT_NEAR(out.at<float>(2), 0.0f, 1e-5);
+  EXPECT_NEAR(out.at<float>(2), 0.5f * (std::sqrt(1.01f * 0.01f) - 0.01f), 1e-5);  // a veto
   // Where the others veto, the added map still counts in full: no veto on it.
   EXPECT_NEAR(out.at<float>(3), 0.5f, 1e-5);
   // An added map that is 0 everywhere scales the product uniformly: the same map up to a factor.
