@@ -88,7 +88,13 @@ double Trapezoid(const std::vector<double>& fp, const std::vector<double>& tp) {
 
 // (v - min) / (max - min) maps the map to [0, 1]; a constant map goes to 0.
 struct RangeNormaliser {
-  explicit RangeNormaliser(const cv::Mat& map) { cv::minMaxLoc(map, &min, &max); }
+  explicit RangeNormaliser(const cv::Mat& map) {
+    cv::minMaxLoc(map, &min, &max);
+    // A range at the level of float rounding (a constant map resized for scoring) is no range:
+    // stretching it to [0, 1] would make noise of the last bits into structure.
+    if (max - min <= 1e-6 * std::max(std::abs(min), std::abs(max))) max = min;
+  }
+  bool constant() const { return !(max > min); }
   double operator()(double v) const { return max > min ? (v - min) / (max - min) : 0.0; }
   double min = 0.0, max = 0.0;
 };
@@ -138,7 +144,7 @@ cv::Mat KlDistribution(const cv::Mat& map) {
 // (a constant map with no offset).
 cv::Mat RangeDistribution(const cv::Mat& map, double offset) {
   const RangeNormaliser normalise(map);
-  cv::Mat out = normalise.max > normalise.min
+  cv::Mat out = !normalise.constant()
                     ? cv::Mat((map - normalise.min) / (normalise.max - normalise.min))
                     : cv::Mat(map.size(), CV_64F, cv::Scalar(0.0));
   out += offset;

@@ -28,6 +28,7 @@
 #include <utility>
 #include <vector>
 
+#include "features/detection_map.h"
 #include "features/feature_map.h"
 #include "util/option_fields.h"
 
@@ -35,11 +36,6 @@ namespace attend {
 
 enum class DetectorGate { kAttended, kFrame };
 
-// How a detection is painted into its channel's map: its box filled with its confidence, or a
-// Gaussian over the box (centred on it, sigma `shape_sigma` times its width and height, peak
-// its confidence), which is highest where people look on a face or a body and falls off
-// towards its edges.
-enum class DetectionShape { kBox, kGaussian };
 
 // What both channels share: where the detector looks and how its detections become a map.
 struct ObjectChannelOptions {
@@ -63,6 +59,8 @@ struct ObjectChannelOptions {
   // this power: 0, the confidence alone; below 0, small objects (far faces in a crowd, each
   // looked at about as often as a near one) weigh more per pixel.
   double size_power = 0.0;
+  // How its detections are painted (features/detection_map.h).
+  DetectionPaint Paint() const;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
   // The fields (util/option_fields.h), which Check and the configuration apply.
@@ -171,20 +169,6 @@ std::vector<std::pair<cv::Rect, double>> MergeCrops(std::vector<std::pair<cv::Re
 // side, widened about its centre to at least `window`'s aspect ratio (never heightened: the
 // region's height bounds the object's), clipped to `frame`.
 cv::Rect GateCrop(const cv::Rect& region, double margin, cv::Size window, cv::Size frame);
-
-// Greedy non-maximum suppression: the most confident first, then each box whose IoU with a
-// kept box of the same label exceeds `max_iou` is dropped. Keeps the order of confidence.
-void SuppressOverlaps(double max_iou, std::vector<Detection>* detections);
-
-// The map of `detections`: each painted as `options.shape` says with its confidence (the
-// maximum where they overlap), 0 elsewhere, then blurred by a Gaussian of `options.blur` times
-// the larger side (0: none).
-void PaintDetections(const std::vector<Detection>& detections, const ObjectChannelOptions& options,
-                     cv::Size size, cv::Mat* map);
-
-// A monotone map of a detector's score (an SVM margin, a cascade's final stage sum) into
-// (0, 1]: the logistic function, 0.5 at a score of 0.
-float ScoreToConfidence(double score);
 
 // The HOG people search (OpenCV's HOGDescriptor) and its geometry.
 ObjectSearch MakeHogPeopleSearch(const HogPeopleOptions& options);

@@ -68,8 +68,12 @@ StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features, int sca
   // Working size over input size, as SequenceInfo's scale_x and scale_y.
   const double sx = static_cast<double>(maps.working_size.width) / maps.image_size.width;
   const double sy = static_cast<double>(maps.working_size.height) / maps.image_size.height;
+  // The map the stage selected on at each showing: the saliency at the first, then the
+  // saliency as the previous showing left it inhibited (every target started before).
+  cv::Mat selected_on = pipeline.saliency().clone();
   for (int shown = 0; static_cast<int>(maps.scanpath.size()) < scanpath_steps; ++shown) {
     if (shown > 0) {
+      pipeline.inhibited().copyTo(selected_on);
       frame.index = shown;
       record = FrameRecord();
       pipeline.Process(frame, &record);
@@ -83,7 +87,7 @@ StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features, int sca
         const cv::Rect inside = target.bbox & cv::Rect(cv::Point(), maps.working_size);
         if (point == ScanpathPoint::kPeak && !inside.empty()) {
           cv::Point peak;
-          cv::minMaxLoc(pipeline.saliency()(inside), nullptr, nullptr, nullptr, &peak);
+          cv::minMaxLoc(selected_on(inside), nullptr, nullptr, nullptr, &peak);
           // The working pixel's centre in input pixels.
           maps.scanpath.emplace_back((inside.x + peak.x + 0.5) / sx - 0.5,
                                      (inside.y + peak.y + 0.5) / sy - 0.5);

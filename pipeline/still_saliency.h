@@ -16,8 +16,9 @@
 namespace attend {
 
 // Where a scanpath's step lands in its attended target (StillSaliency::Compute): the centre of
-// the target's box, or the most salient pixel of the saliency map in that box (where the eyes
-// would go within the object attention selected).
+// the target's box, or the most salient pixel in that box of the map attention selected it on
+// (the saliency as the targets before it left it inhibited): where the eyes would go within the
+// object attention selected.
 enum class ScanpathPoint { kCentre, kPeak };
 
 struct StillMaps {

@@ -283,7 +283,7 @@ TEST(ObjectChannel, MapIsTheConfidenceInsideTheBoxesAndZeroOutside) {
   // Overlapping boxes: the larger confidence.
   const cv::Rect high(80, 60, 30, 30);
   cv::Mat painted;
-  ObjectChannelOptions paint;
+  DetectionPaint paint;
   PaintDetections({{low, "a", 0.6f}, {high, "a", 0.8f}}, paint, {200, 150}, &painted);
   EXPECT_FLOAT_EQ(painted.at<float>(55, 55), 0.6f);
   EXPECT_FLOAT_EQ(painted.at<float>(70, 85), 0.8f);   // in both
@@ -299,9 +299,9 @@ TEST(ObjectChannel, MapIsTheConfidenceInsideTheBoxesAndZeroOutside) {
 }
 
 TEST(ObjectChannel, AGaussianShapePeaksAtTheBoxCentreWithItsSigma) {
-  ObjectChannelOptions paint;
+  DetectionPaint paint;
   paint.shape = DetectionShape::kGaussian;
-  paint.shape_sigma = 0.25;
+  paint.sigma = 0.25;
   // A 40x20 box at (20, 30): centre (39.5, 39.5) in pixel centres, sigma 10 by 5.
   const cv::Rect box(20, 30, 40, 20);
   cv::Mat painted;
@@ -326,13 +326,13 @@ TEST(ObjectChannel, AGaussianShapePeaksAtTheBoxCentreWithItsSigma) {
   cv::minMaxLoc(painted, nullptr, &both);
   EXPECT_DOUBLE_EQ(both, max);
   // Centred at a quarter of the box's height: the peak moves up to y 34.5.
-  paint.shape_centre_y = 0.25;
+  paint.centre_y = 0.25;
   PaintDetections({{box, "person", 0.9f}}, paint, {100, 80}, &painted);
   cv::Point peak;
   cv::minMaxLoc(painted, nullptr, nullptr, nullptr, &peak);
   EXPECT_EQ(peak.x, 39);
   EXPECT_TRUE(peak.y == 34 || peak.y == 35) << peak;
-  paint.shape_centre_y = 0.5;
+  paint.centre_y = 0.5;
   // size_power -1: a box a quarter of the map's height paints 4 x its confidence, one an eighth
   // 8 x.
   paint.shape = DetectionShape::kBox;
