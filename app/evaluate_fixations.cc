@@ -43,6 +43,11 @@ double ScoringScale(cv::Size size, int max_side) {
 
 cv::Mat ToSize(const cv::Mat& map, cv::Size size) {
   if (map.size() == size) return map;
+  // A constant map stays constant: OpenCV's area interpolation of floats leaves rounding
+  // differences in the last bits, which the AUCs and CC would read as structure.
+  double low = 0.0, high = 0.0;
+  cv::minMaxLoc(map, &low, &high);
+  if (low == high) return cv::Mat(size, map.type(), cv::Scalar(low));
   cv::Mat out;
   cv::resize(map, out, size, 0, 0, map.cols > size.width ? cv::INTER_AREA : cv::INTER_LINEAR);
   return out;

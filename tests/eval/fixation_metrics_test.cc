@@ -228,6 +228,23 @@ TEST(InformationGain, BaselineGainsNothingAndAPeakedMapGains) {
   EXPECT_LT(InformationGain(cv::Mat(kSize, CV_64F, cv::Scalar(1.0)), baseline, fixations), 0.0);
 }
 
+TEST(InformationGain, AConstantMapWithRoundingNoiseIsTheConstantMap) {
+  // A constant float map resized for scoring comes back with differences in its last bits; those
+  // are no structure: the same IG as the constant map (it was NaN once, for a tiny constant).
+  const std::vector<Fixation> fixations = CentreBiasedFixations(kSize, 40, 0.15, 37);
+  const cv::Mat baseline = CentreBias(kSize);
+  for (const double level : {1.0, 1.8626451e-09}) {
+    cv::Mat noisy(kSize, CV_64F, cv::Scalar(level));
+    noisy.at<double>(3, 4) = std::nextafter(level, 2.0);
+    noisy.at<double>(7, 1) = std::nextafter(level, 0.0);
+    const double ig = InformationGain(noisy, baseline, fixations);
+    ASSERT_TRUE(std::isfinite(ig)) << level;
+    EXPECT_NEAR(ig, InformationGain(cv::Mat(kSize, CV_64F, cv::Scalar(level)), baseline, fixations),
+                1e-9)
+        << level;
+  }
+}
+
 TEST(CentreBias, PeaksAtTheCentreWithTheRequestedSpread) {
   const cv::Mat bias = CentreBias(cv::Size(101, 51), 0.25);
   ASSERT_EQ(bias.type(), CV_64F);
