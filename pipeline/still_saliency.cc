@@ -1,5 +1,6 @@
 #include "pipeline/still_saliency.h"
 
+#include <algorithm>
 #include <opencv2/imgproc.hpp>
 
 #include "io/sequence.h"
@@ -71,6 +72,10 @@ StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features, int sca
   // The map the stage selected on at each showing: the saliency at the first, then the
   // saliency as the previous showing left it inhibited (every target started before).
   cv::Mat selected_on = pipeline.saliency().clone();
+  // A target too small for the stage to keep is released at once and so never inhibited: the
+  // next showing starts it again on the same pixels. That is not a new step; two showings in a
+  // row without one end the scanpath.
+  int showings_without_step = 0;
   for (int shown = 0; static_cast<int>(maps.scanpath.size()) < scanpath_steps; ++shown) {
     if (shown > 0) {
       pipeline.inhibited().copyTo(selected_on);
@@ -79,10 +84,15 @@ StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features, int sca
       pipeline.Process(frame, &record);
     }
     if (record.new_ids.empty()) break;
+    const size_t steps_before = maps.scanpath.size();
     for (const int id : record.new_ids) {
       for (const TargetRecord& target : record.targets) {
         if (target.id != id) continue;
         const cv::Rect box = InputFromWorkingBox(target.bbox, sx, sy, maps.image_size);
+        if (std::find(maps.scanpath_boxes.begin(), maps.scanpath_boxes.end(), box) !=
+            maps.scanpath_boxes.end()) {
+          continue;
+        }
         maps.scanpath_boxes.push_back(box);
         const cv::Rect inside = target.bbox & cv::Rect(cv::Point(), maps.working_size);
         if (point == ScanpathPoint::kPeak && !inside.empty()) {
@@ -96,6 +106,8 @@ StillMaps StillSaliency::Compute(const cv::Mat& bgr, bool with_features, int sca
         }
       }
     }
+    showings_without_step = maps.scanpath.size() > steps_before ? 0 : showings_without_step + 1;
+    if (showings_without_step >= 2) break;
   }
   pipeline.EndSequence();
   if (static_cast<int>(maps.scanpath.size()) > scanpath_steps) {
