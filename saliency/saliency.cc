@@ -39,7 +39,7 @@ const OptionFields<SaliencyOptions>& SaliencyOptions::Fields() {
       {"combination", EnumField<&O::combination, kCombinations>(),
        "sum: the weighted mean (the thesis); product: the weighted geometric mean"},
       {"gamma", &O::gamma, Range::Closed(0.1, 10),
-       "the combined (and blurred) map to this power; 1: as it is"}};
+       "the combined (and blurred) map, scaled to a maximum of 1, to this power; 1: as it is"}};
   return fields;
 }
 
@@ -112,8 +112,15 @@ void MultiplyMaps(const std::vector<cv::Mat>& normalised, const std::vector<doub
 void SmoothSaliency(const SaliencyOptions& options, cv::Mat* map) {
   if (map->empty()) return;
   if (options.blur > 0.0) BlurSaliency(options.blur, map);
-  // The map is in [0, 1], so its power stays there and keeps its order.
-  if (options.gamma != 1.0) cv::pow(*map, options.gamma, *map);
+  // Scaled to a maximum of 1 first, so that the power shapes the map the same on every image
+  // (a map whose maximum is 0.3 would otherwise fall to 0.027 at gamma 3, under every absolute
+  // threshold of the attention stage); it stays in [0, 1] and keeps its order.
+  if (options.gamma != 1.0) {
+    double high = 0.0;
+    cv::minMaxLoc(*map, nullptr, &high);
+    if (high > 0.0) *map /= high;
+    cv::pow(*map, options.gamma, *map);
+  }
 }
 
 void BlurSaliency(double blur, cv::Mat* map) {

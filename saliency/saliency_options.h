@@ -22,7 +22,8 @@ struct SaliencyOptions {
   // hard edges, and people look near a salient thing, not exactly at it; not in the
   // thesis.
   double blur = 0.0;
-  // The combined map, after its blur, to this power (a pointwise calibration that keeps the
+  // The combined map, after its blur, scaled to a maximum of 1 and raised to this power (a
+  // pointwise calibration that keeps the
   // order of its values, so every AUC; NSS and CC prefer a map as peaked as the fixations'
   // density). 1: the map as it is; not in the thesis.
   double gamma = 1.0;

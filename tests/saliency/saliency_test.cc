@@ -195,6 +195,11 @@ TEST(Saliency, GammaRaisesTheMapToItsPowerAfterTheBlur) {
   EXPECT_FLOAT_EQ(map.at<float>(1), 0.0625f);
   EXPECT_FLOAT_EQ(map.at<float>(2), 0.25f);
   EXPECT_FLOAT_EQ(map.at<float>(3), 1.f);
+  // A map whose maximum is 0.5 is scaled to 1 first: the same shape on every image.
+  map = Row({0.f, 0.125f, 0.25f, 0.5f});
+  SmoothSaliency(options, &map);
+  EXPECT_FLOAT_EQ(map.at<float>(1), 0.0625f);
+  EXPECT_FLOAT_EQ(map.at<float>(3), 1.f);
 }
 
 TEST(Saliency, BlurSpreadsAPeakAndKeepsItsHeight) {
