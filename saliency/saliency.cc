@@ -109,6 +109,21 @@ void MultiplyMaps(const std::vector<cv::Mat>& normalised, const std::vector<doub
   }
 }
 
+namespace {
+
+// A Gaussian of `blur` times the map's larger side, then scaled back to its maximum.
+void BlurSaliency(double blur, cv::Mat* map) {
+  double low = 0.0, high = 0.0;
+  cv::minMaxLoc(*map, &low, &high);
+  const double sigma = blur * std::max(map->cols, map->rows);
+  cv::GaussianBlur(*map, *map, cv::Size(), sigma, sigma, cv::BORDER_REPLICATE);
+  double blurred_high = 0.0;
+  cv::minMaxLoc(*map, nullptr, &blurred_high);
+  if (blurred_high > 0.0) *map *= high / blurred_high;
+}
+
+}  // namespace
+
 void SmoothSaliency(const SaliencyOptions& options, cv::Mat* map) {
   if (map->empty()) return;
   if (options.blur > 0.0) BlurSaliency(options.blur, map);
@@ -123,14 +138,5 @@ void SmoothSaliency(const SaliencyOptions& options, cv::Mat* map) {
   }
 }
 
-void BlurSaliency(double blur, cv::Mat* map) {
-  double low = 0.0, high = 0.0;
-  cv::minMaxLoc(*map, &low, &high);
-  const double sigma = blur * std::max(map->cols, map->rows);
-  cv::GaussianBlur(*map, *map, cv::Size(), sigma, sigma, cv::BORDER_REPLICATE);
-  double blurred_high = 0.0;
-  cv::minMaxLoc(*map, nullptr, &blurred_high);
-  if (blurred_high > 0.0) *map *= high / blurred_high;
-}
 
 }  // namespace attend

@@ -37,7 +37,5 @@ void MultiplyMaps(const std::vector<cv::Mat>& normalised, const std::vector<doub
 // Blurs `map` (CV_32FC1, [0, 1]) in place as `options.blur` says (nothing when it is 0), then,
 // when `options.gamma` is not 1, scales it to a maximum of 1 and raises it to that power.
 void SmoothSaliency(const SaliencyOptions& options, cv::Mat* map);
-// A Gaussian of `blur` times the map's larger side, then scaled back to its maximum.
-void BlurSaliency(double blur, cv::Mat* map);
 
 }  // namespace attend
