@@ -261,8 +261,8 @@ OtbSequenceResult TrackOtbSequence(const OtbSequence& sequence,
   return result;
 }
 
-void PrepareReportFolder(const OtbEvaluationRequest& request) {
-  PrepareOutputFolder(
+FolderLock PrepareReportFolder(const OtbEvaluationRequest& request) {
+  return PrepareOutputFolder(
       request.out, request.overwrite,
       {"OTB report", {"index.html", "results.json", "tracks"}, [](const std::string& folder) {
          std::error_code error;
@@ -305,7 +305,7 @@ OtbResults EvaluateOtb(const OtbEvaluationRequest& request, const OtbObserver& o
   for (const OtbSequence& sequence : sequences) {
     results.notes.insert(results.notes.end(), sequence.notes.begin(), sequence.notes.end());
   }
-  PrepareReportFolder(request);
+  const FolderLock lock = PrepareReportFolder(request);
   results.dir = request.dir;
   results.command_line = request.command_line;
   results.date = UtcTimestamp();

@@ -207,7 +207,7 @@ nlohmann::json TrackSequence(const TrackRequest& request,
   StartOnBoxes(request, frame, tracker.get());
 
   const fs::path out(request.out);
-  PrepareOutputFolder(request.out, request.overwrite,
+  const FolderLock lock = PrepareOutputFolder(request.out, request.overwrite,
                       {"track output",
                        {"tracks.csv", "track.json", "masks", "overlay"},
                        [](const std::string& folder) {

@@ -56,7 +56,7 @@ ReportResult WriteReport(const ReportRequest& request) {
   }
   input.chart = LoadChartLibrary();
 
-  PrepareOutputFolder(request.out, request.overwrite,
+  const FolderLock lock = PrepareOutputFolder(request.out, request.overwrite,
                       {"report", {"summary.json", "report.html"}, [](const std::string& folder) {
                          std::error_code error;
                          return fs::is_regular_file(fs::path(folder) / "report.html", error);

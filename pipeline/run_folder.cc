@@ -34,7 +34,7 @@ RunFolder::RunFolder(const std::string& dir, bool overwrite) : dir_(dir) {
     return fs::exists(fs::path(folder) / "frames.jsonl") ||
            fs::exists(fs::path(folder) / "summary.json");
   };
-  PrepareOutputFolder(dir_, overwrite, rules);
+  lock_ = PrepareOutputFolder(dir_, overwrite, rules);
   const std::string frames_path = (fs::path(dir_) / "frames.jsonl").string();
   frames_.open(frames_path);
   if (!frames_) throw OutputError(frames_path + ": cannot write");

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "io/frame_record.h"
+#include "util/folder_lock.h"
 
 namespace attend::cvextra {
 class Writer;
@@ -22,8 +23,9 @@ namespace attend {
 
 class RunFolder {
  public:
-  // Creates `dir` (and its parents) or takes it when empty. A non-empty folder is a
-  // ConfigError unless `overwrite`, which removes only the files and folders a run writes.
+  // Creates `dir` (and its parents) or takes it when empty, and locks it while the run lives
+  // (a folder in use by another run is an OutputError). A non-empty folder is an OutputError
+  // unless `overwrite`, which removes only the files and folders a run writes.
   RunFolder(const std::string& dir, bool overwrite);
   ~RunFolder();
   RunFolder(const RunFolder&) = delete;
@@ -55,6 +57,7 @@ class RunFolder {
 
  private:
   std::string dir_;
+  FolderLock lock_;  // held while the run writes (a second writer is refused)
   std::ofstream frames_;
   uintmax_t frames_bytes_ = 0;  // the size of frames.jsonl up to its last whole record
   std::unique_ptr<cvextra::Writer> video_;

@@ -56,7 +56,7 @@ std::string QuotedYaml(const std::string& text) {
 // output (its sequence.yaml says so) may be overwritten, and then only the layout's own
 // entries are removed, so stale frames of a longer earlier render cannot survive next to the
 // new ones and a recorded sequence is never deleted.
-void PrepareFolder(const fs::path& folder, bool overwrite) {
+FolderLock PrepareFolder(const fs::path& folder, bool overwrite) {
   OutputFolderRules rules;
   rules.what = "sequence";
   rules.own_entries = {"left", "right", "gt/disparity", "gt/objects.csv", "sequence.yaml",
@@ -69,12 +69,13 @@ void PrepareFolder(const fs::path& folder, bool overwrite) {
     }
     return false;
   };
-  PrepareOutputFolder(folder.string(), overwrite, rules);
+  FolderLock lock = PrepareOutputFolder(folder.string(), overwrite, rules);
   std::error_code error;
   for (const fs::path& sub : {folder / "left", folder / "right", folder / "gt" / "disparity"}) {
     fs::create_directories(sub, error);
     if (error) throw OutputError(sub.string() + ": cannot create the folder: " + error.message());
   }
+  return lock;
 }
 
 void WritePng(const fs::path& path, const cv::Mat& image) {
@@ -143,7 +144,7 @@ SynthSummary RenderSequence(const Scene& scene, const std::string& out_folder,
   const Scene& used = renderer.scene();
 
   const fs::path folder(out_folder);
-  PrepareFolder(folder, options.overwrite);
+  const FolderLock lock = PrepareFolder(folder, options.overwrite);
 
   // Frames are independent, so workers take them in turn; the ground truth is gathered per
   // frame and written in frame order.

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include <fstream>
+#include <iostream>
 
 #include <unistd.h>
 
@@ -14,38 +15,58 @@ namespace fs = std::filesystem;
 
 namespace attend {
 
-void PrepareOutputFolder(const std::string& folder, bool overwrite, const OutputFolderRules& rules) {
+namespace {
+
+// True when `folder` holds nothing but, possibly, its lock file.
+bool OnlyTheLock(const std::string& folder, std::error_code& error) {
+  for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
+    if (it->path().filename() != FolderLock::kFileName) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+FolderLock PrepareOutputFolder(const std::string& folder, bool overwrite,
+                               const OutputFolderRules& rules) {
   if (folder.empty()) throw OutputError("the output folder is an empty path");
   std::error_code error;
   const bool exists = fs::exists(folder, error);
   if (error) throw OutputError(folder + ": cannot inspect the output folder: " + error.message());
-  if (exists) {
-    if (!fs::is_directory(folder, error)) {
-      throw OutputError(folder + ": the output path exists and is not a folder");
-    }
-    const bool empty = fs::is_empty(folder, error);
-    if (error) throw OutputError(folder + ": cannot read the output folder: " + error.message());
-    if (!empty) {
-      if (!overwrite) {
-        throw OutputError(folder + ": the output folder is not empty (--overwrite replaces a " +
-                          "previous " + rules.what + " there)");
-      }
-      if (!rules.is_previous_output(folder)) {
-        throw OutputError(folder + ": --overwrite refused: the folder is not empty and does not " +
-                          "hold a previous " + rules.what + " of attend; choose another folder");
-      }
-      for (const std::string& entry : rules.own_entries) {
-        const fs::path path = fs::path(folder) / entry;
-        fs::remove_all(path, error);
-        if (error) {
-          throw OutputError(path.string() + ": cannot remove it to overwrite the " + rules.what +
-                            ": " + error.message());
-        }
-      }
-    }
+  if (exists && !fs::is_directory(folder, error)) {
+    throw OutputError(folder + ": the output path exists and is not a folder");
   }
   fs::create_directories(folder, error);
   if (error) throw OutputError(folder + ": cannot create the output folder: " + error.message());
+  FolderLock lock;
+  if (rules.lock) {
+    lock = FolderLock(folder, rules.what);
+    if (!lock.stale_holder().empty()) {
+      std::cerr << "attend: note: " << folder << ": took over the lock of an earlier " << rules.what
+                << " that ended without releasing it (" << lock.stale_holder() << ")\n";
+    }
+  }
+  const bool empty = OnlyTheLock(folder, error);
+  if (error) throw OutputError(folder + ": cannot read the output folder: " + error.message());
+  if (!empty) {
+    if (!overwrite) {
+      throw OutputError(folder + ": the output folder is not empty (--overwrite replaces a " +
+                        "previous " + rules.what + " there)");
+    }
+    if (!rules.is_previous_output(folder)) {
+      throw OutputError(folder + ": --overwrite refused: the folder is not empty and does not " +
+                        "hold a previous " + rules.what + " of attend; choose another folder");
+    }
+    for (const std::string& entry : rules.own_entries) {
+      const fs::path path = fs::path(folder) / entry;
+      fs::remove_all(path, error);
+      if (error) {
+        throw OutputError(path.string() + ": cannot remove it to overwrite the " + rules.what +
+                          ": " + error.message());
+      }
+    }
+  }
+  return lock;
 }
 
 void ReplaceFile(const std::string& path, const std::string& what,

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "util/folder_lock.h"
+
 namespace attend {
 
 struct OutputFolderRules {
@@ -13,12 +15,17 @@ struct OutputFolderRules {
   // True when the folder holds an earlier output of the same command, the only kind that
   // `overwrite` may replace.
   std::function<bool(const std::string& folder)> is_previous_output;
+  // Lock the folder for the writer (util/folder_lock.h): a second writer is refused while the
+  // returned lock lives. Off for outputs written in one go by a helper that holds its own.
+  bool lock = true;
 };
 
 // Creates `folder` (and its parents) or takes it when empty. A non-empty folder is an
 // OutputError unless `overwrite` and it holds a previous output, in which case only
-// `own_entries` are removed; other files stay. An empty path is an OutputError.
-void PrepareOutputFolder(const std::string& folder, bool overwrite, const OutputFolderRules& rules);
+// `own_entries` are removed; other files stay. An empty path is an OutputError. With
+// `rules.lock`, the folder is locked first (a folder in use by another writer is an
+// OutputError naming it) and the lock is returned: keep it until the output is written.
+[[nodiscard]] FolderLock PrepareOutputFolder(const std::string& folder, bool overwrite, const OutputFolderRules& rules);
 
 // Writes a file so that `path` holds either its old content or the whole new one: `write`
 // fills a temporary file beside it (.NAME.tmp-PID), returning false or throwing an attend
