@@ -16,6 +16,7 @@
 #include "pipeline/options_io.h"
 #include "stereo/disparity.h"
 #include "util/error.h"
+#include "util/file_checks.h"
 #include "util/json_text.h"
 
 namespace attend {
@@ -27,16 +28,27 @@ namespace fs = std::filesystem;
 // Boxes in frames.jsonl are in input pixels (SPEC 3.3) since summary.json has "pixels". A run
 // written before, at a working size other than the input size, holds working pixels, which
 // would score against input-pixel ground truth as if nothing were attended: refuse it.
+void CheckSummaryPixels(const fs::path& path, const nlohmann::json& summary);
+
 void CheckRecordsInInputPixels(const fs::path& run) {
   const fs::path path = run / "summary.json";
-  std::ifstream in(path);
-  if (!in) return;  // an interrupted run may lack it; its frames are still input pixels
-  nlohmann::json summary;
+  std::error_code error;
+  // An interrupted run may lack it; its frames are still input pixels.
+  if (!fs::exists(path, error)) return;
+  const std::string text = ReadRegularFile(path.string(), "the run's summary",
+                                           ExitStatus::kBadInput, kMaxConfigBytes);
   try {
-    summary = nlohmann::json::parse(in);
+    CheckSummaryPixels(path, nlohmann::json::parse(text));
+  } catch (const InputError&) {
+    throw;
   } catch (const std::exception& e) {
+    // Malformed JSON, or a field of another type (`"pixels": 5`).
     throw InputError(path.string() + ": not a run summary (" + e.what() + ")");
   }
+}
+
+void CheckSummaryPixels(const fs::path& path, const nlohmann::json& summary) {
+  if (!summary.is_object()) throw std::runtime_error("not a JSON object");
   if (summary.contains("pixels")) {
     const std::string records = summary["pixels"].value("records", "");
     if (records != "input") {

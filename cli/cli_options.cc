@@ -1,5 +1,7 @@
 #include "cli/cli_options.h"
 
+#include <cmath>
+
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -11,6 +13,20 @@
 #include "util/timer.h"
 
 namespace attend {
+
+CLI::Validator FiniteRange(double min, double max) {
+  const CLI::Range range(min, max);
+  return CLI::Validator(
+      [range](std::string& text) {
+        double value = 0.0;
+        if (CLI::detail::lexical_cast(text, value) && !std::isfinite(value)) {
+          return "'" + text + "' is not a finite number";
+        }
+        std::string copy = text;
+        return range(copy);
+      },
+      range.get_description());
+}
 
 CLI::Option* AddSetOption(CLI::App* command, std::vector<std::string>* sets,
                           const std::string& help) {

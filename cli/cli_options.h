@@ -10,6 +10,10 @@
 
 namespace attend {
 
+// CLI::Range(min, max) that also refuses NaN (which compares false with both bounds, so that
+// CLI::Range lets it through: `--duration nan` read as no bound) and infinities.
+CLI::Validator FiniteRange(double min, double max);
+
 // `--set KEY=VALUE`, repeatable, one value per --set (so that positional arguments may follow
 // it, and `--set a=1 b=2` is a mistake rather than two overrides).
 CLI::Option* AddSetOption(CLI::App* command, std::vector<std::string>* sets,

@@ -182,7 +182,7 @@ void AddDisparityCommand(CLI::App& app, const std::string&, CommandAction* actio
                    "than this share of the image (e.g. 0.01) as targets, each region's disparity "
                    "estimated both ways of the depth section (template, map) against the ground "
                    "truth's median over it (docs/STEREO3D.md)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(FiniteRange(0.0, 1.0))
       ->needs(gt);
   AddSetOption(command, &args->sets,
                "Set an option, the value parsed as YAML (repeatable): --set "

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/evaluate_fixations.h"
+#include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "eval/saliency_baselines.h"
 #include "util/error.h"
@@ -58,20 +59,20 @@ void AddEvalFixationsCommand(CLI::App& app, const std::string& command_line,
       ->expected(0, 3);
   cmd->add_option("--baseline-blur", args->baseline_blur,
                   "Gaussian blur of the OpenCV baselines, share of the larger side")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(FiniteRange(0.0, 1.0));
   cmd->add_option("--sigma", args->sigma,
                   "Fixation-density sigma in px at the scored size (one degree of visual angle); "
                   "0: 0.025 x the larger side")
-      ->check(CLI::Range(0.0, 1e4));
+      ->check(FiniteRange(0.0, 1e4));
   cmd->add_option("--max-side", args->max_side,
                   "Score at most this many px on the larger side (maps and fixations scaled); 0: "
                   "the stimulus's size")
-      ->check(CLI::Range(0, 100000));
+      ->check(FiniteRange(0, 100000));
   cmd->add_option("--skip", args->skip,
                   "Leave out the first N images (by id): a held-out split after --first")
-      ->check(CLI::Range(0, 1000000));
+      ->check(FiniteRange(0, 1000000));
   cmd->add_option("--first", args->first, "Score only the first N images (by id, after --skip)")
-      ->check(CLI::Range(0, 1000000));
+      ->check(FiniteRange(0, 1000000));
   cmd->add_option("--out", args->out, "Write <method>.csv (per image) and fixations.json here");
   cmd->add_flag("--quiet", args->quiet, "No progress or notes");
   args->command_line = command_line;

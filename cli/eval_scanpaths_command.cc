@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/evaluate_scanpaths.h"
+#include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "util/error.h"
 
@@ -99,39 +100,39 @@ void AddEvalScanpathsCommand(CLI::App& app, const std::string& command_line,
       ->expected(0, 3);
   cmd->add_option("--out", r.out, "Write <method>.csv (per image) and scanpaths.json here");
   cmd->add_option("--skip", r.skip, "Leave out the first N images (by id)")
-      ->check(CLI::Range(0, 1000000));
+      ->check(FiniteRange(0, 1000000));
   cmd->add_option("--first", r.first, "Score only the first N images (by id, after --skip)")
-      ->check(CLI::Range(0, 1000000));
+      ->check(FiniteRange(0, 1000000));
   cmd->add_option("--length", r.length, "Compare the first L fixations of every scanpath")
-      ->check(CLI::Range(1, 1000));
+      ->check(FiniteRange(1, 1000));
   cmd->add_flag("--drop-first,!--keep-first", r.drop_first,
                 "Leave out each observer's first fixation (the fixation cross's; the default)");
   cmd->add_option("--grid", args->grid, "ScanMatch and sequence-score grid, COLUMNSxROWS");
   cmd->add_option("--scanmatch-threshold", r.scanmatch_threshold,
                   "ScanMatch threshold in cells; 0: 2 sd of the observers' saccade amplitudes")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(FiniteRange(0.0, 1e6));
   cmd->add_option("--scanmatch-bin-ms", args->bin_ms,
                   "ScanMatch temporal bin in ms (Cristino et al.: 50); 0: off")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(FiniteRange(0.0, 1e6));
   cmd->add_option("--scanmatch-gap", r.scanmatch.gap, "ScanMatch gap score (<= 0)")
-      ->check(CLI::Range(-1e6, 0.0));
+      ->check(FiniteRange(-1e6, 0.0));
   cmd->add_flag("--simplify", r.multimatch.simplify, "MultiMatch: simplify the scanpaths first");
   cmd->add_option("--simplify-amplitude", r.multimatch.amplitude_threshold,
                   "Simplification amplitude threshold, share of the image diagonal")
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(FiniteRange(0.0, 10.0));
   cmd->add_option("--simplify-direction", r.multimatch.direction_threshold_deg,
                   "Simplification direction threshold, degrees")
-      ->check(CLI::Range(0.0, 180.0));
+      ->check(FiniteRange(0.0, 180.0));
   cmd->add_option("--simplify-duration", r.multimatch.duration_threshold_s,
                   "Simplification duration threshold, seconds")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(FiniteRange(0.0, 1e6));
   cmd->add_option("--centre-draws", r.centre_draws, "Centre-bias scanpaths drawn per image")
-      ->check(CLI::Range(1, 100000));
+      ->check(FiniteRange(1, 100000));
   cmd->add_option("--seed", r.seed, "Seed of the centre-bias draws");
   cmd->add_option("--peak-separation", r.peak_separation,
                   "Peaks: the local-maximum window and least distance between peaks, share of "
                   "the map's larger side")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(FiniteRange(0.0, 1.0));
   cmd->add_option("--duration-column", args->duration_column,
                   "Fixation durations: header (the column named duration_ms or duration_s), "
                   "none, or a column number (4 = the one after subject x y)");

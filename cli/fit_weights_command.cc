@@ -65,11 +65,11 @@ void AddFitWeightsCommand(CLI::App& app, const std::string& command_line, Comman
   cmd->add_option("--config", args->config, "Configuration whose feature weights are fitted");
   AddSetOption(cmd, &args->sets, "Override a configuration key, the value parsed as YAML");
   cmd->add_option("--train", args->train, "Images used for fitting: the first N by id")
-      ->check(CLI::Range(1, 1000000));
-  cmd->add_option("--step", args->step, "Grid step of the weights")->check(CLI::Range(0.01, 1.0));
+      ->check(FiniteRange(1, 1000000));
+  cmd->add_option("--step", args->step, "Grid step of the weights")->check(FiniteRange(0.01, 1.0));
   cmd->add_option("--max-side", args->max_side,
                   "Fit on maps of at most this many px on the larger side")
-      ->check(CLI::Range(16, 4096));
+      ->check(FiniteRange(16, 4096));
   cmd->add_option("--out", args->out, "The fitted configuration (YAML)")->required();
   cmd->add_flag("--quiet", args->quiet, "No report");
   cmd->callback([args, action] { *action = [args] { return FitWeightsCommand(*args); }; });

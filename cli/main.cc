@@ -10,19 +10,10 @@
 #include "util/error.h"
 #include "util/strings.h"
 
-int main(int argc, char** argv) {
-  // attend reports its own errors, naming the file; OpenCV's backend chatter (GStreamer,
-  // image-sequence probing) would only bury them.
-  // OpenCV reads its log level at start-up, so it is set here directly; a user who sets
-  // OPENCV_LOG_LEVEL keeps theirs.
-  if (std::getenv("OPENCV_LOG_LEVEL") == nullptr) {
-    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
-  }
-  // GStreamer reads live pipelines (--gst, cv::CAP_GSTREAMER), but a video file is left to it
-  // only after every other backend refused it: 1 is the lowest priority (0 would turn the
-  // backend off, and --gst with it).
-  setenv("OPENCV_VIDEOIO_PRIORITY_GSTREAMER", "1", 0);
+namespace {
 
+// 0 when every argument may be used, else the exit status after the error is printed.
+int CheckArguments(int argc, char** argv) {
   // Paths and values from the command line go into config.yaml, summary.json and the other
   // records, which are UTF-8 text: bytes that are not UTF-8 would be written as U+FFFD and
   // name a file that does not exist, so that the run could not be read back. They are
@@ -48,6 +39,43 @@ int main(int argc, char** argv) {
     return static_cast<int>(attend::ExitStatus::kUsage);
   }
 
+  // An empty argument is never meant: `--video "$VIDEO"` with VIDEO unset would otherwise
+  // fall back to the bundled sequence (or the current folder) and exit 0.
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view argument(argv[i]);
+    const bool empty_value = argument.size() > 2 && argument.substr(0, 2) == "--" &&
+                             argument.back() == '=';
+    if (!argument.empty() && !empty_value) continue;
+    std::string what = "argument " + std::to_string(i);
+    if (empty_value) {
+      what += " (" + std::string(argument.substr(0, argument.size() - 1)) + ")";
+    } else if (i > 1 && argv[i - 1][0] == '-') {
+      what += " (the value of " + std::string(argv[i - 1]) + ")";
+    }
+    std::cerr << "attend: error: " << what << " is empty: an empty path or value is never "
+              << "meant (is a shell variable unset?)\n";
+    return static_cast<int>(attend::ExitStatus::kUsage);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // attend reports its own errors, naming the file; OpenCV's backend chatter (GStreamer,
+  // image-sequence probing) would only bury them.
+  // OpenCV reads its log level at start-up, so it is set here directly; a user who sets
+  // OPENCV_LOG_LEVEL keeps theirs.
+  if (std::getenv("OPENCV_LOG_LEVEL") == nullptr) {
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+  }
+  // GStreamer reads live pipelines (--gst, cv::CAP_GSTREAMER), but a video file is left to it
+  // only after every other backend refused it: 1 is the lowest priority (0 would turn the
+  // backend off, and --gst with it).
+  setenv("OPENCV_VIDEOIO_PRIORITY_GSTREAMER", "1", 0);
+
+  const int bad_arguments = CheckArguments(argc, argv);
+  if (bad_arguments != 0) return bad_arguments;
   CLI::App app{"attend: visual attention on stereo image sequences (Bounded Irregular Pyramid)"};
   app.set_version_flag("--version", std::string("attend ") + ATTEND_VERSION);
   app.require_subcommand(1);

@@ -118,12 +118,12 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
   auto* camera = run->add_option("--camera", args->source.camera,
                                  "Live V4L2 camera /dev/videoN (docs/LIVE.md)")
                      ->type_name("N")
-                     ->check(CLI::Range(0, 4095));
+                     ->check(FiniteRange(0, 4095));
   auto* camera_right =
       run->add_option("--camera-right", args->source.camera_right,
                       "Right camera of a live stereo pair (with --camera or --gst)")
           ->type_name("M")
-          ->check(CLI::Range(0, 4095));
+          ->check(FiniteRange(0, 4095));
   auto* gst = run->add_option(
       "--gst", args->source.gst,
       "Live GStreamer pipeline, read through OpenCV; it should end in an appsink (' ! "
@@ -145,7 +145,7 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
                   "Live sources: stop capturing S seconds after the first frame "
                   "(live.duration_s); the frames queued are still processed")
       ->type_name("S")
-      ->check(CLI::Range(0.0, 1e7));
+      ->check(FiniteRange(0.0, 1e7));
   left->needs(right);
   right->needs(left);
   seq->excludes(left, right, sbs, video, images, camera, camera_right, gst, gst_right);

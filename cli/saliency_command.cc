@@ -104,7 +104,7 @@ void AddSaliencyCommand(CLI::App& app, const std::string& command_line, CommandA
   cmd->add_flag("--features", args->features, "Also write every feature's normalised map");
   cmd->add_option("--scanpath", args->scanpath,
                   "Also write the first K attended regions of each image (scanpath.json)")
-      ->check(CLI::Range(0, 100));
+      ->check(FiniteRange(0, 100));
   cmd->add_option("--scanpath-point", args->scanpath_point,
                   "Where a step lands in its target: centre (of its box) or peak (the most "
                   "salient pixel in its box)")

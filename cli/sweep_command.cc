@@ -11,6 +11,7 @@
 
 #include "app/run_sweep.h"
 #include "app/sweep_results.h"
+#include "cli/cli_options.h"
 #include "cli/commands.h"
 #include "util/error.h"
 #include "util/strings.h"
@@ -150,7 +151,7 @@ void AddSweepCommand(CLI::App& app, const std::string& command_line, CommandActi
                                          "sweep is taken up where it stopped)");
   auto* local = sweep->add_option("--local", args->request.local,
                                   "Run N cells at once on this machine (default: the cores)")
-                    ->check(CLI::Range(1, 1024));
+                    ->check(FiniteRange(1, 1024));
   auto* slurm = sweep->add_flag("--slurm", args->request.slurm,
                                 "Submit the cells as a Slurm job array (sbatch) and return");
   local->excludes(slurm);
@@ -158,10 +159,10 @@ void AddSweepCommand(CLI::App& app, const std::string& command_line, CommandActi
   sweep->add_option("--time", args->request.slurm_overrides.time, "Slurm time limit of a cell, as sbatch --time");
   sweep->add_option("--mem", args->request.slurm_overrides.mem, "Slurm memory of a cell, as sbatch --mem");
   sweep->add_option("--cpus-per-task", args->request.slurm_overrides.cpus_per_task, "Slurm CPUs of a cell")
-      ->check(CLI::Range(1, 1024));
+      ->check(FiniteRange(1, 1024));
   sweep->add_option("--throttle", args->request.slurm_overrides.throttle,
                     "At most this many Slurm array tasks at once (%M); 0: no limit")
-      ->check(CLI::Range(0, 100000));
+      ->check(FiniteRange(0, 100000));
   auto* status = sweep->add_flag("--status", args->status,
                                  "Say which cells are done, running, failed, killed or waiting");
   auto* collect = sweep->add_flag("--collect", args->collect,

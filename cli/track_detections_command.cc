@@ -97,18 +97,18 @@ void AddTrackDetectionsCommand(CLI::App& app, const std::string& command_line,
       ->add_option("--match-iou", args->link.match_iou,
                    "A track and a detection pair only at IoU >= this")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(FiniteRange(0.0, 1.0));
   command
       ->add_option("--max-missed", args->link.max_missed,
                    "A track unmatched for more than this many frames in a row ends")
       ->capture_default_str()
-      ->check(CLI::Range(0, 100000));
+      ->check(FiniteRange(0, 100000));
   command
       ->add_option("--velocity-frames", args->link.velocity_frames,
                    "A track's velocity is its mean displacement over this many matched frames; "
                    "0: no prediction")
       ->capture_default_str()
-      ->check(CLI::Range(0, 1000));
+      ->check(FiniteRange(0, 1000));
   args->command_line = command_line;
   command->callback([args, action, sequence, images] {
     if (sequence->count() == 0 && images->count() == 0) {

@@ -1,5 +1,6 @@
 #include "config/param_block.h"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 
 #include "config/param_block_yaml.h"
 #include "util/error.h"
+#include "util/file_checks.h"
 #include "util/strings.h"
 
 namespace attend {
@@ -46,6 +48,8 @@ std::string JoinPath(const std::string& path, const std::string& key) {
 // make a small file a tree of millions of values: every walk over the tree would recurse
 // without end or run for minutes. A configuration is a few hundred values deep at most.
 constexpr int kMaxDepth = 64;
+// Bytes in one --set override (the program's arguments are capped at 128 KB by Linux anyway).
+constexpr size_t kMaxOverrideBytes = 64u << 10;
 constexpr long kMaxValues = 100000;
 
 struct TreeWalk {
@@ -112,7 +116,7 @@ ParamBlock MakeRoot(const YAML::Node& root, const std::string& source) {
 
 std::string Describe(const YAML::Node& node) {
   if (node.IsNull()) return "no value";
-  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsScalar()) return "'" + Abbreviate(node.Scalar()) + "'";
   if (node.IsSequence()) return "a list";
   if (node.IsMap()) return "a map";
   return "nothing";
@@ -125,15 +129,7 @@ ParamBlock::ParamBlock() : ParamBlock(MakeRoot(YAML::Node(), "<defaults>")) {}
 ParamBlock::ParamBlock(std::shared_ptr<State> state) : state_(std::move(state)) {}
 
 ParamBlock ParamBlock::LoadFile(const std::string& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) {
-    throw ConfigError(path + ": is a folder, not a YAML file");
-  }
-  std::ifstream file(path);
-  if (!file) throw ConfigError(path + ": cannot read the file (missing or not readable)");
-  std::stringstream text;
-  text << file.rdbuf();
-  return Parse(text.str(), path);
+  return Parse(ReadRegularFile(path, "the YAML file", ExitStatus::kUsage, kMaxConfigBytes), path);
 }
 
 ParamBlock ParamBlock::Parse(const std::string& text, const std::string& source) {
@@ -154,6 +150,11 @@ ParamBlock ParamBlock::Parse(const std::string& text, const std::string& source)
   YAML::Node root;
   try {
     root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    throw ConfigError(source + ":" + std::to_string(e.mark.line + 1) + ":" +
+                      std::to_string(e.mark.column + 1) + ": lists and maps nested " +
+                      std::to_string(e.depth()) + " levels deep; a configuration is at most " +
+                      std::to_string(kMaxDepth) + " levels deep");
   } catch (const YAML::ParserException& e) {
     throw ConfigError(source + ":" + std::to_string(e.mark.line + 1) + ":" +
                       std::to_string(e.mark.column + 1) + ": YAML syntax error: " + e.msg);
@@ -161,28 +162,48 @@ ParamBlock ParamBlock::Parse(const std::string& text, const std::string& source)
   return MakeRoot(root, source);
 }
 
-void ParamBlock::Override(const std::string& assignment) {
-  ATTEND_CHECK(state_->path.empty()) << "overrides apply to the root block";
+namespace {
+
+// The position of the '=' of `--set KEY.PATH=VALUE`, once the whole assignment is checked: its
+// size, its form, UTF-8 without control characters.
+size_t CheckedEquals(const std::string& assignment) {
+  if (assignment.size() > kMaxOverrideBytes) {
+    throw ConfigError("--set " + Abbreviate(assignment, 60) + ": more than " +
+                      std::to_string(kMaxOverrideBytes >> 10) + " KB (docs/LIMITS.md); put " +
+                      "large values in a configuration file");
+  }
   const size_t equals = assignment.find('=');
   if (equals == std::string::npos || equals == 0) {
-    throw ConfigError("--set " + assignment + ": expected KEY.PATH=VALUE");
+    throw ConfigError("--set " + Abbreviate(assignment) + ": expected KEY.PATH=VALUE");
   }
   if (InvalidUtf8At(assignment) != std::string::npos) {
-    throw ConfigError("--set " + assignment + ": not valid UTF-8");
+    throw ConfigError("--set " + Abbreviate(assignment) + ": not valid UTF-8");
   }
   if (NonPrintableAt(assignment) != std::string::npos) {
     throw ConfigError("--set: a control character that YAML does not allow");
   }
+  return equals;
+}
+
+}  // namespace
+
+void ParamBlock::Override(const std::string& assignment) {
+  ATTEND_CHECK(state_->path.empty()) << "overrides apply to the root block";
+  const size_t equals = CheckedEquals(assignment);
   const std::string key_path = assignment.substr(0, equals);
   const std::string value_text = assignment.substr(equals + 1);
   YAML::Node value;
   try {
     value = YAML::Load(value_text);
+  } catch (const YAML::DeepRecursion& e) {
+    throw ConfigError("--set " + Abbreviate(assignment) + ": lists and maps nested " +
+                      std::to_string(e.depth()) + " levels deep; at most " +
+                      std::to_string(kMaxDepth) + " are read");
   } catch (const YAML::ParserException& e) {
-    throw ConfigError("--set " + assignment + ": the value is not valid YAML: " + e.msg);
+    throw ConfigError("--set " + Abbreviate(assignment) + ": the value is not valid YAML: " + e.msg);
   }
   if (!value.IsDefined()) value = YAML::Node(YAML::NodeType::Null);
-  CheckTree(value, "--set " + assignment);
+  CheckTree(value, "--set " + Abbreviate(assignment));
 
   const std::vector<std::string> parts = Split(key_path, '.');
   YAML::Node current;
@@ -191,7 +212,7 @@ void ParamBlock::Override(const std::string& assignment) {
   for (size_t i = 0; i < parts.size(); ++i) {
     const std::string& part = parts[i];
     if (part.empty())
-      throw ConfigError("--set " + assignment + ": empty key in '" + key_path + "'");
+      throw ConfigError("--set " + Abbreviate(assignment) + ": empty key in '" + key_path + "'");
     const bool last = i + 1 == parts.size();
     YAML::Node next;
     if (current.IsSequence()) {
@@ -213,7 +234,7 @@ void ParamBlock::Override(const std::string& assignment) {
           }
         }
         if (index < 0) {
-          throw ConfigError("--set " + assignment + ": '" + resolved + "' has no element named '" +
+          throw ConfigError("--set " + Abbreviate(assignment) + ": '" + resolved + "' has no element named '" +
                             part + "'" + DidYouMean(part, names));
         }
       }
@@ -225,7 +246,7 @@ void ParamBlock::Override(const std::string& assignment) {
       next.reset(current[index]);
     } else {
       if (!current.IsMap()) {
-        throw ConfigError("--set " + assignment + ": '" + resolved + "' is not a map or a list");
+        throw ConfigError("--set " + Abbreviate(assignment) + ": '" + resolved + "' is not a map or a list");
       }
       resolved = JoinPath(resolved, part);
       if (last) {
@@ -344,7 +365,7 @@ int ParamBlock::GetInt(const std::string& key, int default_value, Range range) c
   int value = 0;
   if (!DecodeScalar(node, &value)) Fail(key, "expected an integer, got " + Describe(node));
   if (!range.Contains(value))
-    Fail(key, "value " + node.Scalar() + " out of range: " + range.Describe());
+    Fail(key, "value " + Abbreviate(node.Scalar()) + " out of range: " + range.Describe());
   return value;
 }
 
@@ -356,7 +377,7 @@ double ParamBlock::GetDouble(const std::string& key, double default_value, Range
   // YAML spells infinity .inf and not-a-number .nan; no key takes either, whatever its range.
   if (!std::isfinite(value)) Fail(key, "value " + node.Scalar() + " is not a finite number");
   if (!range.Contains(value))
-    Fail(key, "value " + node.Scalar() + " out of range: " + range.Describe());
+    Fail(key, "value " + Abbreviate(node.Scalar()) + " out of range: " + range.Describe());
   return value;
 }
 
@@ -396,13 +417,13 @@ std::vector<T> GetList(const ParamBlock& block, const std::string& key,
     }
     if constexpr (std::is_floating_point_v<T>) {
       if (!std::isfinite(value)) {
-        block.Fail(key, "element " + std::to_string(i) + " = " + node[i].Scalar() +
+        block.Fail(key, "element " + std::to_string(i) + " = " + Abbreviate(node[i].Scalar()) +
                             " is not a finite number");
       }
     }
     if constexpr (std::is_arithmetic_v<T>) {
       if (range != nullptr && !range->Contains(static_cast<double>(value))) {
-        block.Fail(key, "element " + std::to_string(i) + " = " + node[i].Scalar() +
+        block.Fail(key, "element " + std::to_string(i) + " = " + Abbreviate(node[i].Scalar()) +
                             " out of range: " + range->Describe());
       }
     }
@@ -444,7 +465,7 @@ std::uint64_t ParamBlock::GetCount(const std::string& key, std::uint64_t default
   if (!node.IsScalar() || status != std::errc() || end != text.data() + text.size() ||
       value > max) {
     Fail(key, "expected an integer in [0, " + std::to_string(max) + "], got " +
-                  (node.IsScalar() ? "'" + text + "'" : Describe(node)));
+                  (node.IsScalar() ? "'" + Abbreviate(text) + "'" : Describe(node)));
   }
   return value;
 }

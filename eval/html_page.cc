@@ -51,6 +51,9 @@ std::string HtmlEscape(const std::string& text) {
       case '"':
         out += "&quot;";
         break;
+      case '\'':
+        out += "&#39;";
+        break;
       default:
         out += c;
     }
@@ -67,6 +70,28 @@ std::string ScriptSafe(const std::string& text) {
       ++i;
     } else {
       out += text[i];
+    }
+  }
+  return out;
+}
+
+std::string ScriptJson(const std::string& json) {
+  std::string out;
+  out.reserve(json.size());
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (c == '<') {
+      out += "\\u003c";
+    } else if (c == '>') {
+      out += "\\u003e";
+    } else if (c == '&') {
+      out += "\\u0026";
+    } else if (c == '\xE2' && i + 2 < json.size() && json[i + 1] == '\x80' &&
+               (json[i + 2] == '\xA8' || json[i + 2] == '\xA9')) {
+      out += json[i + 2] == '\xA8' ? "\\u2028" : "\\u2029";
+      i += 2;
+    } else {
+      out += c;
     }
   }
   return out;
@@ -191,7 +216,7 @@ std::string ChartScripts(const ChartLibrary& library, const std::string& data_js
                          const std::string& drawing) {
   if (!library.found()) return "";
   return "<script>\n" + ScriptSafe(library.source) + "\n</script>\n<script>\nconst DATA = " +
-         ScriptSafe(data_json) + ";\nChart.defaults.animation = false;\n"
+         ScriptJson(data_json) + ";\nChart.defaults.animation = false;\n"
          "Chart.defaults.responsive = false;\n" + drawing + "\n</script>\n";
 }
 

@@ -9,11 +9,18 @@
 
 namespace attend {
 
-// `text` with & < > " escaped.
+// `text` with & < > " ' escaped: safe as element text and as a quoted attribute value.
 std::string HtmlEscape(const std::string& text);
 
-// `text` safe inside a <script> element: no "</" that could close it.
+// `text` safe inside a <script> element: no "</" that could close it. For trusted code (the
+// chart library); data goes through ScriptJson.
 std::string ScriptSafe(const std::string& text);
+
+// JSON text that can stand inside a <script> element whatever its strings hold: < > & and the
+// line separators U+2028 and U+2029 written as \u escapes (they occur only inside strings), so
+// that no "</script", "<!--" or "<script" from a run's name or configuration can change the
+// page's structure (HTML5's script-data states).
+std::string ScriptJson(const std::string& json);
 
 // A table cell's number: `digits` decimals, "&ndash;" when not finite, no "-0.000".
 std::string HtmlNumber(double value, int digits = 3);

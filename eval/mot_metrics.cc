@@ -235,46 +235,93 @@ void ScoreObjects(const MotTally& tally, const MotOptions& options, MotScores* s
   scores->targets_started = static_cast<int>(tally.started.size());
 }
 
-// Identity: objects (rows 0..G-1) and targets (columns 0..T-1) padded so that either may go
-// unpaired. Object i with target j costs its IDFN + IDFP, (n_i - tp) + (n_j - tp); object i
-// unpaired (column T + i) costs n_i, target j unpaired (row G + j) n_j, two paddings 0; any
-// other padding cell more than the whole of either trajectory set.
-void ScoreIdentity(const MotTally& tally, MotScores* scores) {
-  std::vector<int> object_ids, target_ids;
-  std::vector<int> object_length, target_length;
-  for (const auto& [id, object] : tally.objects) {
-    object_ids.push_back(id);
-    object_length.push_back(object.counted_frames);
-  }
-  int target_detections = 0;
-  for (const auto& [id, count] : tally.target_frames) {
-    target_ids.push_back(id);
-    target_length.push_back(count);
-    target_detections += count;
-  }
+// The IDTP of the identity assignment within one group of objects and targets (rows 0..G-1
+// objects, columns 0..T-1 targets) padded so that either may go unpaired. Object i with target
+// j costs its IDFN + IDFP, (n_i - tp) + (n_j - tp); object i unpaired (column T + i) costs n_i,
+// target j unpaired (row G + j) n_j, two paddings 0; any other padding cell more than the whole
+// of either trajectory set.
+int GroupIdtp(const MotTally& tally, const std::vector<int>& object_ids,
+              const std::vector<int>& object_length, const std::vector<int>& target_ids,
+              const std::vector<int>& target_length, double forbidden) {
   const int g = static_cast<int>(object_ids.size());
   const int t = static_cast<int>(target_ids.size());
-  if (g > 0 && t > 0) {
-    const double forbidden = static_cast<double>(scores->gt + target_detections) + 1.0;
-    std::vector<std::vector<double>> cost(g + t, std::vector<double>(t + g, forbidden));
-    for (int i = 0; i < g; ++i) {
-      for (int j = 0; j < t; ++j) {
-        const auto overlap = tally.overlap_frames.find({object_ids[i], target_ids[j]});
-        const int tp = overlap != tally.overlap_frames.end() ? overlap->second : 0;
-        cost[i][j] = object_length[i] + target_length[j] - 2.0 * tp;
-      }
-      cost[i][t + i] = object_length[i];
-    }
+  std::vector<std::vector<double>> cost(g + t, std::vector<double>(t + g, forbidden));
+  for (int i = 0; i < g; ++i) {
     for (int j = 0; j < t; ++j) {
-      cost[g + j][j] = target_length[j];
-      for (int i = 0; i < g; ++i) cost[g + j][t + i] = 0.0;
+      const auto overlap = tally.overlap_frames.find({object_ids[i], target_ids[j]});
+      const int tp = overlap != tally.overlap_frames.end() ? overlap->second : 0;
+      cost[i][j] = object_length[i] + target_length[j] - 2.0 * tp;
     }
-    const std::vector<int> column = MinimumCostAssignment(cost);
-    for (int i = 0; i < g; ++i) {
-      if (column[i] >= t) continue;
-      const auto overlap = tally.overlap_frames.find({object_ids[i], target_ids[column[i]]});
-      if (overlap != tally.overlap_frames.end()) scores->idtp += overlap->second;
+    cost[i][t + i] = object_length[i];
+  }
+  for (int j = 0; j < t; ++j) {
+    cost[g + j][j] = target_length[j];
+    for (int i = 0; i < g; ++i) cost[g + j][t + i] = 0.0;
+  }
+  const std::vector<int> column = MinimumCostAssignment(cost);
+  int idtp = 0;
+  for (int i = 0; i < g; ++i) {
+    if (column[i] >= t) continue;
+    const auto overlap = tally.overlap_frames.find({object_ids[i], target_ids[column[i]]});
+    if (overlap != tally.overlap_frames.end()) idtp += overlap->second;
+  }
+  return idtp;
+}
+
+// Objects and targets in one group of the identity assignment, at most: its cost matrix holds
+// (G + T)^2 numbers and the solver takes O((G + T)^3) steps (4000: 128 MB, about a minute).
+constexpr int kMaxIdentityGroup = 4000;
+
+// Identity (IDF1): the assignment of objects to targets that maximises IDTP. An object and a
+// target that never overlap gain nothing from being paired, so the assignment splits into the
+// connected groups of the graph of overlapping (object, target) pairs, solved one by one: the
+// same optimum as one matrix of every object and target, whose size grew with the square of
+// all the ids of a sequence (issue 46: 300,000 objects took 24 GB before it was killed).
+void ScoreIdentity(const MotTally& tally, MotScores* scores) {
+  int target_detections = 0;
+  for (const auto& [id, count] : tally.target_frames) target_detections += count;
+  const double forbidden = static_cast<double>(scores->gt + target_detections) + 1.0;
+  // Union-find over objects (keys o) and targets (keys t), joined by their overlaps.
+  std::map<std::pair<char, int>, std::pair<char, int>> parent;
+  const auto root = [&](std::pair<char, int> node) {
+    auto it = parent.find(node);
+    if (it == parent.end()) return parent[node] = node;
+    std::pair<char, int> top = node;
+    while (parent.at(top) != top) top = parent.at(top);
+    while (node != top) {  // path compression, without recursion: chains can be long
+      std::pair<char, int>& up = parent.at(node);
+      node = std::exchange(up, top);
     }
+    return top;
+  };
+  for (const auto& [pair, frames] : tally.overlap_frames) {
+    if (frames <= 0) continue;
+    const auto a = root({'o', pair.first}), b = root({'t', pair.second});
+    if (a != b) parent[a] = b;
+  }
+  std::map<std::pair<char, int>, std::vector<std::pair<char, int>>> groups;
+  for (const auto& [node, up] : parent) groups[root(node)].push_back(node);
+  for (const auto& [group_root, members] : groups) {
+    if (members.size() > static_cast<size_t>(kMaxIdentityGroup)) {
+      throw InputError("IDF1: " + std::to_string(members.size()) + " objects and targets overlap " +
+                       "one another in one chain, more than the " +
+                       std::to_string(kMaxIdentityGroup) + " the identity assignment takes " +
+                       "(docs/LIMITS.md)");
+    }
+    std::vector<int> object_ids, object_length, target_ids, target_length;
+    for (const auto& [kind, id] : members) {
+      if (kind == 'o') {
+        object_ids.push_back(id);
+        const auto object = tally.objects.find(id);
+        object_length.push_back(object != tally.objects.end() ? object->second.counted_frames : 0);
+      } else {
+        target_ids.push_back(id);
+        const auto target = tally.target_frames.find(id);
+        target_length.push_back(target != tally.target_frames.end() ? target->second : 0);
+      }
+    }
+    scores->idtp +=
+        GroupIdtp(tally, object_ids, object_length, target_ids, target_length, forbidden);
   }
   scores->idfn = scores->gt - scores->idtp;
   scores->idfp = target_detections - scores->idtp;

@@ -15,6 +15,7 @@
 #include "io/ground_truth.h"
 #include "io/pfm.h"
 #include "util/error.h"
+#include "util/file_checks.h"
 #include "util/json_text.h"
 
 namespace attend {
@@ -154,11 +155,8 @@ FlatConfig FlattenConfigText(const std::string& yaml, const std::string& source)
 }
 
 FlatConfig FlattenConfigFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot read the run's configuration");
-  std::stringstream text;
-  text << in.rdbuf();
-  return FlattenConfigText(text.str(), path);
+  return FlattenConfigText(
+      ReadRegularFile(path, "the run's configuration", ExitStatus::kBadInput, kMaxConfigBytes), path);
 }
 
 std::vector<ConfigDifference> DiffConfigs(const FlatConfig& a, const FlatConfig& b) {
@@ -197,9 +195,10 @@ RunData LoadRun(const std::string& dir, const std::string& gt) {
     data.config = FlattenConfigFile((run / "config.yaml").string());
   const fs::path summary_path = run / "summary.json";
   if (fs::exists(summary_path)) {
-    std::ifstream in(summary_path);
+    const std::string text = ReadRegularFile(summary_path.string(), "the run's summary",
+                                             ExitStatus::kBadInput, kMaxConfigBytes);
     try {
-      const nlohmann::json summary = nlohmann::json::parse(in);
+      const nlohmann::json summary = nlohmann::json::parse(text);
       if (summary.contains("sequence") && summary["sequence"].contains("name")) {
         data.sequence = summary["sequence"]["name"].get<std::string>();
       }
@@ -260,6 +259,44 @@ std::vector<TargetSummary> SummariseTargets(const std::vector<FrameRecord>& fram
 
 namespace {
 
+// How many common frames' saliency maps could not be compared, and why.
+struct MapCounts {
+  int missing = 0;    // a map is not dumped
+  int nonfinite = 0;  // a map has a NaN or infinite pixel
+  int undefined = 0;  // a metric is undefined (a constant map)
+  int resized = 0;    // the second run's map had another size
+};
+
+void AddMapNotes(const MapCounts& counts, int common, const std::string& first_nonfinite,
+                 std::vector<std::string>* notes_out) {
+  std::vector<std::string>& notes = *notes_out;
+  const int missing_maps = counts.missing, nonfinite_maps = counts.nonfinite;
+  const int undefined = counts.undefined, resized = counts.resized;
+  if (missing_maps > 0) {
+    notes.push_back(
+        std::to_string(missing_maps) + " of " + std::to_string(common) +
+        " common frames lack a saliency map (RUN/saliency/NNNNNN.pfm) in one run: their "
+        "saliency metrics are omitted (dump them with --set 'output.dump=[saliency,overlay]')");
+  }
+  if (nonfinite_maps > 0) {
+    notes.push_back(
+        std::to_string(nonfinite_maps) + " of " + std::to_string(common) +
+        " common frames have a saliency map with NaN or infinite pixels (the first: " +
+        first_nonfinite + "): their saliency metrics are omitted from the means");
+  }
+  if (undefined > 0) {
+    notes.push_back(
+        std::to_string(undefined) + " of " + std::to_string(common) +
+        " common frames have a metric that is undefined (a constant or all-zero map: CC needs "
+        "variation, SIM and KL a positive sum); it is omitted from that metric's mean");
+  }
+  if (resized > 0) {
+    notes.push_back(std::to_string(resized) +
+                               " saliency maps of the second run were resized to the size of "
+                               "the first run's");
+  }
+}
+
 // The frames both runs have, by index: their targets, matched pairs and saliency metrics,
 // with notes on what could not be compared. `pair_frames`: the frames each (A id, B id) pair
 // was matched in.
@@ -269,7 +306,8 @@ void CompareFrames(const RunData& a, const RunData& b, RunComparison* comparison
   std::map<std::pair<int, int>, int>& pair_frames = *pair_frames_out;
   std::map<int, const FrameRecord*> frames_b;
   for (const FrameRecord& record : b.frames) frames_b[record.frame] = &record;
-  int missing_maps = 0, resized = 0;
+  int missing_maps = 0, resized = 0, nonfinite_maps = 0, undefined = 0;
+  std::string first_nonfinite;  // the first map with a NaN or infinite pixel
   double sums[3] = {0, 0, 0};
   int counts[3] = {0, 0, 0};
   for (const FrameRecord& record_a : a.frames) {
@@ -286,8 +324,15 @@ void CompareFrames(const RunData& a, const RunData& b, RunComparison* comparison
 
     const cv::Mat p = ReadSaliency(a.dir, record_a.frame);
     cv::Mat q = ReadSaliency(b.dir, record_b.frame);
+    const auto finite = [&](const cv::Mat& map, const RunData& run, int frame) {
+      if (cv::checkRange(map)) return true;
+      if (first_nonfinite.empty()) first_nonfinite = DumpPath(run.dir, "saliency", frame, "pfm");
+      return false;
+    };
     if (p.empty() || q.empty() || p.channels() != 1 || q.channels() != 1) {
       ++missing_maps;
+    } else if (!finite(p, a, record_a.frame) | !finite(q, b, record_b.frame)) {
+      ++nonfinite_maps;
     } else {
       if (q.size() != p.size()) {
         cv::resize(q, q, p.size(), 0, 0, cv::INTER_AREA);
@@ -295,9 +340,15 @@ void CompareFrames(const RunData& a, const RunData& b, RunComparison* comparison
       }
       frame.saliency = CompareSaliency(p, q);
       const double values[3] = {frame.saliency->cc, frame.saliency->sim, frame.saliency->kl};
+      bool all = true;
       for (int i = 0; i < 3; ++i) {
-        if (std::isfinite(values[i])) sums[i] += values[i], ++counts[i];
+        if (std::isfinite(values[i])) {
+          sums[i] += values[i], ++counts[i];
+        } else {
+          all = false;
+        }
       }
+      undefined += all ? 0 : 1;
     }
     comparison.frames.push_back(frame);
   }
@@ -307,17 +358,8 @@ void CompareFrames(const RunData& a, const RunData& b, RunComparison* comparison
                                std::to_string(comparison.frames_b) + " frames; the " +
                                std::to_string(common) + " common frames are compared");
   }
-  if (missing_maps > 0) {
-    comparison.notes.push_back(
-        std::to_string(missing_maps) + " of " + std::to_string(common) +
-        " common frames lack a saliency map (RUN/saliency/NNNNNN.pfm) in one run: their "
-        "saliency metrics are omitted (dump them with --set 'output.dump=[saliency,overlay]')");
-  }
-  if (resized > 0) {
-    comparison.notes.push_back(std::to_string(resized) +
-                               " saliency maps of the second run were resized to the size of "
-                               "the first run's");
-  }
+  AddMapNotes({missing_maps, nonfinite_maps, undefined, resized}, common, first_nonfinite,
+              &comparison.notes);
   if (counts[0] + counts[1] + counts[2] > 0) {
     const auto mean = [&](int i) { return counts[i] > 0 ? sums[i] / counts[i] : kNaN; };
     comparison.mean_saliency = SaliencyMetrics{mean(0), mean(1), mean(2)};

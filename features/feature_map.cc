@@ -1,5 +1,7 @@
 #include "features/feature_map.h"
 
+#include <cmath>
+
 #include <filesystem>
 #include <utility>
 
@@ -84,14 +86,31 @@ std::unique_ptr<FeatureMap> FeatureRegistry::Create(const FeatureSpec& spec,
 
 void CheckFeatureOutput(const FeatureRegistry::Entry& entry, const cv::Mat& map, cv::Size size) {
   const std::string who = "feature '" + entry.name + "' (" + entry.origin + ")";
+  // A plugin's wrong map is the plugin's failure (exit status 4, as a Python feature's); a
+  // built-in feature's is attend's own bug.
+  const auto fail = [&](const std::string& message) {
+    if (entry.origin == "built-in") throw InternalError(message);
+    throw PluginError(message);
+  };
   if (map.type() != CV_32FC1 || map.size() != size) {
-    throw ConfigError(who + " returned a map of " + std::to_string(map.cols) + "x" +
-                      std::to_string(map.rows) + " type " + std::to_string(map.type()) +
-                      "; a feature map must be CV_32FC1 of the frame's size " +
-                      std::to_string(size.width) + "x" + std::to_string(size.height));
+    fail(who + " returned a map of " + std::to_string(map.cols) + "x" + std::to_string(map.rows) +
+         " type " + std::to_string(map.type()) + "; a feature map must be CV_32FC1 of the " +
+         "frame's size " + std::to_string(size.width) + "x" + std::to_string(size.height));
   }
   if (!AllFloatsFinite(map)) {
-    throw ConfigError(who + " returned a map with NaN or infinite values");
+    int count = 0;
+    cv::Point first(-1, -1);
+    for (int y = 0; y < map.rows; ++y) {
+      const float* row = map.ptr<float>(y);
+      for (int x = 0; x < map.cols; ++x) {
+        if (std::isfinite(row[x])) continue;
+        if (count++ == 0) first = cv::Point(x, y);
+      }
+    }
+    const std::string at = " (first at x " + std::to_string(first.x) + ", y " +
+                           std::to_string(first.y) + "; " + std::to_string(count) + " pixels)";
+    fail(who + " returned a map with NaN or infinite values" + at +
+         "; a feature map must be finite everywhere");
   }
 }
 

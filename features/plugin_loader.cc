@@ -11,6 +11,7 @@
 #include "features/plugin_api.h"
 #include "features/python_plugins.h"
 #include "util/error.h"
+#include "util/file_checks.h"
 
 namespace attend {
 
@@ -104,12 +105,20 @@ std::string IncompleteElf(const std::string& path) {
 
 void LoadFeaturePlugin(const std::string& path, const std::string& where,
                        FeatureRegistry* registry) {
+  const std::string prefix = where + ": plugin " + path + ": ";
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) throw ConfigError(prefix + "no such file");
+  // A folder, a fifo or a device is named as such (dlopen or the interpreter would say "no
+  // such file", or wait on a fifo).
+  try {
+    RequireRegularFile(path, "the plugin", ExitStatus::kUsage);
+  } catch (const ConfigError& e) {
+    throw ConfigError(where + ": " + e.what());
+  }
   if (IsPythonPlugin(path)) {
     LoadPythonFeaturePlugin(path, where, registry);
     return;
   }
-  const std::string prefix = where + ": plugin " + path + ": ";
-  if (!std::filesystem::is_regular_file(path)) throw ConfigError(prefix + "no such file");
   const std::string incomplete = IncompleteElf(path);
   if (!incomplete.empty()) throw ConfigError(prefix + incomplete);
   // A relative path without a slash would make dlopen search the library path instead.

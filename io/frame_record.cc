@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "util/error.h"
+#include "util/file_checks.h"
 #include "util/json_text.h"
 #include "util/limits.h"
 
@@ -180,45 +183,101 @@ void ReadDepth(const nlohmann::json& t, TargetRecord* target) {
 
 }  // namespace
 
+namespace {
+
+// One target of a record, but its depth (ReadDepth); std::runtime_error for a bad field.
+TargetRecord ReadTarget(const nlohmann::json& t) {
+  TargetRecord target;
+  target.id = IntIn(t.at("id"), "id", 0, kMaxId);
+  const nlohmann::json& box = t.at("bbox");
+  if (!box.is_array() || box.size() != 4) throw std::runtime_error("bbox needs 4 numbers");
+  // Bounded so that areas and corners cannot overflow int in the scorers.
+  const int x = IntIn(box[0], "bbox x", -kMaxBoxCoordinate, kMaxBoxCoordinate);
+  const int y = IntIn(box[1], "bbox y", -kMaxBoxCoordinate, kMaxBoxCoordinate);
+  const int w = IntIn(box[2], "bbox w", 0, kMaxBoxCoordinate);
+  const int h = IntIn(box[3], "bbox h", 0, kMaxBoxCoordinate);
+  target.bbox = cv::Rect(x, y, w, h);
+  target.area = IntIn(t.at("area"), "area", 0, 1L << 30);
+  target.saliency = t.at("saliency").get<double>();
+  const std::string state = t.at("state").get<std::string>();
+  if (!TargetStateFromName(state, &target.state)) {
+    throw std::runtime_error("unknown state '" + state + "'");
+  }
+  target.kind = t.at("kind").get<std::string>();
+  target.similarity = t.at("similarity").get<std::string>();
+  if (t.contains("absent_frames")) {
+    target.absent_frames = IntIn(t.at("absent_frames"), "absent_frames", 0, kMaxFrameNumber);
+  }
+  if (t.contains("label")) target.label = t.at("label").get<std::string>();
+  return target;
+}
+
+// Reads the next line of `in` into `line` (without its '\n'); false at the end. A line longer
+// than kMaxRecordBytes is an InputError naming it, before it is held whole.
+bool ReadRecordLine(std::istream& in, const std::string& path, int number, std::string* line) {
+  line->clear();
+  std::streambuf* buffer = in.rdbuf();
+  for (;;) {
+    const int c = buffer->sbumpc();
+    if (c == std::char_traits<char>::eof()) return !line->empty();
+    if (c == '\n') return true;
+    if (static_cast<long>(line->size()) >= kMaxRecordBytes) {
+      throw InputError(path + ":" + std::to_string(number) + ": a record longer than " +
+                       std::to_string(kMaxRecordBytes >> 20) + " MB (docs/LIMITS.md)");
+    }
+    line->push_back(static_cast<char>(c));
+  }
+}
+
+}  // namespace
+
 std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
-  std::ifstream in(path);
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) {
+    throw InputError(path + ": cannot read (is this a run folder?)");
+  }
+  RequireRegularFile(path, "the frame records", ExitStatus::kBadInput);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot read (is this a run folder?)");
   std::vector<FrameRecord> frames;
   std::string line;
   int previous_line = 0;  // the line of the last record read
-  for (int number = 1; std::getline(in, line); ++number) {
+  for (int number = 1; ReadRecordLine(in, path, number, &line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
     try {
       const nlohmann::json json = nlohmann::json::parse(line);
       FrameRecord record;
       record.frame = IntIn(json.at("frame"), "frame", 0, kMaxFrameNumber);
-      for (const nlohmann::json& t : json.at("targets")) {
-        TargetRecord target;
-        target.id = IntIn(t.at("id"), "id", 0, kMaxId);
-        const nlohmann::json& box = t.at("bbox");
-        if (!box.is_array() || box.size() != 4) throw std::runtime_error("bbox needs 4 numbers");
-        // Bounded so that areas and corners cannot overflow int in the scorers.
-        const int x = IntIn(box[0], "bbox x", -kMaxBoxCoordinate, kMaxBoxCoordinate);
-        const int y = IntIn(box[1], "bbox y", -kMaxBoxCoordinate, kMaxBoxCoordinate);
-        const int w = IntIn(box[2], "bbox w", 0, kMaxBoxCoordinate);
-        const int h = IntIn(box[3], "bbox h", 0, kMaxBoxCoordinate);
-        target.bbox = cv::Rect(x, y, w, h);
-        target.area = IntIn(t.at("area"), "area", 0, 1L << 30);
-        target.saliency = t.at("saliency").get<double>();
-        const std::string state = t.at("state").get<std::string>();
-        if (!TargetStateFromName(state, &target.state)) {
-          throw std::runtime_error("unknown state '" + state + "'");
-        }
-        target.kind = t.at("kind").get<std::string>();
-        target.similarity = t.at("similarity").get<std::string>();
-        if (t.contains("absent_frames")) {
-          target.absent_frames = IntIn(t.at("absent_frames"), "absent_frames", 0, kMaxFrameNumber);
-        }
-        if (t.contains("label")) target.label = t.at("label").get<std::string>();
+      const nlohmann::json& targets = json.at("targets");
+      if (!targets.is_array()) throw std::runtime_error("'targets' is not a list");
+      if (targets.size() > static_cast<size_t>(kMaxTargetsPerRecord)) {
+        throw std::runtime_error(std::to_string(targets.size()) + " targets, more than " +
+                                 std::to_string(kMaxTargetsPerRecord) + " (docs/LIMITS.md)");
+      }
+      std::map<int, size_t> seen;  // id -> its position in the record, for duplicates
+      for (const nlohmann::json& t : targets) {
+        TargetRecord target = ReadTarget(t);
         ReadDepth(t, &target);
+        const auto [at, first] = seen.emplace(target.id, record.targets.size());
+        if (!first) {
+          throw std::runtime_error("target id " + std::to_string(target.id) + " twice (targets " +
+                                   std::to_string(at->second + 1) + " and " +
+                                   std::to_string(record.targets.size() + 1) +
+                                   "): a target is recorded once a frame");
+        }
         record.targets.push_back(target);
       }
       record.new_ids = json.at("new").get<std::vector<int>>();
+      for (const int id : record.new_ids) {
+        // Each new id is one of the record's targets, which are unique and capped.
+        if (seen.erase(id) == 0) {
+          throw std::runtime_error("'new' has id " + std::to_string(id) +
+                                   (std::count(record.new_ids.begin(), record.new_ids.end(), id) > 1
+                                        ? " twice"
+                                        : ", which is not a target of the record"));
+        }
+      }
       for (const auto& [stage, ms] : json.at("timings_ms").items()) {
         record.timings.Add(stage, ms.get<double>());
       }

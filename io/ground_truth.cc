@@ -8,6 +8,7 @@
 
 #include "io/text_fields.h"
 #include "util/error.h"
+#include "util/file_checks.h"
 #include "util/limits.h"
 #include "util/strings.h"
 
@@ -29,6 +30,7 @@ int ParseInteger(const std::string& text, const std::string& path, int line, con
 }  // namespace
 
 std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
+  RequireRegularFile(path, "the ground-truth file", ExitStatus::kBadInput);
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read the ground-truth file");
   std::vector<GtObject> objects;

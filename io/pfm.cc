@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "util/error.h"
+#include "util/file_checks.h"
 
 namespace attend {
 
@@ -42,6 +43,7 @@ uint32_t ByteSwap(uint32_t v) {
 }  // namespace
 
 cv::Mat ReadPfm(const std::string& path) {
+  RequireRegularFile(path, "the PFM file", ExitStatus::kBadInput);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the PFM file");
   std::string magic, width_text, height_text, scale_text;

@@ -21,6 +21,7 @@
 #include "config/read_fields.h"
 #include "io/image_file.h"
 #include "util/error.h"
+#include "util/file_checks.h"
 #include "util/output_folder.h"
 #include "util/strings.h"
 
@@ -170,8 +171,7 @@ void ReadSkinText(const std::string& path, SkinSamples* samples) {
 }
 
 void ReadSkinText(const std::string& path, const SkinSampleSink& sink) {
-  std::error_code error;
-  if (fs::is_directory(path, error)) throw InputError(path + ": is a folder, not a text file");
+  RequireRegularFile(path, "the skin samples", ExitStatus::kBadInput, kMaxTextBytes);
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path + ": cannot read the file (missing or not readable)");
   // The whole file at once, parsed in place: the UCI file (3 MB) reads in a few milliseconds.

@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "util/error.h"
+#include "util/limits.h"
 
 namespace attend {
 
@@ -40,7 +41,14 @@ double ParseWholeField(const std::string& text, const std::string& path, int lin
 
 void RowsOnce::Add(int frame, int id, const std::string& path, int line, const char* what) {
   const auto [at, added] = lines_.emplace(std::make_pair(frame, id), line);
-  if (added) return;
+  if (added) {
+    if (++per_frame_[frame] > kMaxTargetsPerRecord) {
+      throw InputError(path + ":" + std::to_string(line) + ": more than " +
+                       std::to_string(kMaxTargetsPerRecord) + " " + what + "s in frame " +
+                       std::to_string(frame) + " (docs/LIMITS.md)");
+    }
+    return;
+  }
   throw InputError(path + ":" + std::to_string(line) + ": " + what + " " + std::to_string(id) +
                    " again in frame " + std::to_string(frame) + " (line " +
                    std::to_string(at->second) + " has it too)");

@@ -23,13 +23,15 @@ double ParseWholeField(const std::string& text, const std::string& path, int lin
 
 // The line of each (frame, id) row of a file: a second row of one target or object in one
 // frame, which a scorer would count twice, is "PATH:LINE: WHAT ID again in frame FRAME (line L
-// has it too)".
+// has it too)". A frame of more than kMaxTargetsPerRecord rows is "PATH:LINE: more than N
+// WHATs in frame FRAME": scorers pair every row of a frame with every other of the other file.
 class RowsOnce {
  public:
   void Add(int frame, int id, const std::string& path, int line, const char* what);
 
  private:
   std::map<std::pair<int, int>, int> lines_;
+  std::map<int, int> per_frame_;
 };
 
 }  // namespace attend

@@ -8,6 +8,7 @@
 
 #include "io/text_fields.h"
 #include "util/error.h"
+#include "util/file_checks.h"
 #include "util/limits.h"
 #include "util/strings.h"
 
@@ -31,6 +32,7 @@ int ParseInteger(const std::string& text, const std::string& path, int line, con
 }  // namespace
 
 std::vector<TrackRow> ReadTracksCsv(const std::string& path) {
+  RequireRegularFile(path, "the tracks file", ExitStatus::kBadInput);
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read the tracks file");
   std::vector<TrackRow> rows;
@@ -100,6 +102,7 @@ void WriteTracksCsv(const std::string& path, const std::vector<TrackRow>& rows) 
 }
 
 std::vector<cv::Rect2d> ReadOtbGroundTruth(const std::string& path) {
+  RequireRegularFile(path, "the ground-truth file", ExitStatus::kBadInput);
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read the ground-truth file");
   std::vector<std::string> lines;

@@ -18,10 +18,16 @@ enum class ExitStatus : int {
 
 // Base of every error that is reported to the user. The message says what and where
 // (file, YAML key and line, frame index and path); it is printed as "attend: error: MESSAGE".
+// A message longer than kMaxMessageBytes keeps its beginning and end, with the number of bytes
+// left out between them: a value of 100 MB is never echoed whole.
+inline constexpr size_t kMaxMessageBytes = 4096;
+
 class Error : public std::runtime_error {
  public:
   Error(ExitStatus status, const std::string& message)
-      : std::runtime_error(message), status_(status) {}
+      : std::runtime_error(BoundedMessage(message)), status_(status) {}
+  // `message` cut to at most about kMaxMessageBytes (see above).
+  static std::string BoundedMessage(const std::string& message);
   ExitStatus status() const { return status_; }
 
  private:

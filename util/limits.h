@@ -17,4 +17,12 @@ inline constexpr int kMaxBoxCoordinate = 1 << 16;
 // Target and object ids in those files: 0..kMaxId.
 inline constexpr int kMaxId = 1 << 30;
 
+// Targets in one record of frames.jsonl. A run keeps at most select.max_targets (at most 1000)
+// targets; attend track-detections about as many as there are people in view. The scorers,
+// reports and comparisons hold every target of a run: 10^6 targets in one record took 6 GB.
+inline constexpr int kMaxTargetsPerRecord = 10000;
+
+// Bytes in one line of frames.jsonl: kMaxTargetsPerRecord targets of about 400 bytes each.
+inline constexpr long kMaxRecordBytes = 8L << 20;
+
 }  // namespace attend

@@ -43,6 +43,11 @@ std::string Lowercase(std::string text);
 // `value` with `digits` decimals ("%.*f").
 std::string Fixed(double value, int digits);
 
+// `text` as it may be shown in a message: whole when at most `max` bytes, else its first
+// `max` bytes (cut at a UTF-8 character boundary) and "... (N bytes)". A value of 100 MB in a
+// configuration is named, not echoed.
+std::string Abbreviate(std::string_view text, size_t max = 120);
+
 // Joins with a separator.
 std::string Join(const std::vector<std::string>& parts, std::string_view separator);
 

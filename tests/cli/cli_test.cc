@@ -77,7 +77,7 @@ TEST(Cli, ConfigurationErrorsExitTwoNamingFileLineAndKey) {
   testing::MakeFolderSequence(dir.File("seq"), 2, 16, 16);
   Result r = Attend(dir, {"run", "--config", "missing.yaml", "--sequence", "seq"});
   EXPECT_EQ(r.status, 2);
-  EXPECT_TRUE(Contains(r.err, "attend: error: missing.yaml: cannot read")) << r.err;
+  EXPECT_TRUE(Contains(r.err, "attend: error: missing.yaml: the YAML file does not exist")) << r.err;
 
   dir.Write("bad.yaml", "sequence:\n  stride: 1\n  strid: 2\n");
   r = Attend(dir, {"run", "--config", "bad.yaml", "--sequence", "seq"});
@@ -191,7 +191,7 @@ TEST(Cli, MalformedOverridesAndConfigPathsAreUsageErrors) {
   EXPECT_TRUE(Contains(r.err, "sequence.width: expected an integer, got no value")) << r.err;
   r = Attend(dir, {"run", "--sequence", "seq", "--config", dir.path().string()});
   EXPECT_EQ(r.status, 2) << r.err;
-  EXPECT_TRUE(Contains(r.err, "is a folder, not a YAML file")) << r.err;
+  EXPECT_TRUE(Contains(r.err, "the YAML file is a folder, not a file")) << r.err;
   dir.Write("home/features/notes.txt", "precious");
   r = Attend(dir, {"run", "--sequence", "seq", "--out", "home", "--overwrite"});
   EXPECT_EQ(r.status, 2) << r.err;

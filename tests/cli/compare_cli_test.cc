@@ -5,6 +5,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -299,6 +301,84 @@ TEST_F(CompareCli, ReportRendersInHeadlessChromium) {
     }
   }
   EXPECT_GT(purple, 20000) << shot;
+}
+
+// How often each element that makes a page's structure occurs in Chromium's DOM of `html`
+// (--dump-dom: the document after its scripts ran), and the page's title.
+struct PageShape {
+  std::map<std::string, int> elements;
+  std::string title;
+  std::string dom;
+};
+
+PageShape RenderedShape(const std::string& chromium, const TempDir& dir, const std::string& html) {
+  const Result r = testing::Run(
+      chromium, dir,
+      {"--headless", "--no-sandbox", "--disable-gpu", "--user-data-dir=" + dir.File("profile"),
+       "--dump-dom", "file://" + fs::absolute(html).string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  PageShape shape;
+  shape.dom = r.out;
+  for (const char* tag : {"<section", "<table", "<tr", "<canvas", "<script", "<img", "<h2"}) {
+    int count = 0;
+    for (size_t at = r.out.find(tag); at != std::string::npos; at = r.out.find(tag, at + 1)) ++count;
+    shape.elements[tag] = count;
+  }
+  const size_t open = r.out.find("<title>"), close = r.out.find("</title>");
+  if (open != std::string::npos && close != std::string::npos) {
+    shape.title = r.out.substr(open + 7, close - open - 7);
+  }
+  return shape;
+}
+
+// Run folders named, and a sequence named, to break out of the page's elements (issue 46: a
+// folder named y<!--<script> made the chart's <script> swallow the rest of the page).
+TEST_F(CompareCli, HostileNamesCannotChangeTheReportsStructureInChromium) {
+  const std::string chromium = FindChromium();
+  if (chromium.empty()) {
+    GTEST_SKIP() << "chromium is not installed; install it with scripts/install_deps.sh";
+  }
+  const TempDir out;
+  const std::vector<std::string> names = {"y<!--<script>",
+                                          "q\"><img src=x onerror=\"document.title='PWNED'\">",
+                                          "javascript:document.title='PWNED'"};
+  // Copies of run b under each name with a sequence of that name, and plain ones beside them.
+  const auto copy_of_b = [&](const std::string& name, const std::string& sequence) {
+    const fs::path copy = out.path() / name;
+    fs::copy(Run("b"), copy, fs::copy_options::recursive);
+    nlohmann::json summary = nlohmann::json::parse(ReadText((copy / "summary.json").string()));
+    summary["sequence"]["name"] = sequence;
+    std::ofstream((copy / "summary.json").string()) << summary.dump();
+    return copy.string();
+  };
+  std::vector<std::string> hostile = {"compare", Run("a")}, plain = {"compare", Run("a")};
+  for (size_t i = 0; i < names.size(); ++i) {
+    hostile.push_back(copy_of_b(
+        names[i], "</script><script>document.title='PWNED'</script><!--<script>\u2028"));
+    plain.push_back(copy_of_b("plain" + std::to_string(i), "plain"));
+  }
+  hostile.insert(hostile.end(), {"--out", "hostile"});
+  plain.insert(plain.end(), {"--out", "clean"});
+  Result r = Attend(out, hostile);
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = Attend(out, plain);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const PageShape clean = RenderedShape(chromium, out, out.File("clean/report.html"));
+  const PageShape page = RenderedShape(chromium, out, out.File("hostile/report.html"));
+  EXPECT_GT(clean.elements.at("<section"), 3);
+  EXPECT_EQ(page.elements, clean.elements);
+  EXPECT_EQ(page.title, clean.title);
+  EXPECT_FALSE(Contains(page.title, "PWNED"));
+  // The names are shown as text.
+  EXPECT_TRUE(Contains(page.dom, "y&lt;!--&lt;script&gt;")) << page.dom.substr(0, 2000);
+  EXPECT_TRUE(Contains(page.dom, "&lt;/script&gt;&lt;script&gt;document.title="));
+  // The single-run report too.
+  r = Attend(out, {"report", hostile[2], "--out", "single"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = Attend(out, {"report", plain[2], "--out", "single_clean"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(RenderedShape(chromium, out, out.File("single/report.html")).elements,
+            RenderedShape(chromium, out, out.File("single_clean/report.html")).elements);
 }
 
 }  // namespace

@@ -96,7 +96,7 @@ TEST(GroundTruth, MalformedRowsAreBadInputNamingFileAndLine) {
   }
   const std::string missing = dir.File("missing.csv");
   const std::string message = InputErrorOf([&] { ReadObjectsCsv(missing); });
-  EXPECT_NE(message.find(missing + ": cannot read"), std::string::npos) << message;
+  EXPECT_NE(message.find(missing + ": the ground-truth file does not exist"), std::string::npos) << message;
 }
 
 TEST(GroundTruth, EmptyDisparityIsUnknown) {

@@ -133,7 +133,7 @@ TEST(Pfm, TruncatedOrInvalidFilesAreBadInputNamingTheFile) {
 
   const std::string missing = dir.File("missing.pfm");
   message = InputErrorOf([&] { ReadPfm(missing); });
-  EXPECT_NE(message.find(missing + ": cannot open"), std::string::npos) << message;
+  EXPECT_NE(message.find(missing + ": the PFM file does not exist"), std::string::npos) << message;
 }
 
 }  // namespace

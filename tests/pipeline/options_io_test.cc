@@ -197,7 +197,7 @@ TEST(OptionsIo, ErrorsNameKeyLineAndClosestKey) {
   EXPECT_NE(message.find("last_frame"), std::string::npos) << message;
 
   message = ConfigErrorOf([&] { LoadOptions(dir.File("missing.yaml"), {}); });
-  EXPECT_NE(message.find("missing.yaml: cannot read"), std::string::npos) << message;
+  EXPECT_NE(message.find("missing.yaml: the YAML file does not exist"), std::string::npos) << message;
 
   message = ConfigErrorOf([&] { LoadOptions(DefaultConfig(), {"sequence.strid=2"}); });
   EXPECT_NE(message.find("--set sequence.strid=2: unknown key 'strid' in sequence (did you mean "

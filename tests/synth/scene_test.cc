@@ -211,7 +211,7 @@ TEST(Scene, LoadSceneReportsTheFile) {
   EXPECT_NE(message.find(path + ":12: objects.0.colour: expected 3 elements, got 2"),
             std::string::npos)
       << message;
-  EXPECT_NE(ConfigErrorOf([] { LoadScene("/nonexistent/scene.yaml"); }).find("cannot read"),
+  EXPECT_NE(ConfigErrorOf([] { LoadScene("/nonexistent/scene.yaml"); }).find("/nonexistent/scene.yaml: the YAML file does not exist"),
             std::string::npos);
   const Scene scene = LoadScene(dir.Write("ok.yaml", SceneText()));
   EXPECT_EQ(scene.source, dir.File("ok.yaml"));

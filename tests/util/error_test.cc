@@ -25,5 +25,16 @@ TEST(Error, CheckThrowsInternalErrorWithContextOnlyWhenFalse) {
   }
 }
 
+TEST(Error, AHugeMessageKeepsItsEndsAndSaysHowMuchWasLeftOut) {
+  const std::string value(100000, 'x');
+  const ConfigError error("cfg.yaml:3: threads: expected an integer, got '" + value + "' (end)");
+  const std::string message = error.what();
+  EXPECT_LE(message.size(), kMaxMessageBytes + 64);
+  EXPECT_EQ(message.rfind("cfg.yaml:3: threads: expected an integer, got 'xxx", 0), 0u);
+  EXPECT_NE(message.find("bytes left out"), std::string::npos);
+  EXPECT_EQ(message.substr(message.size() - 7), "' (end)");
+  EXPECT_EQ(ConfigError("short").what(), std::string("short"));
+}
+
 }  // namespace
 }  // namespace attend
