@@ -9,6 +9,7 @@
 #include "config/param_block.h"
 #include "pipeline/options_io.h"
 #include "python/bindings.h"
+#include "python/in_use.h"
 #include "tracker/target_tracker.h"
 #include "util/error.h"
 
@@ -51,6 +52,7 @@ void RegisterErrors(py::module_& m) {
   static py::exception<InputError> input(m, "InputError", error.ptr());
   static py::exception<PluginError> plugin(m, "PluginError", error.ptr());
   static py::exception<InternalError> internal(m, "InternalError", error.ptr());
+  static py::exception<InUseError> in_use(m, "InUseError", error.ptr());
   py::register_exception_translator([](std::exception_ptr pointer) {
     try {
       if (pointer) std::rethrow_exception(pointer);
@@ -64,6 +66,8 @@ void RegisterErrors(py::module_& m) {
       plugin(e.what());
     } catch (const InternalError& e) {
       internal(e.what());
+    } catch (const InUseError& e) {
+      in_use(e.what());
     } catch (const Error& e) {
       error(e.what());
     }

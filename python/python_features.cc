@@ -15,6 +15,7 @@
 #include "features/feature_map.h"
 #include "features/python_plugins.h"
 #include "python/arrays.h"
+#include "python/in_use.h"
 #include "util/error.h"
 
 namespace attend::python {
@@ -61,6 +62,7 @@ class ContextView {
     if (regions_.is_none()) {
       const Segmentation* segmentation = nullptr;
       {
+        const InUse::Scope scope(&in_use_, "regions");
         const py::gil_scoped_release release;
         segmentation = &context().Regions();
       }
@@ -70,14 +72,15 @@ class ContextView {
   }
 
   py::object Cylinder() const {
-    return Computed([](const FrameContext& c) -> const cv::Mat& { return c.Cylinder(); });
+    return Computed("cylinder",
+                    [](const FrameContext& c) -> const cv::Mat& { return c.Cylinder(); });
   }
   py::object Tsl() const {
-    return Computed([](const FrameContext& c) -> const cv::Mat& { return c.Tsl(); });
+    return Computed("tsl", [](const FrameContext& c) -> const cv::Mat& { return c.Tsl(); });
   }
   py::object Disparity() const {
     if (!context().stereo()) return py::none();
-    return Computed([](const FrameContext& c) -> const cv::Mat& {
+    return Computed("disparity", [](const FrameContext& c) -> const cv::Mat& {
       return c.Disparity(c.disparity_options());
     });
   }
@@ -91,6 +94,7 @@ class ContextView {
     setup.stereo = context().stereo();
     cv::Mat map;
     {
+      const InUse::Scope scope(&in_use_, "builtin()");
       const py::gil_scoped_release release;
       std::unique_ptr<FeatureMap> feature = Builtins().Create(spec, setup);
       feature->Compute(context(), &map);
@@ -102,10 +106,11 @@ class ContextView {
   // A map the context computes on demand (`get`), computed without the GIL, as a read-only
   // array over the context's buffer.
   template <typename Get>
-  py::object Computed(const Get& get) const {
+  py::object Computed(const char* name, const Get& get) const {
     const FrameContext& frame = context();
     const cv::Mat* map = nullptr;
     {
+      const InUse::Scope scope(&in_use_, name);
       const py::gil_scoped_release release;
       map = &get(frame);
     }
@@ -114,6 +119,10 @@ class ContextView {
 
   const FrameContext* context_;
   py::object regions_ = py::none();
+  // The maps computed on demand are computed without the GIL, and the frame's context computes
+  // each once: a thread that the feature started may not compute one beside its compute().
+  mutable InUse in_use_{"feature context",
+                        "compute the maps a feature needs on the thread of its compute()"};
 };
 
 // A registered Python class's instance as a feature plugin.

@@ -8,8 +8,9 @@
 Options are the configuration's keys (configs/README.md, `attend run --list-keys`): a file,
 a dict of the same shape, and `set=["key.path=value", ...]` as `attend run --set`. Errors are
 attend.ConfigError (a bad key or value, with the key and, for a file, the line), InputError (bad
-frames or files), OutputError, PluginError (a Python feature raised) and InternalError; all
-derive from attend.Error, whose `status` is the exit status `attend` gives for it.
+frames or files), OutputError, PluginError (a Python feature raised), InUseError (a Pipeline or
+Tracker called from a second thread while a call runs) and InternalError; all derive from
+attend.Error, whose `status` is the exit status `attend` gives for it.
 """
 
 import json as _json
@@ -45,15 +46,16 @@ InputError = _attend.InputError
 OutputError = _attend.OutputError
 PluginError = _attend.PluginError
 InternalError = _attend.InternalError
+InUseError = _attend.InUseError
 for _error, _status in ((Error, 1), (ConfigError, 2), (OutputError, 2), (InputError, 3),
-                        (PluginError, 4), (InternalError, 1)):
+                        (PluginError, 4), (InternalError, 1), (InUseError, 2)):
     _error.status = _status
 
 __all__ = [
     "Pipeline", "FrameResult", "Tracker", "run", "saliency", "segment", "disparity",
     "read_run", "Run", "read_pfm", "write_pfm", "bundled_sequence", "frames", "imread", "imwrite", "feature", "eval_run", "eval_fixations", "compare", "register_feature",
     "configuration", "keys", "Error", "ConfigError", "InputError", "OutputError",
-    "PluginError", "InternalError", "__version__",
+    "PluginError", "InternalError", "InUseError", "__version__",
 ]
 
 
@@ -129,7 +131,9 @@ class Pipeline:
 
     config: a configuration file, a dict of configuration keys, or None for
     configs/default.yaml; set: "key.path=value" overrides. The GIL is released while a frame is
-    processed, so pipelines in several threads run at once.
+    processed, so pipelines in several threads run at once; one pipeline runs one call at a time,
+    and a call from another thread meanwhile (process, reset, info, buffers) raises
+    attend.InUseError.
 
     focal_px and baseline_m (with principal_point, (cx, cy), default the image centre; all in
     the pixels of the frames handed in) describe a rectified stereo camera: each target seen in
@@ -182,7 +186,8 @@ class Tracker:
     """A tracker of `kind` (bip, kcf, csrt) on numpy frames, as `attend track`; options are the
     configuration's tracker keys (e.g. mode="thesis", lost_frames=5). The BIP starts from
     configs/track.yaml (the correlation mode, docs/TRACKING.md): mode="thesis" gives the
-    thesis's tracker, mode="bounded", occlusion=True the bounded mode with its occlusion rules."""
+    thesis's tracker, mode="bounded", occlusion=True the bounded mode with its occlusion rules.
+    One call at a time: a call from another thread while one runs raises attend.InUseError."""
 
     def __init__(self, kind="bip", **options):
         overrides = _overrides({"tracker": dict(options, kind=kind)})
