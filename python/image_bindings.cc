@@ -59,7 +59,10 @@ py::object ReadImage(const std::string& path, bool grey) {
 
 // attend.imwrite: an 8-bit image (BGR or grey) to a file whose extension says the format.
 void WriteImage(const std::string& path, const py::array& image) {
-  const cv::Mat view = ImageView(py::array::ensure(image, py::array::c_style), "image");
+  // The contiguous array is held while its view is written (a strided array's copy would
+  // otherwise be freed at the end of the statement).
+  const py::array contiguous = ContiguousImage(image, "image");
+  const cv::Mat view = ImageView(contiguous, "image");
   const py::gil_scoped_release release;
   WriteImageFile(path, view);
 }
@@ -127,8 +130,10 @@ DisparityOptions DisparityKeywords(const std::vector<std::string>& overrides) {
 py::object Disparity(const py::array& left, const py::array& right,
                      const std::vector<std::string>& overrides) {
   const DisparityOptions options = DisparityKeywords(overrides);
-  const cv::Mat l = ImageView(py::array::ensure(left, py::array::c_style), "left");
-  const cv::Mat r = ImageView(py::array::ensure(right, py::array::c_style), "right");
+  const py::array left_array = ContiguousImage(left, "left");
+  const py::array right_array = ContiguousImage(right, "right");
+  const cv::Mat l = ImageView(left_array, "left");
+  const cv::Mat r = ImageView(right_array, "right");
   cv::Mat disparity;
   {
     const py::gil_scoped_release release;
@@ -141,6 +146,7 @@ py::object Disparity(const py::array& left, const py::array& right,
 }  // namespace
 
 void RegisterImages(py::module_& m) {
+  m.attr("max_image_pixels") = kMaxImagePixels;
   m.def("saliency", [](const py::array& image, const Configuration& c, bool features) {
     return Saliency(image, c.options, features);
   });

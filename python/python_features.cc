@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -163,7 +164,9 @@ class PythonFeature final : public FeatureMap {
     py::object result;
     Call("compute", [&] { result = instance_.attr("compute")(py::cast(view)); });
     view->Close();
-    MapFromObject(result, context.size(), "feature '" + name_ + "' (Python): compute()", out);
+    const std::string what = "feature '" + name_ + "' (Python): compute()";
+    MapFromObject(result, context.size(), what, out);
+    CheckFinite(*out, what, context.frame_index());
   }
 
   bool NeedsStereo() const override { return needs_stereo_; }
@@ -179,6 +182,27 @@ class PythonFeature final : public FeatureMap {
       throw PluginError("feature '" + name_ + "' (Python): " + method + "() raised:\n" +
                         Traceback(e));
     }
+  }
+
+  // PluginError naming the first pixel (row by row) of `map` that is NaN or infinite: the
+  // feature's own fault, reported as such (exit 4), not as a configuration error.
+  static void CheckFinite(const cv::Mat& map, const std::string& what, int frame) {
+    int bad = 0, first_x = -1, first_y = -1;
+    float first = 0.0f;
+    for (int y = 0; y < map.rows; ++y) {
+      const float* row = map.ptr<float>(y);
+      for (int x = 0; x < map.cols; ++x) {
+        if (std::isfinite(row[x])) continue;
+        if (bad++ == 0) first_x = x, first_y = y, first = row[x];
+      }
+    }
+    if (bad == 0) return;
+    throw PluginError(what + ": returned a map with " +
+                      (std::isnan(first) ? "NaN" : first > 0 ? "inf" : "-inf") +
+                      " at pixel (x " + std::to_string(first_x) + ", y " +
+                      std::to_string(first_y) + ") of frame " + std::to_string(frame) + " (" +
+                      std::to_string(bad) + " of its " + std::to_string(map.total()) +
+                      " values are not finite); a feature map must be finite everywhere");
   }
 
   std::string name_;

@@ -34,7 +34,7 @@ class Tracker {
   int StartMask(const py::array& frame, const py::array& mask) {
     const InUse::Scope scope(&in_use_, "start()");
     const cv::Mat bgr = BgrImage(frame, "frame");
-    const cv::Mat m = ImageView(py::array::ensure(mask, py::array::c_style), "mask").clone();
+    const cv::Mat m = ImageView(ContiguousImage(mask, "mask"), "mask").clone();
     if (m.channels() != 1 || m.size() != bgr.size()) {
       throw InputError("mask: must be uint8 H x W of the frame's size");
     }

@@ -40,6 +40,11 @@ from ._records import Run, read_run  # noqa: E402
 
 __version__ = _attend.__version__
 
+# The most pixels (height x width) of an image or frame handed to attend: OpenCV's limit for
+# decoded images, which attend's image readers keep (docs/LIMITS.md); a larger array is an
+# InputError before anything is copied.
+MAX_IMAGE_PIXELS = _attend.max_image_pixels
+
 Error = _attend.Error
 ConfigError = _attend.ConfigError
 InputError = _attend.InputError
@@ -55,7 +60,7 @@ __all__ = [
     "Pipeline", "FrameResult", "Tracker", "run", "saliency", "segment", "disparity",
     "read_run", "Run", "read_pfm", "write_pfm", "bundled_sequence", "frames", "imread", "imwrite", "feature", "eval_run", "eval_fixations", "compare", "register_feature",
     "configuration", "keys", "Error", "ConfigError", "InputError", "OutputError",
-    "PluginError", "InternalError", "InUseError", "__version__",
+    "PluginError", "InternalError", "InUseError", "MAX_IMAGE_PIXELS", "__version__",
 ]
 
 
