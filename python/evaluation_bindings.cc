@@ -75,8 +75,8 @@ void CheckRegularFile(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_regular_file(path, error)) return;
   const bool folder = std::filesystem::is_directory(path, error);
-  throw InputError(path + ": " + (folder ? "is a folder" : "is not a regular file") +
-                   "; a run folder holds it as a file");
+  throw InputError(path + ": " + (folder ? "is a folder, not a file"
+                                         : "is not a regular file (a fifo, a device, a socket)"));
 }
 
 // RUN/frames.jsonl checked as `attend eval` and `attend compare` read it (ReadFrameRecords:

@@ -3,6 +3,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstdint>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
@@ -78,6 +79,16 @@ py::object ReadPfmArray(const std::string& path) {
 }
 
 void WritePfmArray(const std::string& path, const py::array& map) {
+  // The size is checked on the shape, before the conversion to float32 copies the array.
+  if (py::isinstance<py::array>(map) && map.ndim() >= 2) {
+    const uint64_t pixels = static_cast<uint64_t>(map.shape(0)) * map.shape(1);
+    if (pixels > kMaxImagePixels) {
+      throw InputError(path + ": a map of " + std::to_string(map.shape(1)) + " x " +
+                       std::to_string(map.shape(0)) + " pixels is more than attend writes: at "
+                       "most " + std::to_string(kMaxImagePixels) +
+                       " pixels (attend.MAX_IMAGE_PIXELS)");
+    }
+  }
   const auto floats = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(map);
   const bool one = floats && floats.ndim() == 2;
   const bool three = floats && floats.ndim() == 3 && floats.shape(2) == 3;

@@ -24,6 +24,7 @@
 #include "python/in_use.h"
 #include "util/error.h"
 #include "util/execution_context.h"
+#include "util/limits.h"
 #include "util/timer.h"
 
 namespace attend::python {
@@ -85,6 +86,11 @@ class Pipeline {
 
   py::dict Process(const py::array& left, const py::object& right, int index) {
     const InUse::Scope scope(&in_use_, "process()");
+    // Records of frame numbers past this cannot be scored (attend eval refuses them).
+    if (index < -1 || index > kMaxFrameNumber) {
+      throw InputError("index: " + std::to_string(index) + " is not a frame number (0.." +
+                       std::to_string(kMaxFrameNumber) + ", docs/LIMITS.md)");
+    }
     StereoFrame frame;
     const cv::Mat native_left = BgrImage(left, "left");
     cv::Mat native_right;
@@ -363,6 +369,7 @@ py::dict Run(const py::dict& source, const std::string& config,
 }  // namespace
 
 void RegisterPipeline(py::module_& m) {
+  m.attr("max_frame_number") = kMaxFrameNumber;
   py::class_<Pipeline>(m, "Pipeline")
       .def(py::init([](const Configuration& c, double focal_px, double baseline_m, double cx,
                        double cy) {

@@ -14,6 +14,7 @@ attend.Error, whose `status` is the exit status `attend` gives for it.
 """
 
 import json as _json
+import operator as _operator
 import os as _os
 import sys as _sys
 import tempfile as _tempfile
@@ -163,8 +164,16 @@ class Pipeline:
         self._core = _attend.Pipeline(self._options, **camera)
 
     def process(self, left, right=None, index=None):
-        """Runs one frame (left and optional right: H x W x 3 uint8 BGR or H x W grey)."""
-        return FrameResult(self._core.process(left, right, -1 if index is None else index))
+        """Runs one frame (left and optional right: H x W x 3 uint8 BGR or H x W grey);
+        index, when given, is its frame number, 0..1000000 as in frames.jsonl."""
+        if index is None:
+            index = -1
+        else:
+            index = _operator.index(index)
+            if not 0 <= index <= _attend.max_frame_number:
+                raise InputError(f"index: {index} is not a frame number "
+                                 f"(0..{_attend.max_frame_number}, docs/LIMITS.md)")
+        return FrameResult(self._core.process(left, right, index))
 
     def reset(self):
         """Ends the sequence; the next frame starts a new one (new targets, new memory)."""
@@ -295,10 +304,19 @@ def frames(sequence):
                None if rights is None else _attend._frame_file(index, rights[index]))
 
 
+def _existing_file(path):
+    """path, after an InputError if it names something that is not a regular file: a folder,
+    or a fifo or device that would be read for ever (read_pfm("/dev/zero") hung)."""
+    path = _os.fspath(path)
+    if _os.path.exists(path) and not _os.path.isfile(path):
+        _attend._check_regular_file(path)
+    return path
+
+
 def imread(path, grey=False):
     """An image file as OpenCV's imread gives it: H x W x 3 uint8 BGR (H x W with grey); a file
     cut short is an InputError, not a part-grey image."""
-    return _attend.imread(_os.fspath(path), grey)
+    return _attend.imread(_existing_file(path), grey)
 
 
 def imwrite(path, image):
@@ -309,7 +327,7 @@ def imwrite(path, image):
 
 def read_pfm(path):
     """A PFM file (the run's lossless maps) as a float32 array, top row first."""
-    return _attend.read_pfm(_os.fspath(path))
+    return _attend.read_pfm(_existing_file(path))
 
 
 def write_pfm(path, image):

@@ -134,3 +134,36 @@ def test_the_command_line_exits_4_on_a_python_feature_map_not_finite(lab, tmp_pa
             "at pixel (x 20, y 10) of frame 1") in result.stderr
     # Frame 0 was done before the error, and is kept.
     assert os.path.isfile(tmp_path / "run" / "frames.jsonl")
+
+
+def test_a_pfm_map_over_the_cap_is_refused_before_its_copy(tmp_path):
+    # It wrote 3.6 GB in 20 s before: the conversion to float32 copied the view first.
+    started = time.monotonic()
+    path = tmp_path / "huge.pfm"
+    flat = np.broadcast_to(np.float32(0), (40000, 40000))
+    with pytest.raises(attend.InputError, match="a map of 40000 x 40000 pixels is more than"):
+        attend.write_pfm(path, flat)
+    assert time.monotonic() - started < 2.0 and not path.exists()
+
+
+@pytest.mark.parametrize("read", [attend.read_pfm, attend.imread])
+def test_reading_a_device_or_folder_as_an_image_is_refused_at_once(read, tmp_path):
+    # read_pfm("/dev/zero") read for ever.
+    with pytest.raises(attend.InputError, match=r"^/dev/zero: is not a regular file \("):
+        read("/dev/zero")
+    with pytest.raises(attend.InputError, match=f"^{tmp_path}: is a folder, not a file"):
+        read(tmp_path)
+    with pytest.raises(attend.InputError, match="no such|cannot open"):  # as before
+        read(tmp_path / "missing.pfm")
+
+
+def test_a_frame_index_out_of_the_records_range_is_refused():
+    pipeline = attend.Pipeline(config={"features": [{"name": "colour_contrast"}]})
+    frame = np.zeros((24, 32, 3), np.uint8)
+    for index in (-5, 1000001, 2 ** 31, 2 ** 70):
+        with pytest.raises(attend.InputError, match=f"^index: {index} is not a frame number "
+                                                    r"\(0\.\.1000000"):
+            pipeline.process(frame, index=index)
+    with pytest.raises(attend.InputError, match="^index: -2 is not a frame number"):
+        pipeline._core.process(frame, None, -2)  # the C++ check under the Python one
+    assert pipeline.process(frame, index=1000000).frame == 1000000
