@@ -1,5 +1,6 @@
 #include "python/arrays.h"
 
+#include <cstdint>
 #include <cstring>
 #include <opencv2/imgproc.hpp>
 #include <vector>
@@ -51,7 +52,7 @@ py::object MatArray(const cv::Mat& mat, bool writeable) {
   return array;
 }
 
-cv::Mat ImageView(const py::array& array, const std::string& what) {
+void CheckImage(const py::array& array, const std::string& what) {
   const bool grey = array.ndim() == 2;
   const bool bgr = array.ndim() == 3 && array.shape(2) == 3;
   if (!array.dtype().is(py::dtype::of<uint8_t>()) || !(grey || bgr)) {
@@ -60,16 +61,37 @@ cv::Mat ImageView(const py::array& array, const std::string& what) {
                      py::str(array.dtype()).cast<std::string>());
   }
   if (array.shape(0) == 0 || array.shape(1) == 0) throw InputError(what + ": is empty");
+  // Refused before any copy or OpenCV call: a 40000 x 40000 frame was copied (4.8 GB) and
+  // then refused by OpenCV with its own RuntimeError, seconds later (issue 46).
+  const uint64_t pixels = static_cast<uint64_t>(array.shape(0)) * array.shape(1);
+  if (pixels > kMaxImagePixels) {
+    throw InputError(what + ": an image of " + std::to_string(array.shape(1)) + " x " +
+                     std::to_string(array.shape(0)) + " pixels (" + std::to_string(pixels) +
+                     " in all) is more than attend takes: at most " +
+                     std::to_string(kMaxImagePixels) +
+                     " pixels (attend.MAX_IMAGE_PIXELS, OpenCV's limit for decoded images; "
+                     "docs/LIMITS.md)");
+  }
+}
+
+py::array ContiguousImage(const py::array& array, const std::string& what) {
+  CheckImage(array, what);
+  const py::array contiguous = py::array::ensure(array, py::array::c_style);
+  if (!contiguous) throw InputError(what + ": cannot be read as an array");
+  return contiguous;
+}
+
+cv::Mat ImageView(const py::array& array, const std::string& what) {
+  CheckImage(array, what);
   if (!(array.flags() & py::array::c_style)) {
     throw InputError(what + ": must be C-contiguous (numpy.ascontiguousarray makes it so)");
   }
   return cv::Mat(static_cast<int>(array.shape(0)), static_cast<int>(array.shape(1)),
-                 grey ? CV_8UC1 : CV_8UC3, const_cast<void*>(array.data()));
+                 array.ndim() == 2 ? CV_8UC1 : CV_8UC3, const_cast<void*>(array.data()));
 }
 
 cv::Mat BgrImage(const py::array& array, const std::string& what) {
-  const py::array contiguous = py::array::ensure(array, py::array::c_style);
-  if (!contiguous) throw InputError(what + ": cannot be read as an array");
+  const py::array contiguous = ContiguousImage(array, what);
   const cv::Mat view = ImageView(contiguous, what);
   cv::Mat image;
   if (view.channels() == 1) {
@@ -82,6 +104,15 @@ cv::Mat BgrImage(const py::array& array, const std::string& what) {
 
 void MapFromObject(const py::handle& object, cv::Size size, const std::string& what,
                    cv::Mat* out) {
+  // An array of another shape is refused before it is copied into float32.
+  if (py::isinstance<py::array>(object)) {
+    const auto array = py::reinterpret_borrow<py::array>(object);
+    if (array.ndim() != 2 || array.shape(0) != size.height || array.shape(1) != size.width) {
+      throw PluginError(what + ": returned a map of shape " + ShapeText(array) +
+                        "; it must be (height, width) = (" + std::to_string(size.height) + ", " +
+                        std::to_string(size.width) + "), the frame's working size");
+    }
+  }
   py::array_t<float, py::array::c_style | py::array::forcecast> map;
   try {
     map = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(object);

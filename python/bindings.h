@@ -37,7 +37,8 @@ void RegisterImages(py::module_& m);
 // attend.Tracker (tracking_bindings.cc).
 void RegisterTracking(py::module_& m);
 
-// attend.eval_run, eval_fixations and compare (evaluation_bindings.cc).
+// attend.eval_run, eval_fixations and compare, and the checks of a run folder's files that
+// attend.read_run makes with the command line's readers (evaluation_bindings.cc).
 void RegisterEvaluation(py::module_& m);
 
 }  // namespace attend::python

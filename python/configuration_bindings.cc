@@ -2,6 +2,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "config/param_block.h"
 #include "pipeline/options_io.h"
 #include "python/bindings.h"
+#include "python/in_use.h"
 #include "tracker/target_tracker.h"
 #include "util/error.h"
 
@@ -40,6 +42,18 @@ py::list DescribeKeys() {
   return keys;
 }
 
+// Raises `type` with `message`. A message may quote bytes of a damaged file that are not UTF-8
+// (a JSON parser's "last read: ..."): they are shown as \xNN escapes, where PyErr_SetString
+// would have dropped the whole message (issue 46).
+template <typename Type>
+void Raise(const py::exception<Type>& type, const char* message) {
+  PyObject* text = PyUnicode_DecodeUTF8(message, static_cast<Py_ssize_t>(std::strlen(message)),
+                                        "backslashreplace");
+  if (text == nullptr) return;  // out of memory: that error is set
+  PyErr_SetObject(type.ptr(), text);
+  Py_DECREF(text);
+}
+
 }  // namespace
 
 // The C++ errors as the package's exception classes (attend.ConfigError and the rest), each
@@ -51,21 +65,24 @@ void RegisterErrors(py::module_& m) {
   static py::exception<InputError> input(m, "InputError", error.ptr());
   static py::exception<PluginError> plugin(m, "PluginError", error.ptr());
   static py::exception<InternalError> internal(m, "InternalError", error.ptr());
+  static py::exception<InUseError> in_use(m, "InUseError", error.ptr());
   py::register_exception_translator([](std::exception_ptr pointer) {
     try {
       if (pointer) std::rethrow_exception(pointer);
     } catch (const ConfigError& e) {
-      config(e.what());
+      Raise(config, e.what());
     } catch (const OutputError& e) {
-      output(e.what());
+      Raise(output, e.what());
     } catch (const InputError& e) {
-      input(e.what());
+      Raise(input, e.what());
     } catch (const PluginError& e) {
-      plugin(e.what());
+      Raise(plugin, e.what());
     } catch (const InternalError& e) {
-      internal(e.what());
+      Raise(internal, e.what());
+    } catch (const InUseError& e) {
+      Raise(in_use, e.what());
     } catch (const Error& e) {
-      error(e.what());
+      Raise(error, e.what());
     }
   });
 }

@@ -1,14 +1,22 @@
-// attend.eval_run, eval_fixations and compare (python/bindings.h).
+// attend.eval_run, eval_fixations and compare, and the checks of attend.read_run
+// (python/bindings.h).
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "app/evaluate_fixations.h"
 #include "app/evaluate_run.h"
 #include "app/write_report.h"
+#include "eval/run_comparison.h"
+#include "io/frame_record.h"
 #include "python/bindings.h"
+#include "util/error.h"
 #include "util/json_text.h"
 
 namespace attend::python {
@@ -61,12 +69,62 @@ std::string Compare(const std::vector<std::string>& runs, const std::string& out
   return WriteReport(request).html;
 }
 
+// InputError unless `path` is a regular file (a folder, a fifo or a device is not read: a fifo
+// would block, /dev/zero would be read for ever).
+void CheckRegularFile(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_regular_file(path, error)) return;
+  const bool folder = std::filesystem::is_directory(path, error);
+  throw InputError(path + ": " + (folder ? "is a folder, not a file"
+                                         : "is not a regular file (a fifo, a device, a socket)"));
+}
+
+// RUN/frames.jsonl checked as `attend eval` and `attend compare` read it (ReadFrameRecords:
+// the same refusals, word for word), and for the shapes that reader lets through but
+// attend.Run reads: `targets` a list (the reader iterates a map's values) and `timings_ms` a
+// map. InputError naming the file and line; returns the number of records.
+size_t CheckFrameRecords(const std::string& path) {
+  const py::gil_scoped_release release;
+  CheckRegularFile(path);
+  const size_t records = ReadFrameRecords(path).size();
+  std::ifstream in(path);
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    const nlohmann::json record = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
+    const char* problem = nullptr;
+    if (record.is_discarded()) {
+      problem = "not JSON (the file changed while it was read?)";
+    } else if (!record.at("targets").is_array()) {
+      problem = "'targets' is not a list";
+    } else if (!record.at("timings_ms").is_object()) {
+      problem = "'timings_ms' is not a map of stage names to milliseconds";
+    }
+    if (problem != nullptr) {
+      throw InputError(path + ":" + std::to_string(number) + ": not a frame record (" + problem +
+                       ")");
+    }
+  }
+  return records;
+}
+
+// RUN/config.yaml checked as `attend compare` reads it (FlattenConfigFile: YAML within
+// ParamBlock's bounds, no duplicate keys); InputError naming the file.
+void CheckRunConfig(const std::string& path) {
+  const py::gil_scoped_release release;
+  CheckRegularFile(path);
+  FlattenConfigFile(path);
+}
+
 }  // namespace
 
 void RegisterEvaluation(py::module_& m) {
   m.def("eval_run", &EvalRun);
   m.def("eval_fixations", &EvalFixations);
   m.def("compare", &Compare);
+  m.def("_check_regular_file", &CheckRegularFile);
+  m.def("_check_frame_records", &CheckFrameRecords);
+  m.def("_check_run_config", &CheckRunConfig);
 }
 
 }  // namespace attend::python

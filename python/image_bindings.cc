@@ -3,6 +3,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstdint>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
@@ -59,7 +60,10 @@ py::object ReadImage(const std::string& path, bool grey) {
 
 // attend.imwrite: an 8-bit image (BGR or grey) to a file whose extension says the format.
 void WriteImage(const std::string& path, const py::array& image) {
-  const cv::Mat view = ImageView(py::array::ensure(image, py::array::c_style), "image");
+  // The contiguous array is held while its view is written (a strided array's copy would
+  // otherwise be freed at the end of the statement).
+  const py::array contiguous = ContiguousImage(image, "image");
+  const cv::Mat view = ImageView(contiguous, "image");
   const py::gil_scoped_release release;
   WriteImageFile(path, view);
 }
@@ -75,6 +79,16 @@ py::object ReadPfmArray(const std::string& path) {
 }
 
 void WritePfmArray(const std::string& path, const py::array& map) {
+  // The size is checked on the shape, before the conversion to float32 copies the array.
+  if (py::isinstance<py::array>(map) && map.ndim() >= 2) {
+    const uint64_t pixels = static_cast<uint64_t>(map.shape(0)) * map.shape(1);
+    if (pixels > kMaxImagePixels) {
+      throw InputError(path + ": a map of " + std::to_string(map.shape(1)) + " x " +
+                       std::to_string(map.shape(0)) + " pixels is more than attend writes: at "
+                       "most " + std::to_string(kMaxImagePixels) +
+                       " pixels (attend.MAX_IMAGE_PIXELS)");
+    }
+  }
   const auto floats = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(map);
   const bool one = floats && floats.ndim() == 2;
   const bool three = floats && floats.ndim() == 3 && floats.shape(2) == 3;
@@ -127,8 +141,10 @@ DisparityOptions DisparityKeywords(const std::vector<std::string>& overrides) {
 py::object Disparity(const py::array& left, const py::array& right,
                      const std::vector<std::string>& overrides) {
   const DisparityOptions options = DisparityKeywords(overrides);
-  const cv::Mat l = ImageView(py::array::ensure(left, py::array::c_style), "left");
-  const cv::Mat r = ImageView(py::array::ensure(right, py::array::c_style), "right");
+  const py::array left_array = ContiguousImage(left, "left");
+  const py::array right_array = ContiguousImage(right, "right");
+  const cv::Mat l = ImageView(left_array, "left");
+  const cv::Mat r = ImageView(right_array, "right");
   cv::Mat disparity;
   {
     const py::gil_scoped_release release;
@@ -141,6 +157,7 @@ py::object Disparity(const py::array& left, const py::array& right,
 }  // namespace
 
 void RegisterImages(py::module_& m) {
+  m.attr("max_image_pixels") = kMaxImagePixels;
   m.def("saliency", [](const py::array& image, const Configuration& c, bool features) {
     return Saliency(image, c.options, features);
   });

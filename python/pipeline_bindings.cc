@@ -21,8 +21,10 @@
 #include "pipeline/frame_pipeline.h"
 #include "python/arrays.h"
 #include "python/bindings.h"
+#include "python/in_use.h"
 #include "util/error.h"
 #include "util/execution_context.h"
+#include "util/limits.h"
 #include "util/timer.h"
 
 namespace attend::python {
@@ -83,6 +85,12 @@ class Pipeline {
   }
 
   py::dict Process(const py::array& left, const py::object& right, int index) {
+    const InUse::Scope scope(&in_use_, "process()");
+    // Records of frame numbers past this cannot be scored (attend eval refuses them).
+    if (index < -1 || index > kMaxFrameNumber) {
+      throw InputError("index: " + std::to_string(index) + " is not a frame number (0.." +
+                       std::to_string(kMaxFrameNumber) + ", docs/LIMITS.md)");
+    }
     StereoFrame frame;
     const cv::Mat native_left = BgrImage(left, "left");
     cv::Mat native_right;
@@ -108,6 +116,7 @@ class Pipeline {
   }
 
   void Reset() {
+    const InUse::Scope scope(&in_use_, "reset()");
     if (pipeline_ != nullptr && started_) pipeline_->EndSequence();
     started_ = false;
     next_index_ = options_.sequence.first_frame;
@@ -116,7 +125,8 @@ class Pipeline {
 
   // The addresses of the buffers of the last frame's maps, to check that the arrays handed out
   // are those buffers (docs/PYTHON.md, "Arrays").
-  py::dict buffers() const {
+  py::dict buffers() {
+    const InUse::Scope scope(&in_use_, "buffers()");
     py::dict addresses;
     auto address = [](const cv::Mat& map) { return reinterpret_cast<std::uintptr_t>(map.data); };
     addresses["saliency"] = address(pipeline_->saliency());
@@ -130,7 +140,8 @@ class Pipeline {
     return addresses;
   }
 
-  py::dict info() const {
+  py::dict info() {
+    const InUse::Scope scope(&in_use_, "info");
     py::dict info;
     info["started"] = started_;
     info["stereo"] = stereo_;
@@ -224,6 +235,9 @@ class Pipeline {
   bool stereo_ = true;
   bool started_ = false;
   int next_index_ = -1;
+  // process() and reset() release the GIL while they change the pipeline: one call at a time.
+  InUse in_use_{"attend.Pipeline",
+                "use one Pipeline a thread (pipelines of their own run in parallel)"};
 };
 
 // This thread's CPU time in milliseconds (what Python's time.thread_time() reads).
@@ -355,6 +369,7 @@ py::dict Run(const py::dict& source, const std::string& config,
 }  // namespace
 
 void RegisterPipeline(py::module_& m) {
+  m.attr("max_frame_number") = kMaxFrameNumber;
   py::class_<Pipeline>(m, "Pipeline")
       .def(py::init([](const Configuration& c, double focal_px, double baseline_m, double cx,
                        double cy) {

@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -15,6 +16,7 @@
 #include "features/feature_map.h"
 #include "features/python_plugins.h"
 #include "python/arrays.h"
+#include "python/in_use.h"
 #include "util/error.h"
 
 namespace attend::python {
@@ -61,6 +63,7 @@ class ContextView {
     if (regions_.is_none()) {
       const Segmentation* segmentation = nullptr;
       {
+        const InUse::Scope scope(&in_use_, "regions");
         const py::gil_scoped_release release;
         segmentation = &context().Regions();
       }
@@ -70,14 +73,15 @@ class ContextView {
   }
 
   py::object Cylinder() const {
-    return Computed([](const FrameContext& c) -> const cv::Mat& { return c.Cylinder(); });
+    return Computed("cylinder",
+                    [](const FrameContext& c) -> const cv::Mat& { return c.Cylinder(); });
   }
   py::object Tsl() const {
-    return Computed([](const FrameContext& c) -> const cv::Mat& { return c.Tsl(); });
+    return Computed("tsl", [](const FrameContext& c) -> const cv::Mat& { return c.Tsl(); });
   }
   py::object Disparity() const {
     if (!context().stereo()) return py::none();
-    return Computed([](const FrameContext& c) -> const cv::Mat& {
+    return Computed("disparity", [](const FrameContext& c) -> const cv::Mat& {
       return c.Disparity(c.disparity_options());
     });
   }
@@ -91,6 +95,7 @@ class ContextView {
     setup.stereo = context().stereo();
     cv::Mat map;
     {
+      const InUse::Scope scope(&in_use_, "builtin()");
       const py::gil_scoped_release release;
       std::unique_ptr<FeatureMap> feature = Builtins().Create(spec, setup);
       feature->Compute(context(), &map);
@@ -102,10 +107,11 @@ class ContextView {
   // A map the context computes on demand (`get`), computed without the GIL, as a read-only
   // array over the context's buffer.
   template <typename Get>
-  py::object Computed(const Get& get) const {
+  py::object Computed(const char* name, const Get& get) const {
     const FrameContext& frame = context();
     const cv::Mat* map = nullptr;
     {
+      const InUse::Scope scope(&in_use_, name);
       const py::gil_scoped_release release;
       map = &get(frame);
     }
@@ -114,6 +120,10 @@ class ContextView {
 
   const FrameContext* context_;
   py::object regions_ = py::none();
+  // The maps computed on demand are computed without the GIL, and the frame's context computes
+  // each once: a thread that the feature started may not compute one beside its compute().
+  mutable InUse in_use_{"feature context",
+                        "compute the maps a feature needs on the thread of its compute()"};
 };
 
 // A registered Python class's instance as a feature plugin.
@@ -154,7 +164,9 @@ class PythonFeature final : public FeatureMap {
     py::object result;
     Call("compute", [&] { result = instance_.attr("compute")(py::cast(view)); });
     view->Close();
-    MapFromObject(result, context.size(), "feature '" + name_ + "' (Python): compute()", out);
+    const std::string what = "feature '" + name_ + "' (Python): compute()";
+    MapFromObject(result, context.size(), what, out);
+    CheckFinite(*out, what, context.frame_index());
   }
 
   bool NeedsStereo() const override { return needs_stereo_; }
@@ -170,6 +182,27 @@ class PythonFeature final : public FeatureMap {
       throw PluginError("feature '" + name_ + "' (Python): " + method + "() raised:\n" +
                         Traceback(e));
     }
+  }
+
+  // PluginError naming the first pixel (row by row) of `map` that is NaN or infinite: the
+  // feature's own fault, reported as such (exit 4), not as a configuration error.
+  static void CheckFinite(const cv::Mat& map, const std::string& what, int frame) {
+    int bad = 0, first_x = -1, first_y = -1;
+    float first = 0.0f;
+    for (int y = 0; y < map.rows; ++y) {
+      const float* row = map.ptr<float>(y);
+      for (int x = 0; x < map.cols; ++x) {
+        if (std::isfinite(row[x])) continue;
+        if (bad++ == 0) first_x = x, first_y = y, first = row[x];
+      }
+    }
+    if (bad == 0) return;
+    throw PluginError(what + ": returned a map with " +
+                      (std::isnan(first) ? "NaN" : first > 0 ? "inf" : "-inf") +
+                      " at pixel (x " + std::to_string(first_x) + ", y " +
+                      std::to_string(first_y) + ") of frame " + std::to_string(frame) + " (" +
+                      std::to_string(bad) + " of its " + std::to_string(map.total()) +
+                      " values are not finite); a feature map must be finite everywhere");
   }
 
   std::string name_;

@@ -9,6 +9,7 @@
 
 #include "python/arrays.h"
 #include "python/bindings.h"
+#include "python/in_use.h"
 #include "tracker/target_tracker.h"
 #include "util/error.h"
 
@@ -23,6 +24,7 @@ class Tracker {
       : tracker_(TargetTracker::Create(options.attention.tracker)) {}
 
   int Start(const py::array& frame, const std::vector<int>& box) {
+    const InUse::Scope scope(&in_use_, "start()");
     if (box.size() != 4) throw ConfigError("box: must be [x, y, width, height]");
     const cv::Mat bgr = BgrImage(frame, "frame");
     const py::gil_scoped_release release;
@@ -30,8 +32,9 @@ class Tracker {
   }
 
   int StartMask(const py::array& frame, const py::array& mask) {
+    const InUse::Scope scope(&in_use_, "start()");
     const cv::Mat bgr = BgrImage(frame, "frame");
-    const cv::Mat m = ImageView(py::array::ensure(mask, py::array::c_style), "mask").clone();
+    const cv::Mat m = ImageView(ContiguousImage(mask, "mask"), "mask").clone();
     if (m.channels() != 1 || m.size() != bgr.size()) {
       throw InputError("mask: must be uint8 H x W of the frame's size");
     }
@@ -40,6 +43,7 @@ class Tracker {
   }
 
   py::list Track(const py::array& frame) {
+    const InUse::Scope scope(&in_use_, "track()");
     const cv::Mat bgr = BgrImage(frame, "frame");
     std::vector<TrackResult> results;
     {
@@ -59,13 +63,25 @@ class Tracker {
     return list;
   }
 
-  py::object Mask(int id) const { return MatArray(tracker_->Mask(id)); }
-  void Remove(int id) { tracker_->Remove(id); }
-  std::vector<int> ids() const { return tracker_->ids(); }
+  py::object Mask(int id) {
+    const InUse::Scope scope(&in_use_, "mask()");
+    return MatArray(tracker_->Mask(id));
+  }
+  void Remove(int id) {
+    const InUse::Scope scope(&in_use_, "remove()");
+    tracker_->Remove(id);
+  }
+  std::vector<int> ids() {
+    const InUse::Scope scope(&in_use_, "ids");
+    return tracker_->ids();
+  }
   std::string kind() const { return TrackerKindName(tracker_->kind()); }
 
  private:
   std::unique_ptr<TargetTracker> tracker_;
+  // start() and track() release the GIL while they change the tracker: one call at a time.
+  InUse in_use_{"attend.Tracker",
+                "use one Tracker a thread (trackers of their own run in parallel)"};
 };
 
 }  // namespace

@@ -8,11 +8,13 @@
 Options are the configuration's keys (configs/README.md, `attend run --list-keys`): a file,
 a dict of the same shape, and `set=["key.path=value", ...]` as `attend run --set`. Errors are
 attend.ConfigError (a bad key or value, with the key and, for a file, the line), InputError (bad
-frames or files), OutputError, PluginError (a Python feature raised) and InternalError; all
-derive from attend.Error, whose `status` is the exit status `attend` gives for it.
+frames or files), OutputError, PluginError (a Python feature raised), InUseError (a Pipeline or
+Tracker called from a second thread while a call runs) and InternalError; all derive from
+attend.Error, whose `status` is the exit status `attend` gives for it.
 """
 
 import json as _json
+import operator as _operator
 import os as _os
 import sys as _sys
 import tempfile as _tempfile
@@ -39,21 +41,27 @@ from ._records import Run, read_run  # noqa: E402
 
 __version__ = _attend.__version__
 
+# The most pixels (height x width) of an image or frame handed to attend: OpenCV's limit for
+# decoded images, which attend's image readers keep (docs/LIMITS.md); a larger array is an
+# InputError before anything is copied.
+MAX_IMAGE_PIXELS = _attend.max_image_pixels
+
 Error = _attend.Error
 ConfigError = _attend.ConfigError
 InputError = _attend.InputError
 OutputError = _attend.OutputError
 PluginError = _attend.PluginError
 InternalError = _attend.InternalError
+InUseError = _attend.InUseError
 for _error, _status in ((Error, 1), (ConfigError, 2), (OutputError, 2), (InputError, 3),
-                        (PluginError, 4), (InternalError, 1)):
+                        (PluginError, 4), (InternalError, 1), (InUseError, 2)):
     _error.status = _status
 
 __all__ = [
     "Pipeline", "FrameResult", "Tracker", "run", "saliency", "segment", "disparity",
     "read_run", "Run", "read_pfm", "write_pfm", "bundled_sequence", "frames", "imread", "imwrite", "feature", "eval_run", "eval_fixations", "compare", "register_feature",
     "configuration", "keys", "Error", "ConfigError", "InputError", "OutputError",
-    "PluginError", "InternalError", "__version__",
+    "PluginError", "InternalError", "InUseError", "MAX_IMAGE_PIXELS", "__version__",
 ]
 
 
@@ -129,7 +137,9 @@ class Pipeline:
 
     config: a configuration file, a dict of configuration keys, or None for
     configs/default.yaml; set: "key.path=value" overrides. The GIL is released while a frame is
-    processed, so pipelines in several threads run at once.
+    processed, so pipelines in several threads run at once; one pipeline runs one call at a time,
+    and a call from another thread meanwhile (process, reset, info, buffers) raises
+    attend.InUseError.
 
     focal_px and baseline_m (with principal_point, (cx, cy), default the image centre; all in
     the pixels of the frames handed in) describe a rectified stereo camera: each target seen in
@@ -154,8 +164,16 @@ class Pipeline:
         self._core = _attend.Pipeline(self._options, **camera)
 
     def process(self, left, right=None, index=None):
-        """Runs one frame (left and optional right: H x W x 3 uint8 BGR or H x W grey)."""
-        return FrameResult(self._core.process(left, right, -1 if index is None else index))
+        """Runs one frame (left and optional right: H x W x 3 uint8 BGR or H x W grey);
+        index, when given, is its frame number, 0..1000000 as in frames.jsonl."""
+        if index is None:
+            index = -1
+        else:
+            index = _operator.index(index)
+            if not 0 <= index <= _attend.max_frame_number:
+                raise InputError(f"index: {index} is not a frame number "
+                                 f"(0..{_attend.max_frame_number}, docs/LIMITS.md)")
+        return FrameResult(self._core.process(left, right, index))
 
     def reset(self):
         """Ends the sequence; the next frame starts a new one (new targets, new memory)."""
@@ -182,7 +200,8 @@ class Tracker:
     """A tracker of `kind` (bip, kcf, csrt) on numpy frames, as `attend track`; options are the
     configuration's tracker keys (e.g. mode="thesis", lost_frames=5). The BIP starts from
     configs/track.yaml (the correlation mode, docs/TRACKING.md): mode="thesis" gives the
-    thesis's tracker, mode="bounded", occlusion=True the bounded mode with its occlusion rules."""
+    thesis's tracker, mode="bounded", occlusion=True the bounded mode with its occlusion rules.
+    One call at a time: a call from another thread while one runs raises attend.InUseError."""
 
     def __init__(self, kind="bip", **options):
         overrides = _overrides({"tracker": dict(options, kind=kind)})
@@ -285,10 +304,19 @@ def frames(sequence):
                None if rights is None else _attend._frame_file(index, rights[index]))
 
 
+def _existing_file(path):
+    """path, after an InputError if it names something that is not a regular file: a folder,
+    or a fifo or device that would be read for ever (read_pfm("/dev/zero") hung)."""
+    path = _os.fspath(path)
+    if _os.path.exists(path) and not _os.path.isfile(path):
+        _attend._check_regular_file(path)
+    return path
+
+
 def imread(path, grey=False):
     """An image file as OpenCV's imread gives it: H x W x 3 uint8 BGR (H x W with grey); a file
     cut short is an InputError, not a part-grey image."""
-    return _attend.imread(_os.fspath(path), grey)
+    return _attend.imread(_existing_file(path), grey)
 
 
 def imwrite(path, image):
@@ -299,7 +327,7 @@ def imwrite(path, image):
 
 def read_pfm(path):
     """A PFM file (the run's lossless maps) as a float32 array, top row first."""
-    return _attend.read_pfm(_os.fspath(path))
+    return _attend.read_pfm(_existing_file(path))
 
 
 def write_pfm(path, image):

@@ -25,6 +25,58 @@ def target_depth(target):
             "x_sd_m": sd[0], "y_sd_m": sd[1], "z_sd_m": sd[2]}
 
 
+def _input_error(message):
+    return _attend.InputError(message)
+
+
+_JSON_NAMES = {dict: "an object", list: "a list", str: "a string", int: "a number",
+               float: "a number", bool: "true or false", type(None): "null"}
+
+
+def _text(path):
+    """A file of the run folder as UTF-8 text; InputError naming it otherwise."""
+    try:
+        with open(path, "rb") as file:
+            data = file.read()
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise _input_error(f"{path}: not UTF-8 text (byte {error.start + 1}: "
+                           f"{data[error.start:error.start + 1]!r})") from None
+    except OSError as error:
+        raise _input_error(f"{path}: cannot read ({error.strerror})") from None
+
+
+def _lines(path):
+    """(number, text) of the file's lines, split at \\n alone as the C++ reader splits them."""
+    try:
+        with open(path, "rb") as file:
+            data = file.read()
+    except OSError as error:
+        raise _input_error(f"{path}: cannot read ({error.strerror})") from None
+    for number, raw in enumerate(data.split(b"\n"), 1):
+        try:
+            yield number, raw.decode("utf-8")
+        except UnicodeDecodeError as error:
+            raise _input_error(f"{path}:{number}: not UTF-8 text (byte {error.start + 1} of "
+                               "the line)") from None
+
+
+def _refuse_constant(name):
+    raise ValueError(f"{name} is not JSON")
+
+
+def _parse(text, where, what, kind):
+    """JSON text as the C++ readers take it (no NaN or Infinity) of the type `kind`;
+    InputError at `where` otherwise."""
+    try:
+        value = json.loads(text, parse_constant=_refuse_constant)
+    except (ValueError, RecursionError) as error:
+        raise _input_error(f"{where}: {what} ({type(error).__name__}: {error})") from None
+    if not isinstance(value, kind):
+        raise _input_error(f"{where}: {what} (it is {_JSON_NAMES[type(value)]})")
+    return value
+
+
 class Run:
     """A run folder: its effective configuration, summary, frame records and scan path.
 
@@ -38,33 +90,31 @@ class Run:
     def __init__(self, folder):
         self.dir = os.fspath(folder)
         records = os.path.join(self.dir, "frames.jsonl")
-        if not os.path.isfile(records):
-            from . import InputError
-            raise InputError(f"{self.dir}: not a run folder (no frames.jsonl)")
+        if not os.path.lexists(records):
+            raise _input_error(f"{self.dir}: not a run folder (no frames.jsonl)")
+        # Every line as `attend eval` reads it (the C++ reader: what it refuses, read_run
+        # refuses, with the same message), then as JSON for the dicts.
+        _attend._check_frame_records(records)
         self.frames = []
-        with open(records, encoding="utf-8") as file:
-            for number, line in enumerate(file, 1):
-                if not line.strip():
-                    continue
-                try:
-                    self.frames.append(json.loads(line))
-                except json.JSONDecodeError as error:
-                    from . import InputError
-                    raise InputError(f"{records}:{number}: not a JSON record: {error}") from None
-        self.summary = self._json("summary.json", {})
-        self.scanpath = self._json("scanpath.json", [])
+        for number, line in _lines(records):
+            if line.strip():
+                self.frames.append(_parse(line, f"{records}:{number}",
+                                          "not a frame record", dict))
+        self.summary = self._json("summary.json", {}, dict)
+        self.scanpath = self._json("scanpath.json", [], list)
         self.config = ""
         config = os.path.join(self.dir, "config.yaml")
-        if os.path.isfile(config):
-            with open(config, encoding="utf-8") as file:
-                self.config = file.read()
+        if os.path.lexists(config):
+            _attend._check_run_config(config)
+            self.config = _text(config)
 
-    def _json(self, name, fallback):
+    def _json(self, name, fallback, kind):
         path = os.path.join(self.dir, name)
-        if not os.path.isfile(path):
+        if not os.path.lexists(path):
             return fallback
-        with open(path, encoding="utf-8") as file:
-            return json.load(file)
+        _attend._check_regular_file(path)
+        return _parse(_text(path), path, "not " + ("a JSON object" if kind is dict
+                                                    else "a JSON list"), kind)
 
     def __repr__(self):
         return f"<attend.Run {self.dir}: {len(self.frames)} frames>"
@@ -117,8 +167,7 @@ class Run:
         """A dumped map of a frame (PFM), float32 at the working size."""
         path = os.path.join(self.dir, kind, f"{frame:06d}.pfm")
         if not os.path.isfile(path):
-            from . import InputError
-            raise InputError(f"{path}: no such map (output.dump and output.map_formats say "
+            raise _input_error(f"{path}: no such map (output.dump and output.map_formats say "
                              "which maps a run writes)")
         return _attend.read_pfm(path)
 
