@@ -82,6 +82,14 @@ int PrintRun(const SweepRunResult& result, bool retry_failed, bool quiet) {
               << ": run the same command again to finish";
   }
   std::cout << std::endl;
+  for (const std::string& problem : result.local.problems) {
+    std::cerr << "attend: " << problem << "\n";
+  }
+  if (p.skipped > 0) {
+    std::cout << result.dir << ": " << p.skipped
+              << " cells were left to the process that runs them (attend sweep " << result.dir
+              << " --status)" << std::endl;
+  }
   if (p.failed > 0 && !quiet) {
     std::cerr << "attend: " << p.failed << " cells failed: attend sweep " << result.dir
               << " --status says why; --retry-failed runs them again\n";
