@@ -115,6 +115,13 @@ bool FolderExists(const fs::path& folder) {
   return fs::is_directory(folder, error);
 }
 
+// A cell folder whose cell.json is gone was removed while the cell ran (its command may have
+// made parts of it again, such as out/).
+bool Vanished(const fs::path& cell_dir) {
+  std::error_code error;
+  return !fs::exists(cell_dir / "cell.json", error);
+}
+
 const char* kVanished = "the cell folder vanished while it ran";
 
 // A cell's status.json: running from the start, then how the cell ended, with its wall time.
@@ -247,7 +254,7 @@ int RunCell(const std::string& dir, int index) {
     const std::string log =
         (cell_dir / "logs" / (std::to_string(step + 1) + "-" + commands[step][0])).string();
     const StepEnd end = RunStep(program, commands[step], log, in_slurm);
-    if (!FolderExists(cell_dir)) {
+    if (Vanished(cell_dir)) {
       return status.Finish("failed", 2, kVanished + (end.state.empty() ? std::string()
                                                                         : " (" + end.message + ")"));
     }
@@ -268,10 +275,95 @@ int RunCell(const std::string& dir, int index) {
     WriteSweepFile((cell_dir / "scores.json").string(), JsonText(scores, 2) + "\n",
                     "the cell's scores");
   } catch (const Error& e) {
-    return status.Finish("failed", 2, FolderExists(cell_dir) ? e.what() : kVanished);
+    return status.Finish("failed", 2, Vanished(cell_dir) ? kVanished : e.what());
   }
   return status.Finish("done", 0, "");
 }
+
+namespace {
+
+std::string CellLine(const StoredSweep& sweep, int index) {
+  return "cell " + std::to_string(index) + " (" + sweep.cells[index].name + ")";
+}
+
+// Starts `attend sweep DIR --cell I`; -1 when the cell is left to another process that runs
+// it (skipped) or cannot start (failed), which `result` then counts and says why.
+pid_t StartCell(const StoredSweep& sweep, int index, const std::string& program,
+                LocalSweepResult* result) {
+  const fs::path cell_dir = sweep.CellDir(sweep.cells[index]);
+  // A cell that another process runs (`attend sweep DIR --cell I`, a Slurm task) is left to it.
+  const std::string holder = FolderLockHolder(cell_dir.string());
+  if (!holder.empty()) {
+    ++result->progress.skipped;
+    result->problems.push_back(CellLine(sweep, index) + ": running elsewhere (" + holder +
+                               "); left to it");
+    return -1;
+  }
+  const fs::path logs = cell_dir / "logs";
+  std::error_code error;
+  fs::create_directories(logs, error);
+  // A cell folder that cannot be written fails alone; the others run.
+  std::string problem = error ? logs.string() + ": cannot create the folder: " + error.message()
+                              : CheckWritable({(logs / "cell.out").string(),
+                                               (logs / "cell.err").string()});
+  pid_t pid = -1;
+  if (problem.empty()) {
+    std::string start_error;
+    pid = StartProcess({program, "sweep", sweep.dir, "--cell", std::to_string(index)},
+                       (logs / "cell.out").string(), (logs / "cell.err").string(), &start_error,
+                       true);
+    if (pid < 0) problem = "cannot start " + start_error;
+  }
+  if (pid < 0) {
+    ++result->progress.failed;
+    result->problems.push_back(CellLine(sweep, index) + ": " + problem);
+  }
+  return pid;
+}
+
+// Counts cell `index`, whose process `pid` ended with `wait_status`. The record is the
+// process's when it names its pid; else the cell ended before writing one (its folder cannot
+// be written, its lock is held, the disk is full): its error says why.
+void CountEnded(const StoredSweep& sweep, int index, pid_t pid, int wait_status, bool stopped,
+                LocalSweepResult* result) {
+  LocalProgress& progress = result->progress;
+  CellStatus cell;
+  std::string unreadable;
+  try {
+    cell = ReadCellStatus(sweep, sweep.cells[index]);
+  } catch (const Error& e) {
+    unreadable = e.what();
+  }
+  if (unreadable.empty() && cell.pid == pid && cell.state != CellState::kRunning) {
+    if (cell.state == CellState::kDone) {
+      ++progress.done;
+      progress.cell_seconds += cell.seconds;
+    } else if (cell.state == CellState::kFailed || cell.state == CellState::kKilled) {
+      ++progress.failed;
+      progress.cell_seconds += cell.seconds;
+    }
+    return;
+  }
+  const fs::path cell_dir = sweep.CellDir(sweep.cells[index]);
+  std::string why = ErrorMessage(ReadFileText(cell_dir / "logs" / "cell.err"));
+  if (why.empty()) why = unreadable;
+  if (why.empty()) {
+    const std::string cause = WhyUnwritable(cell_dir.string());
+    why = (WIFEXITED(wait_status)
+               ? "ended with exit status " + std::to_string(WEXITSTATUS(wait_status))
+               : std::string("ended")) +
+          " without a record" + (cause.empty() ? "" : " (" + cause + ")");
+  }
+  if (why.find("in use by another attend") != std::string::npos) {
+    ++progress.skipped;
+    result->problems.push_back(CellLine(sweep, index) + ": running elsewhere: " + why);
+  } else if (!stopped) {
+    ++progress.failed;
+    result->problems.push_back(CellLine(sweep, index) + ": " + why);
+  }
+}
+
+}  // namespace
 
 LocalSweepResult RunSweepLocally(const StoredSweep& sweep, const std::vector<int>& indexes,
                                  int jobs, const std::atomic<int>* stop,
@@ -284,9 +376,6 @@ LocalSweepResult RunSweepLocally(const StoredSweep& sweep, const std::vector<int
   std::map<pid_t, int> running;  // pid to cell index
   std::size_t next = 0;
   int forwarded = 0;
-  const auto cell_line = [&](int index) {
-    return "cell " + std::to_string(index) + " (" + sweep.cells[index].name + ")";
-  };
   while (next < indexes.size() || !running.empty()) {
     const int signal = stop != nullptr ? stop->load() : 0;
     if (signal != 0 && forwarded == 0) {
@@ -296,37 +385,8 @@ LocalSweepResult RunSweepLocally(const StoredSweep& sweep, const std::vector<int
     }
     while (signal == 0 && next < indexes.size() && static_cast<int>(running.size()) < jobs) {
       const int index = indexes[next++];
-      const fs::path cell_dir = sweep.CellDir(sweep.cells[index]);
-      // A cell that another process runs (`attend sweep DIR --cell I`, a Slurm task) is left
-      // to it.
-      const std::string holder = FolderLockHolder(cell_dir.string());
-      if (!holder.empty()) {
-        ++progress.skipped;
-        result.problems.push_back(cell_line(index) + ": running elsewhere (" + holder +
-                                  "); left to it");
-        continue;
-      }
-      const fs::path logs = cell_dir / "logs";
-      std::error_code error;
-      fs::create_directories(logs, error);
-      // A cell folder that cannot be written fails alone; the others run.
-      std::string problem = error ? logs.string() + ": cannot create the folder: " + error.message()
-                                  : CheckWritable({(logs / "cell.out").string(),
-                                                   (logs / "cell.err").string()});
-      pid_t pid = -1;
-      if (problem.empty()) {
-        std::string start_error;
-        pid = StartProcess({program, "sweep", sweep.dir, "--cell", std::to_string(index)},
-                           (logs / "cell.out").string(), (logs / "cell.err").string(),
-                           &start_error, true);
-        if (pid < 0) problem = "cannot start " + start_error;
-      }
-      if (pid < 0) {
-        ++progress.failed;
-        result.problems.push_back(cell_line(index) + ": " + problem);
-        continue;
-      }
-      running[pid] = index;
+      const pid_t pid = StartCell(sweep, index, program, &result);
+      if (pid > 0) running[pid] = index;
     }
     progress.running = static_cast<int>(running.size());
     progress.elapsed_s = watch.ElapsedMs() / 1000.0;
@@ -343,43 +403,7 @@ LocalSweepResult RunSweepLocally(const StoredSweep& sweep, const std::vector<int
     if (found == running.end()) continue;
     const int index = found->second;
     running.erase(found);
-    CellStatus cell;
-    std::string unreadable;
-    try {
-      cell = ReadCellStatus(sweep, sweep.cells[index]);
-    } catch (const Error& e) {
-      unreadable = e.what();
-    }
-    // The record is this process's when it names its pid; else the cell ended before writing
-    // one (its folder cannot be written, its lock is held): its error says why.
-    const bool own = unreadable.empty() && cell.pid == pid && cell.state != CellState::kRunning;
-    if (!own) {
-      const std::string err =
-          ErrorMessage(ReadFileText(fs::path(sweep.CellDir(sweep.cells[index])) / "logs" / "cell.err"));
-      std::string why = !err.empty() ? err : unreadable;
-      if (why.empty()) {
-        const std::string cause = WhyUnwritable(sweep.CellDir(sweep.cells[index]));
-        why = (WIFEXITED(wait_status)
-                   ? "ended with exit status " + std::to_string(WEXITSTATUS(wait_status))
-                   : std::string("ended")) +
-              " without a record" + (cause.empty() ? "" : " (" + cause + ")");
-      }
-      if (why.find("in use by another attend") != std::string::npos) {
-        ++progress.skipped;
-        result.problems.push_back(cell_line(index) + ": running elsewhere: " + why);
-      } else if (forwarded == 0) {
-        ++progress.failed;
-        result.problems.push_back(cell_line(index) + ": " + why);
-      }
-      continue;
-    }
-    if (cell.state == CellState::kDone) {
-      ++progress.done;
-      progress.cell_seconds += cell.seconds;
-    } else if (cell.state == CellState::kFailed || cell.state == CellState::kKilled) {
-      ++progress.failed;
-      progress.cell_seconds += cell.seconds;
-    }
+    CountEnded(sweep, index, pid, wait_status, forwarded != 0, &result);
   }
   progress.running = 0;
   progress.elapsed_s = watch.ElapsedMs() / 1000.0;

@@ -10,9 +10,21 @@
 #include <utility>
 #include <vector>
 
-#include "app/sweep_folder.h"
-
 namespace attend {
+
+// What a cell's status.json says (docs/SWEEPS.md).
+enum class CellState { kWaiting, kRunning, kDone, kFailed, kKilled, kInterrupted };
+
+struct CellStatus {
+  CellState state = CellState::kWaiting;
+  int exit_status = 0;
+  std::string message;   // the error of a failed cell, the cause of a killed one
+  double seconds = 0.0;  // wall time of a finished cell
+  std::string host;
+  long pid = 0;
+  std::string executor;    // local or slurm
+  std::string slurm_task;  // JOB_TASK of a Slurm array task
+};
 
 // The size of a record read whole (docs/LIMITS.md): a sweep.json of the largest sweep
 // (kMaxSweepCells cells) is a few MB.

@@ -44,6 +44,33 @@ std::string CsvNumber(double value) {
   return text.str();
 }
 
+// Reads the cell's status.json and, done, its scores.json into `view`. A record that cannot
+// be read (edited by hand, cut short) is no result: the cell is waiting, to run again, and
+// the message naming the file and the key is returned.
+std::string ReadRecords(const StoredSweep& sweep, const StoredCell& cell, CellView* view) {
+  try {
+    view->status = ReadCellStatus(sweep, cell);
+    if (view->status.state == CellState::kDone) view->scores = ReadCellScores(sweep, cell);
+  } catch (const Error& e) {
+    view->status = CellStatus();
+    view->scores.clear();
+    return std::string(e.what()) + "; the cell runs again";
+  }
+  return "";
+}
+
+// A folder that cannot be written fails whatever runs it; a done cell keeps its result.
+void CheckWritable(const std::string& cell_dir, CellView* view) {
+  std::error_code error;
+  if (view->state != CellState::kDone && view->state != CellState::kRunning &&
+      fs::is_directory(cell_dir, error) && access(cell_dir.c_str(), W_OK) != 0) {
+    view->state = CellState::kFailed;
+    view->unwritable = true;
+    view->detail = cell_dir + ": cannot be written (" + std::strerror(errno) +
+                   "); make it writable, and it runs again";
+  }
+}
+
 }  // namespace
 
 std::vector<CellView> ViewCells(const StoredSweep& sweep, std::vector<std::string>* notes) {
@@ -55,16 +82,7 @@ std::vector<CellView> ViewCells(const StoredSweep& sweep, std::vector<std::strin
     CellView view;
     view.index = cell.index;
     const std::string cell_dir = sweep.CellDir(cell);
-    // A record that cannot be read (edited by hand, cut short) is no result: the cell is
-    // waiting, to run again, and the note names the file and the key.
-    std::string damaged;
-    try {
-      view.status = ReadCellStatus(sweep, cell);
-      if (view.status.state == CellState::kDone) view.scores = ReadCellScores(sweep, cell);
-    } catch (const Error& e) {
-      damaged = e.what();
-      view.status = CellStatus();
-    }
+    const std::string damaged = ReadRecords(sweep, cell, &view);
     // Whoever holds the cell's lock runs it, whatever its record says.
     const std::string holder = FolderLockHolder(cell_dir);
     const auto queued = slurm.queued.find(cell.index);
@@ -77,10 +95,7 @@ std::vector<CellView> ViewCells(const StoredSweep& sweep, std::vector<std::strin
       views.push_back(std::move(view));
       continue;
     }
-    if (!damaged.empty()) {
-      view.detail = damaged + "; the cell runs again";
-      notes->push_back("cell " + std::to_string(cell.index) + ": " + view.detail);
-    }
+    if (!damaged.empty()) notes->push_back("cell " + std::to_string(cell.index) + ": " + damaged);
     switch (status.state) {
       case CellState::kDone:
         view.state = CellState::kDone;
@@ -126,21 +141,14 @@ std::vector<CellView> ViewCells(const StoredSweep& sweep, std::vector<std::strin
       case CellState::kWaiting:
         view.state = CellState::kWaiting;
         if (status.state == CellState::kInterrupted) view.detail = "interrupted: " + status.message;
+        if (!damaged.empty()) view.detail = damaged;
         if (view.queued) {
           view.state = slurm_state == "PENDING" ? CellState::kWaiting : CellState::kRunning;
           view.detail = "Slurm task " + slurm.task.at(cell.index) + ": " + slurm_state;
         }
         break;
     }
-    // A folder that cannot be written fails whatever runs it; a done cell keeps its result.
-    std::error_code error;
-    if (view.state != CellState::kDone && view.state != CellState::kRunning &&
-        fs::is_directory(cell_dir, error) && access(cell_dir.c_str(), W_OK) != 0) {
-      view.state = CellState::kFailed;
-      view.unwritable = true;
-      view.detail = cell_dir + ": cannot be written (" + std::strerror(errno) +
-                    "); make it writable, and it runs again";
-    }
+    CheckWritable(cell_dir, &view);
     views.push_back(std::move(view));
   }
   return views;
