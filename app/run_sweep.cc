@@ -181,6 +181,7 @@ SweepRunResult RunSweep(const SweepRequest& request, const OpenedSweep& opened,
     result.done += cell.state == CellState::kDone ? 1 : 0;
     result.failed += cell.state == CellState::kFailed || cell.state == CellState::kKilled ? 1 : 0;
     result.queued += cell.queued ? 1 : 0;
+    result.running += cell.state == CellState::kRunning && !cell.queued ? 1 : 0;
   }
   if (result.started.empty()) return result;
   if (request.slurm) {

@@ -134,6 +134,27 @@ TEST_F(SweepHardening, WhileASweepRunsASecondRunnerOfItsCellOrItsFolderIsRefused
   EXPECT_FALSE(fs::exists(sweep + "/.attend-lock"));
 }
 
+TEST_F(SweepHardening, ASweepLeavesACellThatAnotherProcessRunsToIt) {
+  const TempDir background;
+  const TempDir work;
+  const std::string sweep = work.File("s");
+  PrepareOnly(work, TwoSlowCells(work), sweep);
+  const std::string cell = CellFolder(sweep, 0);
+  const pid_t pid = testing::StartAttend(background, {"sweep", sweep, "--cell", "0"});
+  ASSERT_TRUE(WaitFor(cell + "/status.json", "\"running\""));
+  const std::string started = nlohmann::json::parse(ReadText(cell + "/status.json"))["started"];
+  const Result r = Attend(work, {"sweep", sweep, "--local", "2"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(Contains(r.out, "1 of 1 cells done")) << r.out;
+  EXPECT_TRUE(Contains(r.out, "1 cells were left to another process that runs them")) << r.out;
+  const Result ended = testing::Wait(background, pid);
+  EXPECT_EQ(ended.status, 0) << ended.err;
+  // Run once, by the process that started it.
+  const nlohmann::json status = nlohmann::json::parse(ReadText(cell + "/status.json"));
+  EXPECT_EQ(status["started"], started);
+  EXPECT_EQ(status["state"], "done");
+}
+
 TEST_F(SweepHardening, TheLockOfAKilledCellIsTakenOverWhenTheSweepResumes) {
   const TempDir background;
   const TempDir work;
