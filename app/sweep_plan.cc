@@ -79,8 +79,15 @@ std::string CellName(const SweepInput& input, const std::vector<SweepSetting>& s
   std::string readable = input.name;
   std::string identity = input.name;
   for (const auto& [key, value] : settings) {
-    readable += "_" + ShortKey(key, keys) + "=" + value;
-    identity += "\n" + key + "=" + value;
+    // Appended piece by piece: "_" + a temporary trips GCC 12's -Wrestrict (a false alarm).
+    readable += '_';
+    readable += ShortKey(key, keys);
+    readable += '=';
+    readable += value;
+    identity += '\n';
+    identity += key;
+    identity += '=';
+    identity += value;
   }
   char hash[9];
   std::snprintf(hash, sizeof(hash), "%08x", static_cast<unsigned>(Fnv1a(identity) & 0xffffffffU));
