@@ -9,6 +9,7 @@
 #include "app/sweep_folder.h"
 #include "app/sweep_results.h"
 #include "util/error.h"
+#include "util/folder_lock.h"
 #include "util/output_folder.h"
 #include "util/strings.h"
 #include "util/subprocess.h"
@@ -155,7 +156,18 @@ SweepStatus ReadSweepStatus(const std::string& dir) {
 
 SweepRunResult RunSweep(const SweepRequest& request, const OpenedSweep& opened,
                         const SweepObserver& observer) {
+  // One sweep at a time a folder, from before its preparation (a second, an --extend or a
+  // --retry-failed is refused at once, writing nothing) to its last cell. A sweep that was
+  // killed leaves a stale lock, taken over here.
+  std::error_code error;
+  fs::create_directories(opened.out, error);
+  if (error) throw OutputError(opened.out + ": cannot create the folder: " + error.message());
+  const FolderLock lock(opened.out, "sweep");
   std::vector<std::string> notes;
+  if (!lock.stale_holder().empty()) {
+    notes.push_back("took over the lock of a sweep that ended without releasing it (" +
+                    lock.stale_holder() + ")");
+  }
   const StoredSweep sweep = PrepareSweepFolder(opened.plan, opened.out, request.extend, &notes);
   const std::vector<CellView> cells = ViewCells(sweep, &notes);
   for (const std::string& note : notes) {
@@ -169,6 +181,7 @@ SweepRunResult RunSweep(const SweepRequest& request, const OpenedSweep& opened,
     result.done += cell.state == CellState::kDone ? 1 : 0;
     result.failed += cell.state == CellState::kFailed || cell.state == CellState::kKilled ? 1 : 0;
     result.queued += cell.queued ? 1 : 0;
+    result.running += cell.state == CellState::kRunning && !cell.queued ? 1 : 0;
   }
   if (result.started.empty()) return result;
   if (request.slurm) {

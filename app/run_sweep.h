@@ -81,6 +81,7 @@ struct SweepRunResult {
   int done = 0;
   int failed = 0;                             // failed or killed
   int queued = 0;                             // still queued in Slurm
+  int running = 0;                            // run by another process (their locks held)
   std::optional<SlurmSubmission> submission;  // with --slurm
   int jobs = 0;                               // cells at once, run here
   LocalSweepResult local;                     // run here

@@ -2,10 +2,10 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
@@ -15,7 +15,9 @@
 #include <set>
 #include <sstream>
 
+#include "app/sweep_records.h"
 #include "util/error.h"
+#include "util/folder_lock.h"
 #include "util/json_text.h"
 #include "util/output_folder.h"
 #include "util/strings.h"
@@ -104,8 +106,23 @@ Json CellScores(const std::string& command, const fs::path& cell_dir, const std:
 }
 
 void WriteStatus(const fs::path& cell_dir, const Json& status) {
-  ReplaceFileText((cell_dir / "status.json").string(), JsonText(status, 2) + "\n");
+  WriteSweepFile((cell_dir / "status.json").string(), JsonText(status, 2) + "\n",
+                  "the cell's status");
 }
+
+bool FolderExists(const fs::path& folder) {
+  std::error_code error;
+  return fs::is_directory(folder, error);
+}
+
+// A cell folder whose cell.json is gone was removed while the cell ran (its command may have
+// made parts of it again, such as out/).
+bool Vanished(const fs::path& cell_dir) {
+  std::error_code error;
+  return !fs::exists(cell_dir / "cell.json", error);
+}
+
+const char* kVanished = "the cell folder vanished while it ran";
 
 // A cell's status.json: running from the start, then how the cell ended, with its wall time.
 class CellStatusFile {
@@ -114,8 +131,13 @@ class CellStatusFile {
       : cell_dir_(std::move(cell_dir)), status_(std::move(status)) {
     WriteStatus(cell_dir_, status_);
   }
-  // Records the end; returns `exit_status`.
+  // Records the end; returns `exit_status`. A cell folder removed meanwhile is made again to
+  // hold the record (the next `attend sweep DIR` writes its cell.json again).
   int Finish(const std::string& state, int exit_status, const std::string& message) {
+    if (!FolderExists(cell_dir_)) {
+      std::error_code error;
+      fs::create_directories(cell_dir_, error);
+    }
     status_["state"] = state;
     status_["exit_status"] = exit_status;
     if (!message.empty()) status_["message"] = message;
@@ -131,6 +153,16 @@ class CellStatusFile {
   Stopwatch watch_;
 };
 
+// "" when each file can be created (or truncated) for writing, else which and why.
+std::string CheckWritable(const std::vector<std::string>& paths) {
+  for (const std::string& path : paths) {
+    const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) return "cannot write " + path + ": " + std::strerror(errno);
+    close(fd);
+  }
+  return "";
+}
+
 // How a command of a cell ended: state "" when it succeeded, else failed, killed or
 // interrupted, with the cell's exit status and why.
 struct StepEnd {
@@ -145,6 +177,10 @@ StepEnd RunStep(const std::string& program, const std::vector<std::string>& comm
                 const std::string& log, bool in_slurm) {
   std::vector<std::string> argv = {program};
   argv.insert(argv.end(), command.begin(), command.end());
+  // The logs are opened here first: posix_spawn's failure to open them reads as the
+  // program's ("cannot start attend: No such file or directory").
+  const std::string log_error = CheckWritable({log + ".out", log + ".err"});
+  if (!log_error.empty()) return {"failed", 2, command[0] + " could not start: " + log_error};
   std::string start_error;
   const pid_t pid = StartProcess(argv, log + ".out", log + ".err", &start_error, true);
   if (pid < 0) return {"failed", 1, "cannot start " + program + ": " + start_error};
@@ -165,7 +201,10 @@ StepEnd RunStep(const std::string& program, const std::vector<std::string>& comm
   if (exit.signal != 0) {
     return {"killed", exit.Status(), command[0] + " was killed by " + strsignal(exit.signal)};
   }
-  return {"failed", exit.code, command[0] + ": " + ErrorMessage(ReadFileText(log + ".err"))};
+  const std::string error = ErrorMessage(ReadFileText(log + ".err"));
+  return {"failed", exit.code,
+          command[0] + (error.empty() ? " failed with exit status " + std::to_string(exit.code)
+                                      : ": " + error)};
 }
 
 }  // namespace
@@ -178,9 +217,20 @@ int RunCell(const std::string& dir, int index) {
   }
   const StoredCell& cell = sweep.cells[index];
   const fs::path cell_dir = sweep.CellDir(cell);
-  const std::vector<std::vector<std::string>> commands = ReadCellCommands(sweep, cell);
   std::error_code error;
+  if (!fs::exists(cell_dir / "cell.json", error)) {
+    throw InputError(cell_dir.string() + ": the cell's folder (or its cell.json) is missing; "
+                     "attend sweep " + sweep.dir + " writes it again and runs the cell");
+  }
+  // One runner a cell: a second `--cell` (or a sweep that reaches the cell) is refused while
+  // this one holds it; the lock of a runner that was killed is taken over.
+  FolderLock lock(cell_dir.string(), "sweep cell");
+  const std::vector<std::vector<std::string>> commands = ReadCellCommands(sweep, cell);
   fs::create_directories(cell_dir / "logs", error);
+  if (error) {
+    throw OutputError((cell_dir / "logs").string() + ": cannot create the folder: " +
+                      error.message());
+  }
   fs::remove(cell_dir / "scores.json", error);
 
   const char* job = std::getenv("SLURM_ARRAY_JOB_ID");
@@ -191,6 +241,7 @@ int RunCell(const std::string& dir, int index) {
                   {"host", HostName()},       {"pid", static_cast<long>(getpid())},
                   {"started", UtcTimestamp()}};
   if (in_slurm) running["slurm_task"] = std::string(job) + "_" + task;
+  if (!lock.stale_holder().empty()) running["took_over_lock_of"] = lock.stale_holder();
   CellStatusFile status(cell_dir, std::move(running));
 
   g_cell_signal.store(0);
@@ -203,6 +254,10 @@ int RunCell(const std::string& dir, int index) {
     const std::string log =
         (cell_dir / "logs" / (std::to_string(step + 1) + "-" + commands[step][0])).string();
     const StepEnd end = RunStep(program, commands[step], log, in_slurm);
+    if (Vanished(cell_dir)) {
+      return status.Finish("failed", 2, kVanished + (end.state.empty() ? std::string()
+                                                                        : " (" + end.message + ")"));
+    }
     if (!end.state.empty()) return status.Finish(end.state, end.exit_status, end.message);
     if (step + 1 == commands.size()) scorer_out = ReadFileText(log + ".out");
   }
@@ -216,19 +271,103 @@ int RunCell(const std::string& dir, int index) {
   } catch (const std::exception& e) {
     return status.Finish("failed", 1, std::string("the scores cannot be read: ") + e.what());
   }
-  ReplaceFileText((cell_dir / "scores.json").string(), JsonText(scores, 2) + "\n");
+  try {
+    WriteSweepFile((cell_dir / "scores.json").string(), JsonText(scores, 2) + "\n",
+                    "the cell's scores");
+  } catch (const Error& e) {
+    return status.Finish("failed", 2, Vanished(cell_dir) ? kVanished : e.what());
+  }
   return status.Finish("done", 0, "");
 }
+
+namespace {
+
+std::string CellLine(const StoredSweep& sweep, int index) {
+  return "cell " + std::to_string(index) + " (" + sweep.cells[index].name + ")";
+}
+
+// Starts `attend sweep DIR --cell I`; -1 when the cell is left to another process that runs
+// it (skipped) or cannot start (failed), which `result` then counts and says why.
+pid_t StartCell(const StoredSweep& sweep, int index, const std::string& program,
+                LocalSweepResult* result) {
+  const fs::path cell_dir = sweep.CellDir(sweep.cells[index]);
+  // A cell that another process runs (`attend sweep DIR --cell I`, a Slurm task) is left to it.
+  const std::string holder = FolderLockHolder(cell_dir.string());
+  if (!holder.empty()) {
+    ++result->progress.skipped;
+    result->problems.push_back(CellLine(sweep, index) + ": running elsewhere (" + holder +
+                               "); left to it");
+    return -1;
+  }
+  const fs::path logs = cell_dir / "logs";
+  std::error_code error;
+  fs::create_directories(logs, error);
+  // A cell folder that cannot be written fails alone; the others run.
+  std::string problem = error ? logs.string() + ": cannot create the folder: " + error.message()
+                              : CheckWritable({(logs / "cell.out").string(),
+                                               (logs / "cell.err").string()});
+  pid_t pid = -1;
+  if (problem.empty()) {
+    std::string start_error;
+    pid = StartProcess({program, "sweep", sweep.dir, "--cell", std::to_string(index)},
+                       (logs / "cell.out").string(), (logs / "cell.err").string(), &start_error,
+                       true);
+    if (pid < 0) problem = "cannot start " + start_error;
+  }
+  if (pid < 0) {
+    ++result->progress.failed;
+    result->problems.push_back(CellLine(sweep, index) + ": " + problem);
+  }
+  return pid;
+}
+
+// Counts cell `index`, whose process `pid` ended with `wait_status`. The record is the
+// process's when it names its pid; else the cell ended before writing one (its folder cannot
+// be written, its lock is held, the disk is full): its error says why.
+void CountEnded(const StoredSweep& sweep, int index, pid_t pid, int wait_status, bool stopped,
+                LocalSweepResult* result) {
+  LocalProgress& progress = result->progress;
+  CellStatus cell;
+  std::string unreadable;
+  try {
+    cell = ReadCellStatus(sweep, sweep.cells[index]);
+  } catch (const Error& e) {
+    unreadable = e.what();
+  }
+  if (unreadable.empty() && cell.pid == pid && cell.state != CellState::kRunning) {
+    if (cell.state == CellState::kDone) {
+      ++progress.done;
+      progress.cell_seconds += cell.seconds;
+    } else if (cell.state == CellState::kFailed || cell.state == CellState::kKilled) {
+      ++progress.failed;
+      progress.cell_seconds += cell.seconds;
+    }
+    return;
+  }
+  const fs::path cell_dir = sweep.CellDir(sweep.cells[index]);
+  std::string why = ErrorMessage(ReadFileText(cell_dir / "logs" / "cell.err"));
+  if (why.empty()) why = unreadable;
+  if (why.empty()) {
+    const std::string cause = WhyUnwritable(cell_dir.string());
+    why = (WIFEXITED(wait_status)
+               ? "ended with exit status " + std::to_string(WEXITSTATUS(wait_status))
+               : std::string("ended")) +
+          " without a record" + (cause.empty() ? "" : " (" + cause + ")");
+  }
+  if (why.find("in use by another attend") != std::string::npos) {
+    ++progress.skipped;
+    result->problems.push_back(CellLine(sweep, index) + ": running elsewhere: " + why);
+  } else if (!stopped) {
+    ++progress.failed;
+    result->problems.push_back(CellLine(sweep, index) + ": " + why);
+  }
+}
+
+}  // namespace
 
 LocalSweepResult RunSweepLocally(const StoredSweep& sweep, const std::vector<int>& indexes,
                                  int jobs, const std::atomic<int>* stop,
                                  const std::function<void(const LocalProgress&)>& on_progress) {
-  const fs::path lock_path = fs::path(sweep.dir) / ".lock";
-  const int lock = open(lock_path.c_str(), O_RDWR | O_CREAT, 0644);
-  if (lock < 0 || flock(lock, LOCK_EX | LOCK_NB) != 0) {
-    if (lock >= 0) close(lock);
-    throw OutputError(sweep.dir + ": another attend sweep is running this folder on this machine");
-  }
   LocalSweepResult result;
   LocalProgress& progress = result.progress;
   progress.total = static_cast<int>(indexes.size());
@@ -246,47 +385,29 @@ LocalSweepResult RunSweepLocally(const StoredSweep& sweep, const std::vector<int
     }
     while (signal == 0 && next < indexes.size() && static_cast<int>(running.size()) < jobs) {
       const int index = indexes[next++];
-      const StoredCell& cell = sweep.cells[index];
-      const fs::path logs = fs::path(sweep.CellDir(cell)) / "logs";
-      std::error_code error;
-      fs::create_directories(logs, error);
-      std::string start_error;
-      const pid_t pid = StartProcess({program, "sweep", sweep.dir, "--cell", std::to_string(index)},
-                                     (logs / "cell.out").string(), (logs / "cell.err").string(),
-                                     &start_error, true);
-      if (pid < 0) {
-        close(lock);
-        throw InternalError("cannot start a cell: " + start_error);
-      }
-      running[pid] = index;
+      const pid_t pid = StartCell(sweep, index, program, &result);
+      if (pid > 0) running[pid] = index;
     }
     progress.running = static_cast<int>(running.size());
     progress.elapsed_s = watch.ElapsedMs() / 1000.0;
     if (on_progress) on_progress(progress);
     if (running.empty()) break;
     // Polled, so that a stop signal is passed on at once whatever the cells are doing.
-    int status = 0;
-    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    int wait_status = 0;
+    const pid_t pid = waitpid(-1, &wait_status, WNOHANG);
     if (pid <= 0) {
       usleep(50000);
       continue;
     }
     const auto found = running.find(pid);
     if (found == running.end()) continue;
-    const CellStatus cell = ReadCellStatus(sweep, sweep.cells[found->second]);
+    const int index = found->second;
     running.erase(found);
-    if (cell.state == CellState::kDone) {
-      ++progress.done;
-      progress.cell_seconds += cell.seconds;
-    } else if (cell.state == CellState::kFailed || cell.state == CellState::kKilled) {
-      ++progress.failed;
-      progress.cell_seconds += cell.seconds;
-    }
+    CountEnded(sweep, index, pid, wait_status, forwarded != 0, &result);
   }
   progress.running = 0;
   progress.elapsed_s = watch.ElapsedMs() / 1000.0;
   if (on_progress) on_progress(progress);
-  close(lock);
   return result;
 }
 

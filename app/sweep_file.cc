@@ -1,5 +1,7 @@
 // Step 1 of planning a sweep (app/sweep_plan.h): the sweep file's sections read and checked on
 // their own; the inputs are in app/sweep_inputs.cc.
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -11,6 +13,7 @@
 #include "config/yaml_document.h"
 #include "eval/saliency_baselines.h"
 #include "util/error.h"
+#include "util/file_checks.h"
 #include "util/output_folder.h"
 #include "util/strings.h"
 
@@ -215,6 +218,36 @@ FixationScoring ReadScoring(const ParamBlock& block, SweepCommand command) {
   return fixations;
 }
 
+// The cells the file makes, counted before any is planned: a grid of 10^6 cells planned for
+// minutes before. The product is taken in floating point (a grid of 20 lists of 100 values
+// overflows any integer) and refused past kMaxSweepCells, naming each list's length.
+void CheckCellCount(const YamlDocument& document, const SweepPlan& plan) {
+  const YAML::Node& inputs = document.root()["inputs"];
+  const std::size_t input_count = inputs && inputs.IsSequence() ? inputs.size() : 1;
+  double cells = static_cast<double>(std::max<std::size_t>(1, input_count));
+  std::vector<std::string> factors;
+  for (const SweptList& swept : plan.grid) {
+    cells *= static_cast<double>(swept.values.size());
+    factors.push_back("grid." + swept.key + ": " + std::to_string(swept.values.size()));
+  }
+  for (const auto& group : plan.zips) {
+    cells *= static_cast<double>(group[0].values.size());
+    factors.push_back("zip." + group[0].key + " (and the lists zipped with it): " +
+                      std::to_string(group[0].values.size()));
+  }
+  factors.push_back("inputs: " + std::to_string(input_count));
+  if (cells <= static_cast<double>(kMaxSweepCells)) return;
+  char count[32];
+  std::snprintf(count, sizeof(count), cells < 1e15 ? "%.0f" : "%.3g", cells);
+  const std::string where = !plan.grid.empty()  ? plan.grid[0].where[0]
+                            : !plan.zips.empty() ? plan.zips[0][0].where[0]
+                                                 : plan.file;
+  throw ConfigError(where + ": the sweep has " + count + " cells (" + Join(factors, " x ") +
+                    "), more than the " + std::to_string(kMaxSweepCells) +
+                    " a sweep may have (docs/LIMITS.md): split it into several sweeps, or "
+                    "sweep fewer values at once");
+}
+
 }  // namespace
 
 const OptionFields<SlurmSettings>& SlurmSettings::Fields() {
@@ -245,11 +278,10 @@ const OptionFields<FixationScoring>& FixationScoring::Fields() {
 SweepPlan ReadSweepFile(const std::string& path, const SweepReadOptions& options) {
   SweepPlan plan;
   plan.file = fs::absolute(path).lexically_normal().string();
-  std::error_code error;
-  if (options.text == nullptr && !fs::is_regular_file(path, error)) {
-    throw ConfigError(path + ": no such sweep file");
-  }
-  plan.text = options.text != nullptr ? *options.text : ReadFileText(path);
+  // A folder, a fifo or /dev/zero is named as what it is; a sweep file is configuration-sized.
+  plan.text = options.text != nullptr
+                  ? *options.text
+                  : ReadRegularFile(path, "the sweep file", ExitStatus::kUsage, kMaxConfigBytes);
   const std::string dir =
       options.dir.empty() ? "" : fs::absolute(options.dir).lexically_normal().string();
   const YamlDocument document(plan.text, plan.file);
@@ -260,6 +292,7 @@ SweepPlan ReadSweepFile(const std::string& path, const SweepReadOptions& options
   plan.command = ReadCommand(document);
   plan.config = ReadBaseConfig(document, plan.command);
   ReadSettings(document, &plan);
+  CheckCellCount(document, plan);
   plan.inputs = ReadSweepInputs(document, plan.command, dir);
   plan.fixations = ReadScoring(document.block(), plan.command);
   const ParamBlock slurm = document.block().Child("slurm");

@@ -9,7 +9,10 @@
 #include <set>
 
 #include "app/render_scene.h"
+#include "app/sweep_records.h"
 #include "util/error.h"
+#include "util/file_checks.h"
+#include "util/folder_lock.h"
 #include "util/json_text.h"
 #include "util/output_folder.h"
 #include "util/strings.h"
@@ -21,16 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
-
-Json ReadJson(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string() + ": cannot be read");
-  try {
-    return Json::parse(in);
-  } catch (const std::exception& e) {
-    throw InputError(path.string() + ": not valid JSON (" + e.what() + ")");
-  }
-}
 
 Json SettingsJson(const std::vector<SweepSetting>& settings) {
   Json json = Json::object();
@@ -61,13 +54,16 @@ Json SlurmJson(const SlurmSettings& slurm) {
 // The cell.json of a planned cell, and what must match for a folder's cell to be the same.
 struct PlannedCell {
   Json json;
+  std::vector<std::vector<std::string>> commands;
   std::string config;  // its effective configuration
 };
 
-PlannedCell PlanCell(const SweepPlan& plan, const SweepCell& cell, const fs::path& cell_dir) {
+PlannedCell PlanCell(const SweepPlan& plan, const SweepCell& cell, const fs::path& cell_dir,
+                     const std::string& config) {
   PlannedCell planned;
   const std::vector<std::vector<std::string>> commands =
       CellCommands(plan, cell, cell_dir.string());
+  planned.commands = commands;
   Json command_json = Json::array();
   Json lines = Json::array();
   for (const std::vector<std::string>& command : commands) {
@@ -84,7 +80,7 @@ PlannedCell PlanCell(const SweepPlan& plan, const SweepCell& cell, const fs::pat
                   {"config", plan.config},
                   {"commands", command_json},
                   {"reproduce", lines}};
-  planned.config = CellConfigYaml(plan, cell);
+  planned.config = config;
   return planned;
 }
 
@@ -111,13 +107,7 @@ void WriteSweepJson(const SweepPlan& plan, const fs::path& dir,
                      {"inputs", inputs},
                      {"slurm", SlurmJson(plan.slurm)},
                      {"cells", cell_list}};
-  ReplaceFileText((dir / "sweep.json").string(), JsonText(json, 2) + "\n");
-}
-
-std::vector<SweepSetting> ReadSettings(const Json& json) {
-  std::vector<SweepSetting> settings;
-  for (const auto& [key, value] : json.items()) settings.emplace_back(key, value.get<std::string>());
-  return settings;
+  WriteSweepFile((dir / "sweep.json").string(), JsonText(json, 2) + "\n", "the sweep's record");
 }
 
 // The scene inputs not yet rendered, each rendered beside its folder and renamed into place
@@ -147,14 +137,14 @@ void RenderScenes(const SweepPlan& plan) {
 void CheckSameCell(const SweepPlan& plan, const fs::path& dir, const SweepCell& cell,
                    const PlannedCell& planned) {
   const fs::path cell_dir = dir / "cells" / cell.name;
-  const std::string old_json = ReadFileText(cell_dir / "cell.json");
-  Json old;
+  std::vector<std::vector<std::string>> commands;
   try {
-    old = Json::parse(old_json);
-  } catch (const std::exception&) {
-    throw InputError((cell_dir / "cell.json").string() + ": missing or not valid JSON");
+    commands = SweepRecord::Load((cell_dir / "cell.json").string()).StringLists("commands");
+  } catch (const InputError& e) {
+    throw InputError(std::string(e.what()) + "; remove the folder " + cell_dir.string() +
+                     " to run the cell again");
   }
-  const bool same_commands = old.value("commands", Json()) == planned.json["commands"];
+  const bool same_commands = commands == planned.commands;
   const bool same_config = ReadFileText(cell_dir / "config.yaml") == planned.config;
   if (!same_commands || !same_config) {
     throw ConfigError(plan.file + ": the cell " + cell.name + " in " + dir.string() +
@@ -167,25 +157,40 @@ void CheckSameCell(const SweepPlan& plan, const fs::path& dir, const SweepCell& 
   }
 }
 
-// The planned cells that DIR does not hold yet, with their cell.json. A cell DIR holds must run
-// as planned; new cells, and cells of DIR the plan no longer has, need `extend`.
-std::vector<std::pair<const SweepCell*, PlannedCell>> NewCells(
-    const SweepPlan& plan, const fs::path& dir, const std::vector<StoredCell>& cells, bool extend,
-    std::vector<std::string>* notes) {
+// The planned cells whose folders DIR lacks, with their cell.json: new cells, and cells of the
+// folder's sweep.json whose folder (or its cell.json) is missing: removed by hand, vanished
+// while it ran, or never written when a full disk stopped the folder's preparation. A cell DIR
+// holds must run as planned; new cells, and cells of DIR the plan no longer has, need
+// `extend`.
+struct MissingCells {
+  std::vector<std::pair<const SweepCell*, PlannedCell>> added;      // new to the sweep
+  std::vector<std::pair<const SweepCell*, PlannedCell>> recreated;  // in sweep.json already
+};
+
+MissingCells FindMissingCells(const SweepPlan& plan, const fs::path& dir,
+                              const std::vector<StoredCell>& cells, bool extend,
+                              std::vector<std::string>* notes) {
   std::map<std::string, const StoredCell*> by_name;
   for (const StoredCell& cell : cells) by_name[cell.name] = &cell;
-  std::vector<std::pair<const SweepCell*, PlannedCell>> added;
+  MissingCells missing;
   std::set<std::string> planned_names;
+  const std::vector<std::string> configs = ConfigurationYamls(plan);
   for (const SweepCell& cell : plan.cells) {
     planned_names.insert(cell.name);
     const fs::path cell_dir = dir / "cells" / cell.name;
-    PlannedCell planned = PlanCell(plan, cell, cell_dir);
-    if (by_name.count(cell.name) != 0) {
-      CheckSameCell(plan, dir, cell, planned);
+    PlannedCell planned = PlanCell(plan, cell, cell_dir, configs.at(cell.configuration));
+    if (by_name.count(cell.name) == 0) {
+      missing.added.emplace_back(&cell, std::move(planned));
       continue;
     }
-    added.emplace_back(&cell, std::move(planned));
+    std::error_code error;
+    if (!fs::exists(cell_dir / "cell.json", error)) {
+      missing.recreated.emplace_back(&cell, std::move(planned));
+      continue;
+    }
+    CheckSameCell(plan, dir, cell, planned);
   }
+  const auto& added = missing.added;
   if (!cells.empty() && !added.empty() && !extend) {
     throw ConfigError(plan.file + ": changed since " + dir.string() + " was made: " +
                       std::to_string(added.size()) + " cells are new (the first: " +
@@ -204,23 +209,54 @@ std::vector<std::pair<const SweepCell*, PlannedCell>> NewCells(
     notes->push_back(std::to_string(dropped) +
                      " cells of the folder are no longer in the sweep file; they are kept");
   }
-  return added;
+  if (cells.size() + added.size() > static_cast<std::size_t>(kMaxSweepCells)) {
+    throw ConfigError(plan.file + ": " + std::to_string(added.size()) + " new cells beside the " +
+                      std::to_string(cells.size()) + " of " + dir.string() +
+                      " would be more than the " + std::to_string(kMaxSweepCells) +
+                      " a sweep may have (docs/LIMITS.md); give another --out");
+  }
+  return missing;
+}
+
+// Writes a cell's folder: config.yaml, then cell.json (a folder with cell.json is complete).
+void WriteCellFolder(const fs::path& cell_dir, const PlannedCell& planned, int index) {
+  std::error_code error;
+  fs::create_directories(cell_dir, error);
+  if (error) {
+    throw OutputError(cell_dir.string() + ": cannot create the folder: " + error.message());
+  }
+  Json json = planned.json;
+  json["index"] = index;
+  json["attend_version"] = ATTEND_VERSION;
+  WriteSweepFile((cell_dir / "config.yaml").string(), planned.config, "the cell's configuration");
+  WriteSweepFile((cell_dir / "cell.json").string(), JsonText(json, 2) + "\n", "the cell's record");
 }
 
 }  // namespace
 
 std::vector<std::vector<std::string>> ReadCellCommands(const StoredSweep& sweep,
                                                        const StoredCell& cell) {
-  const Json description = ReadJson(fs::path(sweep.CellDir(cell)) / "cell.json");
-  return description.at("commands").get<std::vector<std::vector<std::string>>>();
+  const SweepRecord record = SweepRecord::Load((fs::path(sweep.CellDir(cell)) / "cell.json").string());
+  const std::vector<std::vector<std::string>> commands = record.StringLists("commands");
+  if (commands.empty()) record.Fail("commands", "no command");
+  for (const std::vector<std::string>& command : commands) {
+    if (command.empty() || command[0].empty()) record.Fail("commands", "an empty command");
+  }
+  return commands;
 }
 
 bool IsEmptyOrScenesOnly(const std::string& dir) {
   std::error_code error;
   if (!fs::exists(dir, error)) return true;
   if (!fs::is_directory(dir, error)) return false;
+  // What a preparation stopped before sweep.json (a full disk, a kill) leaves: the rendered
+  // scenes, the copy of the sweep file and the folder's lock.
   for (const auto& entry : fs::directory_iterator(dir, error)) {
-    if (entry.path().filename() != "scenes") return false;
+    const std::string name = entry.path().filename().string();
+    if (name != "scenes" && name != "sweep.yaml" && name != FolderLock::kFileName &&
+        name != ".lock") {
+      return false;
+    }
   }
   return true;
 }
@@ -260,29 +296,38 @@ StoredSweep PrepareSweepFolder(const SweepPlan& plan, const std::string& dir_tex
   }
   fs::create_directories(dir / "cells", error);
   if (error) throw OutputError(dir.string() + ": cannot create the folder: " + error.message());
-  auto added = NewCells(plan, dir, cells, extend, notes);
+  MissingCells missing = FindMissingCells(plan, dir, cells, extend, notes);
   RenderScenes(plan);
-  for (auto& [cell, planned] : added) {
+  // sweep.json first, then the cell folders: a preparation stopped between them (a full disk)
+  // leaves a sweep folder whose missing cell folders the same command writes again.
+  std::vector<std::pair<const PlannedCell*, int>> to_write;
+  for (auto& [cell, planned] : missing.added) {
     StoredCell stored;
     stored.index = static_cast<int>(cells.size());
     stored.name = cell->name;
     stored.input = plan.inputs[cell->input].name;
     stored.settings = cell->settings;
-    const fs::path cell_dir = dir / "cells" / cell->name;
-    fs::create_directories(cell_dir, error);
-    if (error) throw OutputError(cell_dir.string() + ": cannot create the folder: " + error.message());
-    Json json = planned.json;
-    json["index"] = stored.index;
-    json["attend_version"] = ATTEND_VERSION;
-    ReplaceFileText((cell_dir / "config.yaml").string(), planned.config);
-    ReplaceFileText((cell_dir / "cell.json").string(), JsonText(json, 2) + "\n");
+    to_write.emplace_back(&planned, stored.index);
     cells.push_back(std::move(stored));
   }
-  if (!cells.empty() && !added.empty() && extend) {
-    notes->push_back(std::to_string(added.size()) + " cells added to the sweep");
+  std::map<std::string, int> index_of;
+  for (const StoredCell& cell : cells) index_of[cell.name] = cell.index;
+  for (auto& [cell, planned] : missing.recreated) {
+    to_write.emplace_back(&planned, index_of.at(cell->name));
   }
-  ReplaceFileText((dir / "sweep.yaml").string(), plan.text);
+  WriteSweepFile((dir / "sweep.yaml").string(), plan.text, "the copy of the sweep file");
   WriteSweepJson(plan, dir, cells);
+  for (const auto& [planned, index] : to_write) {
+    WriteCellFolder(dir / "cells" / cells[index].name, *planned, index);
+  }
+  if (!missing.recreated.empty()) {
+    notes->push_back(std::to_string(missing.recreated.size()) +
+                     " cell folders were missing or had no cell.json (the first: " +
+                     missing.recreated.front().first->name + "); written again");
+  }
+  if (!cells.empty() && !missing.added.empty() && extend) {
+    notes->push_back(std::to_string(missing.added.size()) + " cells added to the sweep");
+  }
   return LoadSweepFolder(dir.string());
 }
 
@@ -292,79 +337,67 @@ StoredSweep LoadSweepFolder(const std::string& dir_text) {
   if (!fs::is_regular_file(dir / "sweep.json", error)) {
     throw InputError(dir_text + ": not a sweep folder (no sweep.json)");
   }
-  const Json json = ReadJson(dir / "sweep.json");
+  const SweepRecord json = SweepRecord::Load((dir / "sweep.json").string());
   StoredSweep sweep;
-  try {
-    sweep.dir = dir.string();
-    sweep.file = json.at("sweep_file").get<std::string>();
-    sweep.command = json.at("command").get<std::string>();
-    sweep.keys = json.at("keys").get<std::vector<std::string>>();
-    sweep.groups = json.value("key_groups", std::vector<std::vector<int>>());
-    const Json& slurm = json.at("slurm");
-    sweep.slurm.partition = slurm.at("partition").get<std::string>();
-    sweep.slurm.time = slurm.at("time").get<std::string>();
-    sweep.slurm.mem = slurm.at("mem").get<std::string>();
-    sweep.slurm.cpus_per_task = slurm.at("cpus_per_task").get<int>();
-    sweep.slurm.throttle = slurm.at("throttle").get<int>();
-    for (const Json& entry : json.at("cells")) {
-      StoredCell cell;
-      cell.index = entry.at("index").get<int>();
-      cell.name = entry.at("name").get<std::string>();
-      cell.input = entry.at("input").get<std::string>();
-      cell.settings = ReadSettings(entry.at("settings"));
-      if (cell.index != static_cast<int>(sweep.cells.size())) {
-        throw InputError((dir / "sweep.json").string() + ": cell " + cell.name +
-                         " out of order (index " + std::to_string(cell.index) + ")");
-      }
-      sweep.cells.push_back(std::move(cell));
+  sweep.dir = dir.string();
+  sweep.file = json.String("sweep_file");
+  sweep.command = json.String("command");
+  if (sweep.command != "run" && sweep.command != "track" && sweep.command != "saliency") {
+    json.Fail("command", "'" + sweep.command + "' is not one of run, track, saliency");
+  }
+  sweep.keys = json.Strings("keys");
+  sweep.groups = json.IntLists("key_groups", {});
+  for (const std::vector<int>& group : sweep.groups) {
+    for (const int key : group) {
+      if (key >= static_cast<int>(sweep.keys.size())) json.Fail("key_groups", "a key out of range");
     }
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError((dir / "sweep.json").string() + ": not a sweep description (" + e.what() + ")");
+  }
+  const SweepRecord slurm = json.Object("slurm");
+  sweep.slurm.partition = slurm.String("partition");
+  sweep.slurm.time = slurm.String("time");
+  sweep.slurm.mem = slurm.String("mem");
+  sweep.slurm.cpus_per_task = static_cast<int>(slurm.Integer("cpus_per_task", 1, 1024));
+  sweep.slurm.throttle = static_cast<int>(slurm.Integer("throttle", 0, 100000));
+  const std::vector<SweepRecord> entries = json.Objects("cells");
+  if (entries.size() > static_cast<std::size_t>(kMaxSweepCells)) {
+    json.Fail("cells", std::to_string(entries.size()) + " cells, more than the " +
+                           std::to_string(kMaxSweepCells) + " a sweep may have");
+  }
+  for (const SweepRecord& entry : entries) {
+    StoredCell cell;
+    cell.index = static_cast<int>(entry.Integer("index", 0, kMaxSweepCells));
+    cell.name = entry.String("name");
+    // The name is a folder below cells/: never a path elsewhere.
+    if (cell.name.empty() || FileSafe(cell.name, cell.name.size()) != cell.name) {
+      entry.Fail("name", "'" + cell.name + "' is not a cell folder's name");
+    }
+    cell.input = entry.String("input");
+    cell.settings = entry.StringMap("settings");
+    if (cell.index != static_cast<int>(sweep.cells.size())) {
+      entry.Fail("index", std::to_string(cell.index) + " out of order (expected " +
+                              std::to_string(sweep.cells.size()) + ")");
+    }
+    sweep.cells.push_back(std::move(cell));
   }
   return sweep;
 }
 
 CellStatus ReadCellStatus(const StoredSweep& sweep, const StoredCell& cell) {
-  CellStatus status;
   const fs::path path = fs::path(sweep.CellDir(cell)) / "status.json";
   std::error_code error;
-  if (!fs::exists(path, error)) return status;
-  const Json json = ReadJson(path);
-  const std::string state = json.value("state", "");
-  if (state == "running") {
-    status.state = CellState::kRunning;
-  } else if (state == "done") {
-    status.state = CellState::kDone;
-  } else if (state == "failed") {
-    status.state = CellState::kFailed;
-  } else if (state == "killed") {
-    status.state = CellState::kKilled;
-  } else if (state == "interrupted") {
-    status.state = CellState::kInterrupted;
-  } else {
-    throw InputError(path.string() + ": unknown state '" + state + "'");
-  }
-  status.exit_status = json.value("exit_status", 0);
-  status.message = json.value("message", "");
-  status.seconds = json.value("seconds", 0.0);
-  status.host = json.value("host", "");
-  status.pid = json.value("pid", 0L);
-  status.executor = json.value("executor", "");
-  status.slurm_task = json.value("slurm_task", "");
-  return status;
+  if (!fs::exists(path, error)) return CellStatus();
+  return ParseCellStatus(
+      ReadRegularFile(path.string(), "the cell's status", ExitStatus::kBadInput,
+                      kMaxSweepRecordBytes),
+      path.string());
 }
 
 std::vector<std::pair<std::string, double>> ReadCellScores(const StoredSweep& sweep,
                                                            const StoredCell& cell) {
-  std::vector<std::pair<std::string, double>> scores;
   const fs::path path = fs::path(sweep.CellDir(cell)) / "scores.json";
-  std::error_code error;
-  if (!fs::exists(path, error)) return scores;
-  const Json json = ReadJson(path);
-  for (const auto& [key, value] : json.items()) {
-    scores.emplace_back(key, value.is_number() ? value.get<double>() : std::nan(""));
-  }
-  return scores;
+  return ParseCellScores(ReadRegularFile(path.string(), "the cell's scores", ExitStatus::kBadInput,
+                                         kMaxSweepRecordBytes),
+                         path.string());
 }
 
 }  // namespace attend

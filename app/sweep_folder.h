@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "app/sweep_plan.h"
+#include "app/sweep_records.h"
 
 namespace attend {
 
@@ -50,31 +51,21 @@ struct StoredSweep {
 StoredSweep PrepareSweepFolder(const SweepPlan& plan, const std::string& dir, bool extend,
                                std::vector<std::string>* notes);
 
-// Whether `dir` can become a new sweep folder: missing, empty, or holding only the scenes/ a
-// sweep file's scene inputs rendered into.
+// Whether `dir` can become a new sweep folder: missing, empty, or holding only what a
+// preparation stopped before sweep.json leaves (scenes/, sweep.yaml, a lock file).
 bool IsEmptyOrScenesOnly(const std::string& dir);
 
 // Reads DIR/sweep.json. InputError when DIR is not a sweep folder.
 StoredSweep LoadSweepFolder(const std::string& dir);
 
-enum class CellState { kWaiting, kRunning, kDone, kFailed, kKilled, kInterrupted };
 const char* CellStateName(CellState state);
 
-struct CellStatus {
-  CellState state = CellState::kWaiting;
-  int exit_status = 0;
-  std::string message;   // the error of a failed cell, the cause of a killed one
-  double seconds = 0.0;  // wall time of a finished cell
-  std::string host;
-  long pid = 0;
-  std::string executor;    // local or slurm
-  std::string slurm_task;  // JOB_TASK of a Slurm array task
-};
-
-// What DIR/cells/NAME/status.json says (kWaiting when there is none).
+// What DIR/cells/NAME/status.json says (kWaiting when there is none). InputError naming the
+// file and the key when it is not a status record (app/sweep_records.h).
 CellStatus ReadCellStatus(const StoredSweep& sweep, const StoredCell& cell);
 
 // The cell's scores (DIR/cells/NAME/scores.json), name to value, in the scorer's order.
+// InputError when the file is missing or holds anything but a map of numbers (and nulls).
 std::vector<std::pair<std::string, double>> ReadCellScores(const StoredSweep& sweep,
                                                            const StoredCell& cell);
 

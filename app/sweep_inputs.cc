@@ -7,6 +7,8 @@
 
 #include "app/run_attention.h"
 #include "util/error.h"
+#include "util/file_checks.h"
+#include "util/frame_range.h"
 #include "util/output_folder.h"
 #include "util/strings.h"
 
@@ -40,7 +42,8 @@ bool IsFolderKind(const std::string& kind) {
 std::string SceneFolder(const std::string& scene, const std::string& dir) {
   char hash[17];
   std::snprintf(hash, sizeof(hash), "%016llx",
-                static_cast<unsigned long long>(Fnv1a(ReadFileText(scene))));
+                static_cast<unsigned long long>(Fnv1a(
+                    ReadRegularFile(scene, "the scene", ExitStatus::kUsage, kMaxConfigBytes))));
   return (fs::path(dir.empty() ? "SWEEP_DIR" : dir) / "scenes" /
           (fs::path(scene).stem().string() + "-" + hash))
       .lexically_normal()
@@ -89,7 +92,19 @@ YAML::Node ReadSource(const YamlDocument& document, const YAML::Node& node, cons
 // The entry's frames, a fixation dataset's split and its ground truth's path.
 void ReadInputOptions(const YamlDocument& document, const YAML::Node& node, const std::string& path,
                       SweepInput* input) {
-  if (node["frames"]) input->frames = document.String(node["frames"], path + ".frames");
+  if (node["frames"]) {
+    input->frames = document.String(node["frames"], path + ".frames");
+    if (input->kind == "fixations") {
+      document.Fail(node["frames"], path + ".frames",
+                    "frames is not for fixation datasets (use skip and first)");
+    }
+    // Checked here, as --frames checks it, instead of failing every cell of the input.
+    try {
+      ParseFrameRange(input->frames);
+    } catch (const ConfigError& e) {
+      document.Fail(node["frames"], path + ".frames", e.what());
+    }
+  }
   if (node["skip"] || node["first"]) {
     if (input->kind != "fixations") {
       document.Fail(node["skip"] ? node["skip"] : node["first"], path,

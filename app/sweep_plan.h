@@ -37,7 +37,14 @@ struct SweepCell {
   std::string name;
   int input = 0;  // into SweepPlan::inputs
   std::vector<SweepSetting> settings;  // the swept keys' values, in SweepPlan::keys order
+  int configuration = 0;  // into SweepConfigurations (and ConfigurationYamls)
 };
+
+// The most cells a sweep may have (docs/LIMITS.md). A cell is a folder of its own, a process
+// (two: the command and its scorer) and, in Slurm, an array task: 10,000 cells of a second
+// each are three hours of a whole machine here, and more than Slurm's default MaxArraySize
+// (1001) tenfold; a study larger than that is several sweeps, or a coarser grid first.
+inline constexpr long kMaxSweepCells = 10000;
 
 // The sweep file's `slurm:` section: defaults of --partition, --time, --mem, --cpus-per-task
 // and --throttle.
@@ -101,6 +108,10 @@ std::vector<SweepCell> ExpandCells(const SweepPlan& plan);
 
 // Steps 1 to 3: a sweep file read, checked and expanded into its cells.
 SweepPlan PlanSweep(const std::string& path, const SweepReadOptions& options = {});
+
+// The effective configuration of each configuration (SweepCell::configuration) as YAML, every
+// key included: CellConfigYaml for all of them, the base file read once.
+std::vector<std::string> ConfigurationYamls(const SweepPlan& plan);
 
 // The effective configuration of a cell as YAML (every key, defaults included).
 std::string CellConfigYaml(const SweepPlan& plan, const SweepCell& cell);

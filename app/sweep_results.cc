@@ -2,15 +2,19 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 
+#include "app/sweep_records.h"
 #include "app/sweep_slurm.h"
 #include "eval/sweep_report.h"
 #include "util/error.h"
+#include "util/folder_lock.h"
 #include "util/output_folder.h"
 #include "util/strings.h"
 #include "util/subprocess.h"
@@ -40,6 +44,33 @@ std::string CsvNumber(double value) {
   return text.str();
 }
 
+// Reads the cell's status.json and, done, its scores.json into `view`. A record that cannot
+// be read (edited by hand, cut short) is no result: the cell is waiting, to run again, and
+// the message naming the file and the key is returned.
+std::string ReadRecords(const StoredSweep& sweep, const StoredCell& cell, CellView* view) {
+  try {
+    view->status = ReadCellStatus(sweep, cell);
+    if (view->status.state == CellState::kDone) view->scores = ReadCellScores(sweep, cell);
+  } catch (const Error& e) {
+    view->status = CellStatus();
+    view->scores.clear();
+    return std::string(e.what()) + "; the cell runs again";
+  }
+  return "";
+}
+
+// A folder that cannot be written fails whatever runs it; a done cell keeps its result.
+void CheckWritable(const std::string& cell_dir, CellView* view) {
+  std::error_code error;
+  if (view->state != CellState::kDone && view->state != CellState::kRunning &&
+      fs::is_directory(cell_dir, error) && access(cell_dir.c_str(), W_OK) != 0) {
+    view->state = CellState::kFailed;
+    view->unwritable = true;
+    view->detail = cell_dir + ": cannot be written (" + std::strerror(errno) +
+                   "); make it writable, and it runs again";
+  }
+}
+
 }  // namespace
 
 std::vector<CellView> ViewCells(const StoredSweep& sweep, std::vector<std::string>* notes) {
@@ -50,11 +81,21 @@ std::vector<CellView> ViewCells(const StoredSweep& sweep, std::vector<std::strin
   for (const StoredCell& cell : sweep.cells) {
     CellView view;
     view.index = cell.index;
-    view.status = ReadCellStatus(sweep, cell);
+    const std::string cell_dir = sweep.CellDir(cell);
+    const std::string damaged = ReadRecords(sweep, cell, &view);
+    // Whoever holds the cell's lock runs it, whatever its record says.
+    const std::string holder = FolderLockHolder(cell_dir);
     const auto queued = slurm.queued.find(cell.index);
     view.queued = queued != slurm.queued.end();
     const std::string slurm_state = view.queued ? queued->second : "";
     const CellStatus& status = view.status;
+    if (!holder.empty()) {
+      view.state = CellState::kRunning;
+      view.detail = holder;
+      views.push_back(std::move(view));
+      continue;
+    }
+    if (!damaged.empty()) notes->push_back("cell " + std::to_string(cell.index) + ": " + damaged);
     switch (status.state) {
       case CellState::kDone:
         view.state = CellState::kDone;
@@ -100,12 +141,14 @@ std::vector<CellView> ViewCells(const StoredSweep& sweep, std::vector<std::strin
       case CellState::kWaiting:
         view.state = CellState::kWaiting;
         if (status.state == CellState::kInterrupted) view.detail = "interrupted: " + status.message;
+        if (!damaged.empty()) view.detail = damaged;
         if (view.queued) {
           view.state = slurm_state == "PENDING" ? CellState::kWaiting : CellState::kRunning;
           view.detail = "Slurm task " + slurm.task.at(cell.index) + ": " + slurm_state;
         }
         break;
     }
+    CheckWritable(cell_dir, &view);
     views.push_back(std::move(view));
   }
   return views;
@@ -116,7 +159,11 @@ std::vector<int> CellsToRun(const std::vector<CellView>& cells, bool retry_faile
   for (const CellView& cell : cells) {
     if (cell.queued) continue;
     const bool failed = cell.state == CellState::kFailed || cell.state == CellState::kKilled;
-    if (retry_failed ? failed : cell.state == CellState::kWaiting) indexes.push_back(cell.index);
+    // An unwritable folder is no recorded failure: each run tries the cell, which fails (and
+    // is counted) again until the folder can be written.
+    if (cell.unwritable || (retry_failed ? failed : cell.state == CellState::kWaiting)) {
+      indexes.push_back(cell.index);
+    }
   }
   return indexes;
 }
@@ -167,9 +214,7 @@ CollectResult CollectSweep(const StoredSweep& sweep, const std::string& command_
     cell.state = CellStateName(view.state);
     cell.message = view.detail;
     cell.seconds = view.status.seconds;
-    std::vector<std::pair<std::string, double>> scores;
-    if (view.state == CellState::kDone) scores = ReadCellScores(sweep, stored);
-    for (const auto& [name, value] : scores) {
+    for (const auto& [name, value] : view.scores) {
       cell.scores[name] = value;
       if (std::find(report.scores.begin(), report.scores.end(), name) == report.scores.end()) {
         report.scores.push_back(name);
@@ -177,13 +222,18 @@ CollectResult CollectSweep(const StoredSweep& sweep, const std::string& command_
     }
     const fs::path cell_dir = sweep.CellDir(stored);
     cell.config_yaml = ReadFileText(cell_dir / "config.yaml");
-    std::ifstream description(cell_dir / "cell.json");
-    try {
-      const nlohmann::json json = nlohmann::json::parse(description);
-      cell.sets = json.value("sets", std::vector<std::string>());
-      cell.config = json.value("config", "");
-    } catch (const std::exception& e) {
-      throw InputError((cell_dir / "cell.json").string() + ": not valid JSON (" + e.what() + ")");
+    // The settings of the best configurations; a cell.json that is missing or damaged only
+    // leaves them out (the cell itself is waiting: a run writes the file again).
+    std::error_code error;
+    if (fs::exists(cell_dir / "cell.json", error)) {
+      try {
+        const SweepRecord description = SweepRecord::Load((cell_dir / "cell.json").string());
+        cell.sets = description.Strings("sets");
+        cell.config = description.String("config");
+      } catch (const Error& e) {
+        report.notes.push_back(std::string(e.what()) + "; remove the folder " +
+                               cell_dir.string() + " to run the cell again");
+      }
     }
     result.done += view.state == CellState::kDone ? 1 : 0;
     report.cells.push_back(std::move(cell));
@@ -214,8 +264,8 @@ CollectResult CollectSweep(const StoredSweep& sweep, const std::string& command_
   report.chart = LoadChartLibrary();
   result.csv = (fs::path(sweep.dir) / "sweep.csv").string();
   result.html = (fs::path(sweep.dir) / "report.html").string();
-  ReplaceFileText(result.csv, csv, "the sweep's scores");
-  ReplaceFileText(result.html, SweepReportHtml(report), "the sweep's report");
+  WriteSweepFile(result.csv, csv, "the sweep's scores");
+  WriteSweepFile(result.html, SweepReportHtml(report), "the sweep's report");
   result.notes = report.notes;
   return result;
 }

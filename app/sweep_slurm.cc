@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "app/sweep_records.h"
 #include "util/error.h"
 #include "util/json_text.h"
 #include "util/output_folder.h"
@@ -112,7 +113,7 @@ SlurmSubmission SubmitSlurmArray(const StoredSweep& sweep, const std::string& sc
   Json jobs = ReadJobs(sweep);
   SlurmSubmission submission;
   submission.script_path = (folder / ("array-" + std::to_string(jobs.size()) + ".sbatch")).string();
-  ReplaceFileText(submission.script_path, script, "the batch script");
+  WriteSweepFile(submission.script_path, script, "the batch script");
   const CapturedRun run = RunCaptured({"sbatch", "--parsable", submission.script_path});
   if (!run.started) {
     throw InputError("sbatch: " + run.start_error +
@@ -139,7 +140,7 @@ SlurmSubmission SubmitSlurmArray(const StoredSweep& sweep, const std::string& sc
                                                 script.find('\n', at) - at - marker.size())},
                   {"script", submission.script_path},
                   {"submitted", UtcTimestamp()}});
-  ReplaceFileText(JobsPath(sweep).string(), JsonText(jobs, 2) + "\n");
+  WriteSweepFile(JobsPath(sweep).string(), JsonText(jobs, 2) + "\n", "the job list");
   return submission;
 }
 

@@ -61,6 +61,9 @@ int PrintRun(const SweepRunResult& result, bool retry_failed, bool quiet) {
               << (result.failed > 0 && !retry_failed ? " (--retry-failed runs them again)" : "")
               << (result.queued > 0 ? ", " + std::to_string(result.queued) + " queued in Slurm"
                                     : "")
+              << (result.running > 0
+                      ? ", " + std::to_string(result.running) + " running in another process"
+                      : "")
               << std::endl;
     return 0;
   }
@@ -83,6 +86,14 @@ int PrintRun(const SweepRunResult& result, bool retry_failed, bool quiet) {
               << ": run the same command again to finish";
   }
   std::cout << std::endl;
+  for (const std::string& problem : result.local.problems) {
+    std::cerr << "attend: " << problem << "\n";
+  }
+  if (p.skipped + result.running > 0) {
+    std::cout << result.dir << ": " << p.skipped + result.running
+              << " cells were left to another process that runs them (attend sweep " << result.dir
+              << " --status)" << std::endl;
+  }
   if (p.failed > 0 && !quiet) {
     std::cerr << "attend: " << p.failed << " cells failed: attend sweep " << result.dir
               << " --status says why; --retry-failed runs them again\n";
