@@ -75,7 +75,8 @@ void CheckTree(const YAML::Node& node, int depth, TreeWalk* walk) {
   }
   if (++walk->values > kMaxValues) {
     throw ConfigError(LineOf(node, walk->source) + ": more than " + std::to_string(kMaxValues) +
-                      " values once its aliases are expanded (aliases of aliases?)");
+                      " values, each alias counted where it is used (docs/LIMITS.md): a list "
+                      "that long belongs in a data file, and aliases of aliases multiply");
   }
   if (node.IsMap()) {
     std::set<std::string> seen;

@@ -264,6 +264,13 @@ def run(sequence=None, *, config=None, set=(), video=None, left_video=None, righ
               "images": images, "calib": calib}
     source = {k: _os.fspath(v) for k, v in source.items() if v is not None}
     live = {"camera": camera, "camera_right": camera_right, "gst": gst, "gst_right": gst_right}
+    # An empty path is never meant (an unset variable): it would run the configuration's own
+    # source instead, as `attend run --video ''` used to.
+    for key, value in list(source.items()) + [("gst", gst), ("gst_right", gst_right),
+                                               ("config", config), ("out", out or None)]:
+        if isinstance(value, (str, bytes, _os.PathLike)) and _os.fspath(value) in ("", b""):
+            raise ConfigError(f"attend.run: {key} is an empty path or value (an unset "
+                              "variable?); leave it out instead")
     source.update({k: v for k, v in live.items() if v is not None})
     source["side_by_side_live"] = bool(side_by_side_live)
     try:

@@ -153,7 +153,7 @@ def test_reading_a_device_or_folder_as_an_image_is_refused_at_once(read, tmp_pat
         read("/dev/zero")
     with pytest.raises(attend.InputError, match=f"^{tmp_path}: is a folder, not a file"):
         read(tmp_path)
-    with pytest.raises(attend.InputError, match="no such|cannot open"):  # as before
+    with pytest.raises(attend.InputError, match="no such|cannot open|does not exist"):
         read(tmp_path / "missing.pfm")
 
 
@@ -167,3 +167,16 @@ def test_a_frame_index_out_of_the_records_range_is_refused():
     with pytest.raises(attend.InputError, match="^index: -2 is not a frame number"):
         pipeline._core.process(frame, None, -2)  # the C++ check under the Python one
     assert pipeline.process(frame, index=1000000).frame == 1000000
+
+
+@pytest.mark.parametrize("key", ["video", "images", "left_video", "gst", "sequence", "config"])
+def test_an_empty_source_path_is_refused_not_replaced_by_the_bundled_sequence(key, tmp_path):
+    kwargs = {key: "", "out": tmp_path / "run"}
+    if key == "left_video":
+        kwargs["right_video"] = "right.avi"
+    args = ("",) if key == "sequence" else ()
+    if key == "sequence":
+        del kwargs["sequence"]
+    with pytest.raises(attend.ConfigError, match=f"attend.run: {key} is an empty path"):
+        attend.run(*args, **kwargs)
+    assert not (tmp_path / "run").exists()

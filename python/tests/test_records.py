@@ -49,6 +49,9 @@ REFUSED_BY_EVAL = {
     "an unknown state": (lambda r: r["targets"][0].update(state="lost?"), "unknown state"),
     "no timings": (lambda r: r.pop("timings_ms"), "not a frame record"),
     "an id of text": (lambda r: r["targets"][0].update(id="1"), "('id' is not an integer)"),
+    "a target twice": (lambda r: r["targets"].append(dict(r["targets"][0])),
+                       "twice (targets 1 and "),
+    "targets a map": (lambda r: r.update(targets={"a": 1}), "('targets' is not a list)"),
 }
 
 
