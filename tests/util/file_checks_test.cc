@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 namespace attend {
 namespace {
 
-bool Has(const std::string& text, const std::string& part) {
+bool HasText(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
@@ -44,7 +44,7 @@ TEST(FileChecks, EachKindOfNonFileIsNamedWithTheGivenStatus) {
   EXPECT_EQ(config_error(""), "the configuration is an empty path");
   const std::string input = testing::InputErrorOf(
       [&] { RequireRegularFile("/dev/null", "the skin model", ExitStatus::kBadInput); });
-  EXPECT_TRUE(Has(input, "/dev/null: the skin model is a character device")) << input;
+  EXPECT_TRUE(HasText(input, "/dev/null: the skin model is a character device")) << input;
 }
 
 TEST(FileChecks, AFileOverTheCapIsRefusedWithItsSize) {
@@ -52,7 +52,7 @@ TEST(FileChecks, AFileOverTheCapIsRefusedWithItsSize) {
   const std::string path = dir.Write("big.yaml", std::string(2000, 'a'));
   const std::string message = testing::ConfigErrorOf(
       [&] { ReadRegularFile(path, "the configuration", ExitStatus::kUsage, 1000); });
-  EXPECT_TRUE(Has(message, "is 2000 bytes, more than 1 MB (docs/LIMITS.md)")) << message;
+  EXPECT_TRUE(HasText(message, "is 2000 bytes, more than 1 MB (docs/LIMITS.md)")) << message;
   EXPECT_TRUE(testing::ConfigErrorOf([&] { RequireRegularFile(path, "", ExitStatus::kUsage, 1999); })
                   .size() > 0);
 }
