@@ -124,7 +124,13 @@ TEST_F(SweepRecords, TheLargestGridPlansInSeconds) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(Contains(r.out, "10000 cells of attend run")) << r.out.substr(0, 200);
   // Each combination read the base configuration file anew: 15 s of parsing here; now 2.5 s.
-  EXPECT_LT(seconds, 8.0);
+  // AddressSanitizer's build (scripts/sanitize.sh) runs the same work about ten times slower.
+#if defined(__SANITIZE_ADDRESS__)
+  constexpr double kBound = 80.0;
+#else
+  constexpr double kBound = 8.0;
+#endif
+  EXPECT_LT(seconds, kBound);
 }
 
 TEST_F(SweepRecords, AnInputsFramesAndTheSweepFileItselfAreCheckedBeforeAnyCell) {
