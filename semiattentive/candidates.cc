@@ -52,11 +52,13 @@ CandidateFinder::CandidateFinder(const SelectOptions& options, BipPool* pool)
 
 Candidates CandidateFinder::Find(const cv::Mat& inhibited) {
   Candidates c;
-  cv::Mat scaled, features;
-  inhibited.convertTo(scaled, CV_32F, 255.0);
-  const cv::Mat zero = cv::Mat::zeros(scaled.size(), CV_32FC1);
-  cv::merge(std::vector<cv::Mat>{scaled, zero, zero}, features);
-  const Bip& bip = builder_.Build(features, HsvSimilarity(t_max_));
+  // The buffers are kept from frame to frame: fresh ones of 1-4 MB a frame (640x480) each
+  // came from the kernel as new, zeroed pages, which cost the stage more than its arithmetic
+  // (docs/PERFORMANCE.md, "Where 640x480 goes").
+  inhibited.convertTo(scaled_, CV_32F, 255.0);
+  if (zero_.size() != scaled_.size()) zero_ = cv::Mat::zeros(scaled_.size(), CV_32FC1);
+  cv::merge(std::vector<cv::Mat>{scaled_, zero_, zero_}, features_);
+  const Bip& bip = builder_.Build(features_, HsvSimilarity(t_max_));
   const int count = bip.LabelRoots(&c.labels);
   builder_.Release();  // its levels serve the other pyramids of the frame
   Measure(inhibited, count, &c);
