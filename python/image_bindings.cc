@@ -1,4 +1,5 @@
 // Stages on numpy images and the reading and writing of images and maps (python/bindings.h).
+#include <memory>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -145,11 +146,20 @@ py::object Disparity(const py::array& left, const py::array& right,
   const py::array right_array = ContiguousImage(right, "right");
   const cv::Mat l = ImageView(left_array, "left");
   const cv::Mat r = ImageView(right_array, "right");
+  // One estimator a thread, kept while the keywords stay the same: a user calls this in a loop,
+  // and a fresh estimator a call took its cost volume and buffers from the kernel as new pages
+  // each time, a third of the call at Middlebury sizes (docs/DISPARITY.md, "As a user calls
+  // it"). cv2.StereoSGBM keeps its buffers in its object the same way.
+  thread_local std::unique_ptr<DisparityEstimator> estimator;
+  thread_local std::vector<std::string> estimator_keywords;
+  if (!estimator || estimator_keywords != overrides) {
+    estimator = std::make_unique<DisparityEstimator>(options);
+    estimator_keywords = overrides;
+  }
   cv::Mat disparity;
   {
     const py::gil_scoped_release release;
-    DisparityEstimator estimator(options);
-    estimator.Compute(l, r, &disparity);
+    estimator->Compute(l, r, &disparity);
   }
   return MatArray(disparity);
 }
