@@ -106,7 +106,7 @@ Json CellScores(const std::string& command, const fs::path& cell_dir, const std:
 }
 
 void WriteStatus(const fs::path& cell_dir, const Json& status) {
-  WriteSweepFile((cell_dir / "status.json").string(), JsonText(status, 2) + "\n",
+  ReplaceFileText((cell_dir / "status.json").string(), JsonText(status, 2) + "\n",
                   "the cell's status");
 }
 
@@ -272,7 +272,7 @@ int RunCell(const std::string& dir, int index) {
     return status.Finish("failed", 1, std::string("the scores cannot be read: ") + e.what());
   }
   try {
-    WriteSweepFile((cell_dir / "scores.json").string(), JsonText(scores, 2) + "\n",
+    ReplaceFileText((cell_dir / "scores.json").string(), JsonText(scores, 2) + "\n",
                     "the cell's scores");
   } catch (const Error& e) {
     return status.Finish("failed", 2, Vanished(cell_dir) ? kVanished : e.what());

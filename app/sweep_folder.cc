@@ -107,7 +107,7 @@ void WriteSweepJson(const SweepPlan& plan, const fs::path& dir,
                      {"inputs", inputs},
                      {"slurm", SlurmJson(plan.slurm)},
                      {"cells", cell_list}};
-  WriteSweepFile((dir / "sweep.json").string(), JsonText(json, 2) + "\n", "the sweep's record");
+  ReplaceFileText((dir / "sweep.json").string(), JsonText(json, 2) + "\n", "the sweep's record");
 }
 
 // The scene inputs not yet rendered, each rendered beside its folder and renamed into place
@@ -228,8 +228,8 @@ void WriteCellFolder(const fs::path& cell_dir, const PlannedCell& planned, int i
   Json json = planned.json;
   json["index"] = index;
   json["attend_version"] = ATTEND_VERSION;
-  WriteSweepFile((cell_dir / "config.yaml").string(), planned.config, "the cell's configuration");
-  WriteSweepFile((cell_dir / "cell.json").string(), JsonText(json, 2) + "\n", "the cell's record");
+  ReplaceFileText((cell_dir / "config.yaml").string(), planned.config, "the cell's configuration");
+  ReplaceFileText((cell_dir / "cell.json").string(), JsonText(json, 2) + "\n", "the cell's record");
 }
 
 }  // namespace
@@ -315,7 +315,7 @@ StoredSweep PrepareSweepFolder(const SweepPlan& plan, const std::string& dir_tex
   for (auto& [cell, planned] : missing.recreated) {
     to_write.emplace_back(&planned, index_of.at(cell->name));
   }
-  WriteSweepFile((dir / "sweep.yaml").string(), plan.text, "the copy of the sweep file");
+  ReplaceFileText((dir / "sweep.yaml").string(), plan.text, "the copy of the sweep file");
   WriteSweepJson(plan, dir, cells);
   for (const auto& [planned, index] : to_write) {
     WriteCellFolder(dir / "cells" / cells[index].name, *planned, index);

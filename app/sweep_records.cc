@@ -1,6 +1,5 @@
 #include "app/sweep_records.h"
 
-#include <fcntl.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
 
@@ -12,7 +11,6 @@
 #include "util/error.h"
 #include "util/file_checks.h"
 #include "util/json_text.h"
-#include "util/output_folder.h"
 
 namespace attend {
 
@@ -49,34 +47,7 @@ std::string Expected(const std::string& what, const Json& value) {
   return "expected " + what + ", found " + Found(value);
 }
 
-std::string ErrnoText(int error_number) {
-  if (error_number == ENOSPC || error_number == EDQUOT) {
-    return std::string("the disk is full: ") + std::strerror(error_number);
-  }
-  return std::strerror(error_number);
-}
-
 }  // namespace
-
-void WriteSweepFile(const std::string& path, const std::string& text, const std::string& what) {
-  ReplaceFile(path, what, [&](const std::string& temporary) {
-    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) throw OutputError(ErrnoText(errno));
-    std::size_t done = 0;
-    while (done < text.size()) {
-      const ssize_t wrote = ::write(fd, text.data() + done, text.size() - done);
-      if (wrote < 0 && errno == EINTR) continue;
-      if (wrote <= 0) {
-        const int error_number = wrote < 0 ? errno : ENOSPC;
-        ::close(fd);
-        throw OutputError(ErrnoText(error_number));
-      }
-      done += static_cast<std::size_t>(wrote);
-    }
-    if (::close(fd) != 0) throw OutputError(ErrnoText(errno));
-    return true;
-  });
-}
 
 std::string WhyUnwritable(const std::string& folder) {
   struct statvfs space {};

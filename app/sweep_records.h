@@ -70,11 +70,6 @@ class SweepRecord {
   std::string path_;  // "" at the top
 };
 
-// Writes a file of a sweep folder whole (util/output_folder.h's ReplaceFile: the old content
-// or the new, never a part), and says why not: OutputError "PATH: cannot write WHAT (the disk
-// is full)", "(Permission denied)", ...
-void WriteSweepFile(const std::string& path, const std::string& text, const std::string& what);
-
 // Why nothing can be written below `folder` when it is so ("the disk is full", ...), else "".
 std::string WhyUnwritable(const std::string& folder);
 

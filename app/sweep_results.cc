@@ -264,8 +264,8 @@ CollectResult CollectSweep(const StoredSweep& sweep, const std::string& command_
   report.chart = LoadChartLibrary();
   result.csv = (fs::path(sweep.dir) / "sweep.csv").string();
   result.html = (fs::path(sweep.dir) / "report.html").string();
-  WriteSweepFile(result.csv, csv, "the sweep's scores");
-  WriteSweepFile(result.html, SweepReportHtml(report), "the sweep's report");
+  ReplaceFileText(result.csv, csv, "the sweep's scores");
+  ReplaceFileText(result.html, SweepReportHtml(report), "the sweep's report");
   result.notes = report.notes;
   return result;
 }

@@ -113,7 +113,7 @@ SlurmSubmission SubmitSlurmArray(const StoredSweep& sweep, const std::string& sc
   Json jobs = ReadJobs(sweep);
   SlurmSubmission submission;
   submission.script_path = (folder / ("array-" + std::to_string(jobs.size()) + ".sbatch")).string();
-  WriteSweepFile(submission.script_path, script, "the batch script");
+  ReplaceFileText(submission.script_path, script, "the batch script");
   const CapturedRun run = RunCaptured({"sbatch", "--parsable", submission.script_path});
   if (!run.started) {
     throw InputError("sbatch: " + run.start_error +
@@ -140,7 +140,7 @@ SlurmSubmission SubmitSlurmArray(const StoredSweep& sweep, const std::string& sc
                                                 script.find('\n', at) - at - marker.size())},
                   {"script", submission.script_path},
                   {"submitted", UtcTimestamp()}});
-  WriteSweepFile(JobsPath(sweep).string(), JsonText(jobs, 2) + "\n", "the job list");
+  ReplaceFileText(JobsPath(sweep).string(), JsonText(jobs, 2) + "\n", "the job list");
   return submission;
 }
 

@@ -278,7 +278,11 @@ std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
                                         : ", which is not a target of the record"));
         }
       }
-      for (const auto& [stage, ms] : json.at("timings_ms").items()) {
+      const nlohmann::json& timings = json.at("timings_ms");
+      if (!timings.is_object()) {
+        throw std::runtime_error("'timings_ms' is not a map of stage names to milliseconds");
+      }
+      for (const auto& [stage, ms] : timings.items()) {
         record.timings.Add(stage, ms.get<double>());
       }
       if (json.contains("latency_ms")) record.latency_ms = json.at("latency_ms").get<double>();

@@ -5,7 +5,11 @@
 #include <fstream>
 #include <iostream>
 
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <filesystem>
 
@@ -95,12 +99,37 @@ void ReplaceFile(const std::string& path, const std::string& what,
   if (error) fail(error.message());
 }
 
+namespace {
+
+// The system's reason for `error_number`, naming a full disk as such.
+std::string ErrnoText(int error_number) {
+  if (error_number == ENOSPC || error_number == EDQUOT) {
+    return std::string("the disk is full: ") + std::strerror(error_number);
+  }
+  return std::strerror(error_number);
+}
+
+}  // namespace
+
 void ReplaceFileText(const std::string& path, const std::string& text, const std::string& what) {
+  // Written with write(2), so that the reason of a failure (a full disk, a folder made
+  // read-only) reaches the message, which an ofstream loses.
   ReplaceFile(path, what, [&](const std::string& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    out.close();
-    return static_cast<bool>(out);
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) throw OutputError(ErrnoText(errno));
+    std::size_t done = 0;
+    while (done < text.size()) {
+      const ssize_t wrote = ::write(fd, text.data() + done, text.size() - done);
+      if (wrote < 0 && errno == EINTR) continue;
+      if (wrote <= 0) {
+        const int error_number = wrote < 0 ? errno : ENOSPC;
+        ::close(fd);
+        throw OutputError(ErrnoText(error_number));
+      }
+      done += static_cast<std::size_t>(wrote);
+    }
+    if (::close(fd) != 0) throw OutputError(ErrnoText(errno));
+    return true;
   });
 }
 

@@ -35,7 +35,8 @@ struct OutputFolderRules {
 void ReplaceFile(const std::string& path, const std::string& what,
                  const std::function<bool(const std::string& temporary)>& write);
 
-// ReplaceFile with `text` as the new content.
+// ReplaceFile with `text` as the new content; a failure names the system's reason ("the disk
+// is full: No space left on device").
 void ReplaceFileText(const std::string& path, const std::string& text, const std::string& what = "");
 
 // The whole content of a file, "" when it cannot be read.
