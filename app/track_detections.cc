@@ -130,7 +130,7 @@ class DetectionTracks {
     record.timings.Add("read", stage.ElapsedMs());
 
     context_.Reset(frame.index, frame.left, frame.right);
-    channel_.Compute(context_, false);
+    channel_.Compute(context_);
     const FeatureResult& result = channel_.results().front();
     record.timings.Add("feature." + result.name, result.milliseconds);
     totals_.searched_pixels += std::max(0.0, result.searched_pixels);

@@ -10,6 +10,7 @@ namespace {
 
 class CentreBiasFeature final : public FeatureMap {
  public:
+  bool ReadsAttentionRegions() const override { return false; }
   explicit CentreBiasFeature(double sigma) : sigma_(sigma) {}
   void Compute(const FrameContext& context, cv::Mat* out) override {
     // The map depends on the size alone: made once per size.

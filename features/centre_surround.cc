@@ -10,6 +10,7 @@ namespace {
 
 class CentreSurroundFeature final : public FeatureMap {
  public:
+  bool ReadsAttentionRegions() const override { return false; }
   explicit CentreSurroundFeature(const CentreSurroundOptions& options) : options_(options) {}
   void Compute(const FrameContext& context, cv::Mat* out) override {
     CentreSurroundMap(context.left(), options_, out);

@@ -26,6 +26,7 @@ std::vector<float> MeanBoundaryGradient(const Segmentation& segmentation, Gradie
 
 class RegionFeature : public FeatureMap {
  public:
+  bool ReadsAttentionRegions() const override { return false; }
   explicit RegionFeature(std::vector<float> (*measure)(const Segmentation&)) : measure_(measure) {}
   void Compute(const FrameContext& context, cv::Mat* out) override {
     const Segmentation& segmentation = context.Regions();

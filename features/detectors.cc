@@ -121,6 +121,7 @@ class ObjectFeature final : public FeatureMap {
   }
   const std::vector<Detection>& detections() const override { return channel_->detections(); }
   double searched_pixels() const override { return channel_->last_searched_pixels(); }
+  bool ReadsAttentionRegions() const override { return channel_->reads_regions(); }
 
  private:
   std::unique_ptr<ObjectChannel> channel_;

@@ -135,6 +135,8 @@ class ObjectChannel {
   // (CV_32FC1, the frame's size) and detections().
   void Compute(const cv::Mat& bgr, const std::vector<cv::Rect>& regions, cv::Mat* map);
   const std::vector<Detection>& detections() const { return detections_; }
+  // Whether Compute reads `regions` (the attended gate).
+  bool reads_regions() const { return options_.gate == DetectorGate::kAttended; }
   // The images the last Compute searched (for tests and benchmarks): how many, and their
   // pixels summed.
   int last_searches() const { return last_searches_; }

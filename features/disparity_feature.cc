@@ -14,6 +14,7 @@ class DisparityFeature : public FeatureMap {
       : options_(options), per_region_(per_region) {}
 
   bool NeedsStereo() const override { return true; }
+  bool ReadsAttentionRegions() const override { return false; }
 
   // The context computes the disparity, once a frame, shared with plugins that ask for it.
   void Compute(const FrameContext& context, cv::Mat* out) override {

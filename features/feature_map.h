@@ -64,6 +64,11 @@ class FeatureMap {
   // scaled images of a sliding-window detector, a network's inputs); -1 for features that
   // search for nothing. summary.json reports its mean a frame.
   virtual double searched_pixels() const { return -1.0; }
+  // Whether Compute reads the context's AttentionRegions (where attention looked in the last
+  // frame). `attend run` with two threads or more computes the features that do not while it
+  // still tracks and selects in the frame before (pipeline/frame_pipeline.h); those that do
+  // wait for it. A plugin that never reads them returns false, and runs ahead too.
+  virtual bool ReadsAttentionRegions() const { return true; }
 };
 
 // What a factory may need to know about the run besides its own parameters.

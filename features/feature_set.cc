@@ -3,8 +3,8 @@
 #include "util/shared_mat.h"
 
 #include <exception>
-#include <opencv2/core/utility.hpp>
 
+#include "util/error.h"
 #include "util/timer.h"
 
 namespace attend {
@@ -32,7 +32,7 @@ FeatureSet::FeatureSet(const std::vector<FeatureSpec>& specs, const FeatureRegis
 
 FeatureSet::~FeatureSet() = default;
 
-void RunTasks(int count, bool concurrent, const std::function<void(int)>& task) {
+void RunTasks(ThreadPool* pool, int count, const std::function<void(int)>& task) {
   std::vector<std::exception_ptr> errors(count);
   auto run = [&](int i) {
     try {
@@ -41,13 +41,8 @@ void RunTasks(int count, bool concurrent, const std::function<void(int)>& task) 
       errors[i] = std::current_exception();
     }
   };
-  if (concurrent && count > 1) {
-    cv::parallel_for_(
-        cv::Range(0, count),
-        [&](const cv::Range& range) {
-          for (int i = range.start; i < range.end; ++i) run(i);
-        },
-        count);
+  if (pool != nullptr) {
+    pool->ParallelFor(count, run);
   } else {
     for (int i = 0; i < count; ++i) run(i);
   }
@@ -64,17 +59,50 @@ void FeatureSet::EndSequence() {
   for (Member& member : members_) member.feature->EndSequence();
 }
 
-void FeatureSet::Compute(const FrameContext& context, bool concurrent) {
+void FeatureSet::Compute(const FrameContext& context, ThreadPool* pool) {
+  Compute(context, pool, FeaturePhase::kAll, &results_);
+}
+
+std::vector<FeatureResult> FeatureSet::NewResults() const {
+  std::vector<FeatureResult> results = results_;
+  for (FeatureResult& result : results) {
+    result.map = cv::Mat();
+    result.milliseconds = 0.0;
+    result.detections.clear();
+    result.searched_pixels = -1.0;
+  }
+  return results;
+}
+
+bool FeatureSet::ReadsAttentionRegions() const {
+  for (const Member& member : members_) {
+    if (member.feature->ReadsAttentionRegions()) return true;
+  }
+  return false;
+}
+
+void FeatureSet::Compute(const FrameContext& context, ThreadPool* pool, FeaturePhase phase,
+                         std::vector<FeatureResult>* results) {
+  ATTEND_CHECK(results->size() == members_.size()) << "results must come from NewResults()";
+  std::vector<int> chosen;
+  for (size_t i = 0; i < members_.size(); ++i) {
+    const bool reads = members_[i].feature->ReadsAttentionRegions();
+    if (phase == FeaturePhase::kAll || (phase == FeaturePhase::kAfterAttention) == reads) {
+      chosen.push_back(static_cast<int>(i));
+    }
+  }
   // A map of the last frame that someone still holds (a Python array) is let go, so that this
   // frame does not overwrite it (util/shared_mat.h).
-  for (FeatureResult& result : results_) ReleaseIfShared(&result.map);
-  RunTasks(static_cast<int>(members_.size()), concurrent, [&](int i) {
+  for (const int i : chosen) ReleaseIfShared(&(*results)[i].map);
+  RunTasks(chosen.size() > 1 ? pool : nullptr, static_cast<int>(chosen.size()), [&](int k) {
+    const int i = chosen[k];
+    FeatureResult& result = (*results)[i];
     const Stopwatch stopwatch;
-    members_[i].feature->Compute(context, &results_[i].map);
-    results_[i].milliseconds = stopwatch.ElapsedMs();
-    CheckFeatureOutput(members_[i].entry, results_[i].map, context.size());
-    results_[i].detections = members_[i].feature->detections();
-    results_[i].searched_pixels = members_[i].feature->searched_pixels();
+    members_[i].feature->Compute(context, &result.map);
+    result.milliseconds = stopwatch.ElapsedMs();
+    CheckFeatureOutput(members_[i].entry, result.map, context.size());
+    result.detections = members_[i].feature->detections();
+    result.searched_pixels = members_[i].feature->searched_pixels();
   });
 }
 

@@ -79,6 +79,7 @@ LightChange FitLightChange(const std::vector<float>& background,
 
 class MotionFeature final : public FeatureMap {
  public:
+  bool ReadsAttentionRegions() const override { return false; }
   explicit MotionFeature(const MotionOptions& options)
       : detector_(options), per_region_(options.per_region) {}
   void Compute(const FrameContext& context, cv::Mat* out) override {

@@ -24,6 +24,7 @@
 // Version 5: the region adjacency became plain vectors (RegionAdjacency, no Boost in the plugin
 // API), and every normalisation is in one registry (FeatureRegistry::normalisations()).
 // Version 6: a FeatureMap may report the pixels its detector searched (searched_pixels).
+// Version 7: a FeatureMap says whether it reads AttentionRegions (ReadsAttentionRegions).
 //
 // A plugin reads its parameters as the built-in features do: an options struct with a field
 // table, read with ReadFields (config/read_fields.h; examples/temporal_change). The
@@ -32,7 +33,7 @@
 
 #include "features/feature_map.h"
 
-#define ATTEND_PLUGIN_ABI_VERSION 6
+#define ATTEND_PLUGIN_ABI_VERSION 7
 
 extern "C" {
 

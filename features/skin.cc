@@ -15,6 +15,7 @@ namespace {
 
 class SkinFeature : public FeatureMap {
  public:
+  bool ReadsAttentionRegions() const override { return false; }
   SkinFeature(SkinModel model, SkinOutput output, bool per_region)
       : model_(std::move(model)), output_(output), per_region_(per_region) {}
   void Compute(const FrameContext& context, cv::Mat* out) override {

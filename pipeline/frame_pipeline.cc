@@ -96,68 +96,151 @@ SaliencyStage MakeSaliencyStage(const AttendOptions& options, const FeatureRegis
 
 }  // namespace
 
+FramePipeline::Slot::Slot(const SegmentationOptions& segmentation, BipPool* pool,
+                          const DisparityOptions& disparity, SaliencyStage saliency,
+                          std::vector<FeatureResult> features)
+    : context(segmentation, pool), features(std::move(features)), saliency(std::move(saliency)) {
+  context.set_disparity_options(disparity);
+}
+
 FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry& registry,
                              const FeatureSetup& setup, ExecutionContext* execution)
     : options_(options),
+      execution_(execution),
       threads_(execution->threads()),
-      context_(options.segmentation, execution->Shared<BipPool>()),
       features_(options.features, registry, setup),
-      saliency_(MakeSaliencyStage(options, registry)),
+      saliency_prototype_(MakeSaliencyStage(options, registry)),
+      has_late_features_(features_.ReadsAttentionRegions()),
       attention_(options.attention, LoadAttentionSkinModel(options.attention.skin_model, setup),
                  execution->Shared<BipPool>()) {
   // The run's disparity (FrameContext::disparity_options) is the `disparity` feature's.
   for (const FeatureSpec& spec : options.features) {
     if (spec.enabled && spec.name == "disparity") {
       has_disparity_ = true;
-      context_.set_disparity_options(ReadDisparityOptions(spec.params));
+      disparity_options_ = ReadDisparityOptions(spec.params);
     }
   }
+  slots_[0] = std::make_unique<Slot>(options_.segmentation, execution_->Shared<BipPool>(),
+                                     disparity_options_, saliency_prototype_,
+                                     features_.NewResults());
+}
+
+FramePipeline::Slot& FramePipeline::Begin(int index, const StereoFrame& frame) {
+  Slot& slot = *slots_[index];
+  slot.frame = frame;
+  slot.context.Reset(frame.index, frame.left, frame.right);
+  slot.has_saliency = false;
+  slot.timings = StageTimes();
+  return slot;
+}
+
+void FramePipeline::ComputeFeatures(Slot* slot, FeaturePhase phase, ThreadPool* pool) {
+  const Stopwatch stage;
+  features_.Compute(slot->context, pool, phase, &slot->features);
+  slot->timings.Add("features", stage.ElapsedMs());
 }
 
 void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
-  context_.Reset(frame.index, frame.left, frame.right);
+  ATTEND_CHECK(pending_.load() == 0)
+      << "Process cannot run while a frame given to Ahead waits for Finish";
+  if (slots_[1] != nullptr) current_ = 1 - current_;
+  ahead_slot_ = 1 - current_;
+  Slot& slot = Begin(current_, frame);
   // Where attention looked in the previous frame is where gated top-down channels look now.
-  context_.set_attention_regions(attention_.look_regions());
+  slot.context.set_attention_regions(attention_.look_regions());
 
   Stopwatch stage;
-  context_.Regions();
+  slot.context.Regions();
   record->timings.Add("segment", stage.ElapsedMs());
 
   // Existing targets first, so that their saliency is inhibited in this frame (SPEC 1). The
   // features do not depend on the targets, so with more than one thread the two run side by
   // side; both only read the frame context. Errors are rethrown in a fixed order.
   stage.Restart();
-  if (threads_ == 1) {
-    attention_.Track(frame.left, context_.SkinDistance(attention_.skin_model()), &tracked_,
-                     context_.Cylinder());
+  ThreadPool* pool = threads_ > 1 ? execution_->pool() : nullptr;
+  if (pool == nullptr) {
+    Track(slot);
     stage.Restart();
-    features_.Compute(context_, false);
+    features_.Compute(slot.context, nullptr, FeaturePhase::kAll, &slot.features);
   } else {
-    RunTasks(2, true, [&](int task) {
+    RunTasks(pool, 2, [&](int task) {
       if (task == 0) {
-        attention_.Track(frame.left, context_.SkinDistance(attention_.skin_model()), &tracked_,
-                         context_.Cylinder());
+        Track(slot);
       } else {
-        features_.Compute(context_, true);
+        features_.Compute(slot.context, pool, FeaturePhase::kAll, &slot.features);
       }
     });
   }
   record->timings.Add("features", stage.ElapsedMs());
-  for (const FeatureResult& result : features_.results()) {
+  for (const FeatureResult& result : slot.features) {
     record->timings.Add("feature." + result.name, result.milliseconds);
   }
 
   stage.Restart();
-  Saliency(frame);
+  Saliency(&slot);
   record->timings.Add("saliency", stage.ElapsedMs());
+  Select(slot, record);
+}
 
+void FramePipeline::Ahead(const StereoFrame& frame) {
+  if (slots_[1] == nullptr) {
+    slots_[1] = std::make_unique<Slot>(options_.segmentation, execution_->Shared<BipPool>(),
+                                       disparity_options_, saliency_prototype_,
+                                       features_.NewResults());
+  }
+  ATTEND_CHECK(pending_.fetch_add(1) <= 1) << "Ahead is at most one frame ahead of Finish";
+  Slot& slot = Begin(ahead_slot_, frame);
+  ahead_slot_ = 1 - ahead_slot_;
+  Stopwatch stage;
+  slot.context.Regions();
+  slot.timings.Add("segment", stage.ElapsedMs());
+  // The pool's other threads help only when there are more than two: this thread and the
+  // caller's are busy with two frames.
+  ThreadPool* pool = threads_ > 2 ? execution_->pool() : nullptr;
+  ComputeFeatures(&slot, FeaturePhase::kAhead, pool);
+  if (!has_late_features_) {
+    stage.Restart();
+    Saliency(&slot);
+    slot.timings.Add("saliency", stage.ElapsedMs());
+    slot.has_saliency = true;
+  }
+}
+
+void FramePipeline::Finish(FrameRecord* record) {
+  ATTEND_CHECK(pending_.load() >= 1) << "Finish needs a frame given to Ahead";
+  current_ = 1 - current_;
+  Slot& slot = *slots_[current_];
+  if (has_late_features_) {
+    slot.context.set_attention_regions(attention_.look_regions());
+    ComputeFeatures(&slot, FeaturePhase::kAfterAttention, nullptr);
+  }
+  for (const auto& [name, ms] : slot.timings.stages()) record->timings.Add(name, ms);
+  for (const FeatureResult& result : slot.features) {
+    record->timings.Add("feature." + result.name, result.milliseconds);
+  }
+  if (!slot.has_saliency) {
+    const Stopwatch stage;
+    Saliency(&slot);
+    record->timings.Add("saliency", stage.ElapsedMs());
+  }
+  Track(slot);
+  Select(slot, record);
+  --pending_;
+}
+
+void FramePipeline::Track(const Slot& slot) {
+  attention_.Track(slot.frame.left, slot.context.SkinDistance(attention_.skin_model()),
+                   &tracked_, slot.context.Cylinder());
+}
+
+void FramePipeline::Select(const Slot& slot, FrameRecord* record) {
   detections_.clear();
-  for (const FeatureResult& result : features_.results()) {
+  for (const FeatureResult& result : slot.features) {
     detections_.insert(detections_.end(), result.detections.begin(), result.detections.end());
   }
-  attention_.Select(frame.left, context_.SkinDistance(attention_.skin_model()), tracked_,
-                    saliency_.saliency(), context_.Regions(), &attended_, detections_,
-                    StereoOf(frame));
+  attention_.Select(slot.frame.left, slot.context.SkinDistance(attention_.skin_model()),
+                    tracked_, slot.saliency.saliency(), slot.context.Regions(), &attended_,
+                    detections_, StereoOf(slot));
   record->timings.Add("track", attended_.track_ms);
   record->timings.Add("inhibit", attended_.inhibit_ms);
   record->timings.Add("select", attended_.select_ms);
@@ -171,28 +254,28 @@ void FramePipeline::SetCamera(const SequenceInfo& info) {
   scale_y_ = info.scale_y;
 }
 
-StereoInput FramePipeline::StereoOf(const StereoFrame& frame) const {
+StereoInput FramePipeline::StereoOf(const Slot& slot) const {
   const DepthOptions& depth = options_.attention.depth;
   StereoInput stereo;
-  if (depth.method == TargetDisparityMethod::kOff || frame.right.empty()) return stereo;
-  stereo.right = frame.right;
-  const DisparityOptions& disparity = context_.disparity_options();
+  if (depth.method == TargetDisparityMethod::kOff || slot.frame.right.empty()) return stereo;
+  stereo.right = slot.frame.right;
+  const DisparityOptions& disparity = slot.context.disparity_options();
   stereo.max_disparity = disparity.max_disparity;
   stereo.window = disparity.window;
   // The dense map is the disparity feature's: without that feature none is computed for the
   // targets (method map then measures by the template).
   if (has_disparity_ && (depth.method == TargetDisparityMethod::kMap ||
                          depth.inhibit_band_px > 0.f || depth.separate_px > 0.f)) {
-    stereo.disparity = context_.Disparity(disparity);
+    stereo.disparity = slot.context.Disparity(disparity);
   }
   return stereo;
 }
 
-void FramePipeline::Saliency(const StereoFrame& frame) {
+void FramePipeline::Saliency(Slot* slot) {
   maps_.clear();
-  for (const FeatureResult& result : features_.results()) maps_.push_back(&result.map);
-  grey_ = IsGreyImage(frame.left);
-  saliency_.Combine(maps_, grey_, context_.size());
+  for (const FeatureResult& result : slot->features) maps_.push_back(&result.map);
+  slot->grey = IsGreyImage(slot->frame.left);
+  slot->saliency.Combine(maps_, slot->grey, slot->context.size());
 }
 
 void FramePipeline::RecordTargets(FrameRecord* record) const {

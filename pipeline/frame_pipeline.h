@@ -3,6 +3,7 @@
 // map. `attend run` drives it frame by frame and writes what it produced.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -47,6 +48,22 @@ class FramePipeline {
   // second thread), `feature.<name>` (each plugin's own time), `saliency`, `inhibit` and
   // `select`.
   void Process(const StereoFrame& frame, FrameRecord* record);
+
+  // The same stages split in two, for a caller that works on two frames at once (`attend run`
+  // with two threads or more, pipeline/run.cc): Ahead(t + 1) may run on another thread while
+  // Finish() completes frame t, and the records are those of Process.
+  //
+  // Ahead: the stages of `frame` that do not depend on the attention stage's work on the frame
+  // before: the colour conversions and segmentation, the features that do not read where
+  // attention looked (FeatureMap::ReadsAttentionRegions) and, when no feature does, the
+  // saliency map. Its images must outlive the Finish() of this frame. Not beside another
+  // Ahead, and at most one frame ahead of Finish.
+  void Ahead(const StereoFrame& frame);
+  // The rest of the frame last given to Ahead, which becomes the frame of the accessors below:
+  // the features that read where attention looked, the saliency, tracking, inhibition and
+  // selection. Fills `record` as Process does (`segment`, `features` and `saliency` times
+  // included); not beside another Finish.
+  void Finish(FrameRecord* record);
   // Tell the feature plugins that a sequence starts (before its first Process) or has ended.
   void BeginSequence(const SequenceStart& start) { features_.BeginSequence(start); }
   void EndSequence() { features_.EndSequence(); }
@@ -56,15 +73,15 @@ class FramePipeline {
   void SetCamera(const SequenceInfo& info);
 
   // Results of the last frame.
-  const FrameContext& context() const { return context_; }
-  const std::vector<FeatureResult>& features() const { return features_.results(); }
+  const FrameContext& context() const { return current().context; }
+  const std::vector<FeatureResult>& features() const { return current().features; }
   // Each feature's map normalised to [0, 1], in the order of features().
-  const std::vector<cv::Mat>& normalised() const { return saliency_.normalised(); }
-  const cv::Mat& saliency() const { return saliency_.saliency(); }
+  const std::vector<cv::Mat>& normalised() const { return current().saliency.normalised(); }
+  const cv::Mat& saliency() const { return current().saliency.saliency(); }
   // Whether the last frame was grey (colour/grey.h): on a grey frame a feature whose map is
   // constant (colour contrast and skin, which are 0 there) gets weight 0 in its saliency, so
   // it does not dilute the features that see something.
-  bool grey() const { return grey_; }
+  bool grey() const { return current().grey; }
   const cv::Mat& inhibition() const { return attention_.inhibition(); }
   const cv::Mat& inhibited() const { return attention_.inhibited(); }
   int targets_attended() const { return attention_.targets_attended(); }
@@ -73,25 +90,58 @@ class FramePipeline {
   // buffer and the holder keeps its values (util/shared_mat.h).
 
  private:
-  // The feature maps normalised, weighted and combined by saliency_ (SPEC 2.3).
-  void Saliency(const StereoFrame& frame);
+  // What one frame in flight holds: Ahead fills one slot while Finish works on the other.
+  struct Slot {
+    Slot(const SegmentationOptions& segmentation, BipPool* pool,
+         const DisparityOptions& disparity, SaliencyStage saliency,
+         std::vector<FeatureResult> features);
+    StereoFrame frame;  // headers: the caller's images
+    LazyFrameContext context;
+    std::vector<FeatureResult> features;  // FeatureSet::NewResults()
+    SaliencyStage saliency;
+    bool grey = false;
+    bool has_saliency = false;  // Ahead combined the maps already
+    StageTimes timings;         // those of Ahead
+  };
+
+  // Slot `index`, given `frame`, its context reset.
+  Slot& Begin(int index, const StereoFrame& frame);
+  // Ahead's features (`phase`) with their wall time added to the slot's `features` time.
+  void ComputeFeatures(Slot* slot, FeaturePhase phase, ThreadPool* pool);
+  // The feature maps normalised, weighted and combined by the slot's saliency (SPEC 2.3).
+  void Saliency(Slot* slot);
+  // Tracking (the existing targets) in the slot's frame.
+  void Track(const Slot& slot);
+  // Inhibition and selection in the slot's frame, and the record of its targets.
+  void Select(const Slot& slot, FrameRecord* record);
   // What the attention stage takes of the stereo pair for the targets' disparities.
-  StereoInput StereoOf(const StereoFrame& frame) const;
+  StereoInput StereoOf(const Slot& slot) const;
   // The attention stage's targets as the frame's records (SPEC 3.3).
   void RecordTargets(FrameRecord* record) const;
+  const Slot& current() const { return *slots_[current_]; }
 
   const AttendOptions options_;
+  ExecutionContext* const execution_;
   const int threads_;  // the execution context's
-  LazyFrameContext context_;
   FeatureSet features_;
-  SaliencyStage saliency_;
-  std::vector<const cv::Mat*> maps_;  // the features' maps, for saliency_
-  bool grey_ = false;
+  SaliencyStage saliency_prototype_;  // what each slot's saliency starts as
+  std::vector<const cv::Mat*> maps_;  // the features' maps, for a slot's saliency
+  // Two slots once Ahead is used (the second is made then), else one.
+  std::unique_ptr<Slot> slots_[2];
+  // Frames take the two slots in turn. Finish (and Process) set current_, the slot of the
+  // accessors' frame; Ahead alone reads and sets ahead_slot_, the slot of its next frame.
+  int current_ = 0;
+  int ahead_slot_ = 1;
+  // The frames given to Ahead whose Finish has not ended: at most two (Ahead of frame t + 1
+  // beside the Finish of frame t).
+  std::atomic<int> pending_{0};
+  bool has_late_features_ = false;  // some feature reads where attention looked
   AttentionStage attention_;
   TrackedTargets tracked_;  // what attention_ tracked in this frame
   std::vector<Detection> detections_;  // the top-down channels' detections in this frame
   AttentionFrame attended_;
   bool has_disparity_ = false;  // the disparity feature is enabled
+  DisparityOptions disparity_options_;  // its options: the frame contexts' disparity
   std::shared_ptr<const StereoCalibration> calibration_;
   double scale_x_ = 1.0, scale_y_ = 1.0;
 };

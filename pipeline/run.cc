@@ -4,6 +4,7 @@
 #include <chrono>
 #include <ctime>
 #include <filesystem>
+#include <future>
 #include <iomanip>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -219,30 +220,35 @@ struct RunTotals {
   Stopwatch wall;  // from the first frame's read on
 };
 
-// The next frame of `source` through the pipeline and the observers, its record appended to
-// the run folder and the scanpath, its timings and its latency (live sources) to `totals`;
-// false at the end of the source.
-bool RunFrame(FrameSource* source, FramePipeline* pipeline,
-              const std::vector<RunObserver*>& observers, RunFolder* folder, RunTotals* totals) {
-  FrameRecord record;
-  Stopwatch stage;
+// A frame read from the source, with the time its read took.
+struct ReadFrame {
   StereoFrame frame;
-  if (!source->Next(&frame)) return false;
-  record.frame = frame.index;
-  record.timings.Add("read", stage.ElapsedMs());
+  bool more = false;  // false: the source has ended
+  double read_ms = 0.0;
+};
 
-  pipeline->Process(frame, &record);
-  for (const FeatureResult& result : pipeline->features()) {
+bool Read(FrameSource* source, ReadFrame* read) {
+  const Stopwatch stage;
+  read->more = source->Next(&read->frame);
+  read->read_ms = stage.ElapsedMs();
+  return read->more;
+}
+
+// The rest of a frame the pipeline has worked on (its record holds its frame number and
+// times): the observers, its record appended to the run folder and the scanpath, its timings
+// and its latency (live sources) to `totals`.
+void RecordFrame(const StereoFrame& frame, const FramePipeline& pipeline,
+                 const std::vector<RunObserver*>& observers, const SequenceInfo& info,
+                 RunFolder* folder, RunTotals* totals, FrameRecord* record) {
+  for (const FeatureResult& result : pipeline.features()) {
     if (result.searched_pixels >= 0.0) totals->searched.Add(result.name, result.searched_pixels);
   }
-
-  stage.Restart();
-  for (RunObserver* observer : observers) observer->OnFrame(frame, *pipeline, record);
-  record.timings.Add("write", stage.ElapsedMs());
+  Stopwatch stage;
+  for (RunObserver* observer : observers) observer->OnFrame(frame, pipeline, *record);
+  record->timings.Add("write", stage.ElapsedMs());
   // The pipeline and the overlay work at the working size; the record is written in the
   // pixels of the input frames (SPEC 3.3).
-  const SequenceInfo& info = source->info();
-  FrameRecord input = InputFromWorking(record, info.scale_x, info.scale_y, info.native_size);
+  FrameRecord input = InputFromWorking(*record, info.scale_x, info.scale_y, info.native_size);
   if (frame.captured != std::chrono::steady_clock::time_point{}) {
     input.latency_ms = std::chrono::duration<double, std::milli>(
                            std::chrono::steady_clock::now() - frame.captured)
@@ -254,8 +260,23 @@ bool RunFrame(FrameSource* source, FramePipeline* pipeline,
   }
   folder->AppendFrame(input);
   AppendScanpath(input, &totals->scanpath);
-  for (const auto& [name, ms] : record.timings.stages()) totals->stages.Add(name, ms);
-  return true;
+  for (const auto& [name, ms] : record->timings.stages()) totals->stages.Add(name, ms);
+}
+
+// After each frame: the counts and the caller's progress.
+void CountFrame(const RunRequest& request, const SequenceInfo& info,
+                const FramePipeline& pipeline, const RunTotals& totals, RunSummary* summary) {
+  ++summary->frames;
+  summary->targets_attended = pipeline.targets_attended();
+  if (request.on_progress) {
+    const double seconds = totals.wall.ElapsedMs() / 1000.0;
+    request.on_progress(
+        {summary->frames, info.frame_count, seconds > 0 ? summary->frames / seconds : 0.0});
+  }
+}
+
+bool StopAsked(const RunRequest& request) {
+  return request.stop != nullptr && request.stop->load();
 }
 
 // The frames of `source`, one after the other, until its end or a stop request (then
@@ -266,23 +287,61 @@ void RunFrames(const RunRequest& request, FrameSource* source, FramePipeline* pi
   const SequenceInfo& info = source->info();
   source->WatchStop(request.stop);
   while (true) {
-    if (request.stop != nullptr && request.stop->load()) {
+    if (StopAsked(request)) {
       summary->interrupted = true;
       return;
     }
-    if (!RunFrame(source, pipeline, observers, folder, totals)) {
+    ReadFrame read;
+    if (!Read(source, &read)) {
       // A live source stops waiting for its next frame when the run is asked to stop.
-      if (request.stop != nullptr && request.stop->load()) summary->interrupted = true;
+      if (StopAsked(request)) summary->interrupted = true;
       return;
     }
-    ++summary->frames;
-    summary->targets_attended = pipeline->targets_attended();
-    if (request.on_progress) {
-      const double seconds = totals->wall.ElapsedMs() / 1000.0;
-      request.on_progress(
-          {summary->frames, info.frame_count, seconds > 0 ? summary->frames / seconds : 0.0});
-    }
+    FrameRecord record;
+    record.frame = read.frame.index;
+    record.timings.Add("read", read.read_ms);
+    pipeline->Process(read.frame, &record);
+    RecordFrame(read.frame, *pipeline, observers, info, folder, totals, &record);
+    CountFrame(request, info, *pipeline, *totals, summary);
   }
+}
+
+// RunFrames on two frames at once (two threads or more): while this thread finishes frame t
+// (its tracking, selection and records), a thread of `pool` reads frame t + 1 and runs its
+// segmentation and features (FramePipeline::Ahead). The records, and what is kept when a frame
+// fails, are those of RunFrames: frame t + 1's error is thrown after frame t is recorded.
+void RunFramesOverlapped(const RunRequest& request, FrameSource* source, ThreadPool* pool,
+                         FramePipeline* pipeline, const std::vector<RunObserver*>& observers,
+                         RunFolder* folder, RunTotals* totals, RunSummary* summary) {
+  const SequenceInfo& info = source->info();
+  source->WatchStop(request.stop);
+  const auto read_ahead = [source, pipeline](ReadFrame* read) {
+    if (Read(source, read)) pipeline->Ahead(read->frame);
+  };
+  // Every frame taken from the source is finished and recorded, so that a live source's
+  // counts add up (docs/LIVE.md); after a stop request no further frame is taken.
+  ReadFrame current;
+  if (!StopAsked(request)) read_ahead(&current);
+  while (current.more) {
+    ReadFrame next;
+    std::future<void> ahead;
+    if (!StopAsked(request)) ahead = pool->Submit([&] { read_ahead(&next); });
+    try {
+      FrameRecord record;
+      record.frame = current.frame.index;
+      record.timings.Add("read", current.read_ms);
+      pipeline->Finish(&record);
+      RecordFrame(current.frame, *pipeline, observers, info, folder, totals, &record);
+      CountFrame(request, info, *pipeline, *totals, summary);
+    } catch (...) {
+      if (ahead.valid()) ahead.wait();  // it uses `next` and the pipeline
+      throw;
+    }
+    if (ahead.valid()) ahead.get();
+    current = std::move(next);
+  }
+  // A live source stops waiting for its next frame when the run is asked to stop.
+  if (StopAsked(request)) summary->interrupted = true;
 }
 
 // The features of the run: on a monocular source with the shipped configuration, those that
@@ -366,7 +425,12 @@ RunSummary RunSequence(const RunRequest& request) {
   RunTotals totals;
   try {
     pipeline.BeginSequence({info.name, info.size, info.stereo, options.sequence.first_frame});
-    RunFrames(request, source.get(), &pipeline, observers, &folder, &totals, &summary);
+    if (execution.threads() >= 2) {
+      RunFramesOverlapped(request, source.get(), execution.pool(), &pipeline, observers,
+                          &folder, &totals, &summary);
+    } else {
+      RunFrames(request, source.get(), &pipeline, observers, &folder, &totals, &summary);
+    }
   } catch (const std::exception& e) {
     // Whatever stopped the loop, the frames done so far are kept and the summary says why.
     summary.interrupted = true;

@@ -129,8 +129,11 @@ class ContextView {
 // A registered Python class's instance as a feature plugin.
 class PythonFeature final : public FeatureMap {
  public:
-  PythonFeature(std::string name, py::object instance, bool needs_stereo)
-      : name_(std::move(name)), instance_(std::move(instance)), needs_stereo_(needs_stereo) {}
+  PythonFeature(std::string name, py::object instance, bool needs_stereo, bool reads_regions)
+      : name_(std::move(name)),
+        instance_(std::move(instance)),
+        needs_stereo_(needs_stereo),
+        reads_regions_(reads_regions) {}
 
   ~PythonFeature() override {
     if (Py_IsInitialized() == 0 || _Py_IsFinalizing() != 0) {
@@ -170,6 +173,7 @@ class PythonFeature final : public FeatureMap {
   }
 
   bool NeedsStereo() const override { return needs_stereo_; }
+  bool ReadsAttentionRegions() const override { return reads_regions_; }
 
  private:
   // Runs `call`; a Python exception becomes a PluginError with the feature's name and the
@@ -208,6 +212,7 @@ class PythonFeature final : public FeatureMap {
   std::string name_;
   py::object instance_;
   bool needs_stereo_;
+  bool reads_regions_;
 };
 
 // Reads the options a class declares (its `options` dict of defaults) from the feature's
@@ -276,7 +281,11 @@ std::unique_ptr<FeatureMap> CreatePythonFeature(const std::string& name, const P
   }
   const bool needs_stereo =
       py::hasattr(instance, "needs_stereo") && py::bool_(instance.attr("needs_stereo"));
-  return std::make_unique<PythonFeature>(name, std::move(instance), needs_stereo);
+  // Unless it says otherwise, a feature may read context.attention_regions, so it waits for
+  // the attention stage's last frame (FeatureMap::ReadsAttentionRegions).
+  const bool reads_regions = !py::hasattr(instance, "reads_attention_regions") ||
+                             py::bool_(instance.attr("reads_attention_regions"));
+  return std::make_unique<PythonFeature>(name, std::move(instance), needs_stereo, reads_regions);
 }
 
 // Adds the registered Python feature `name` to `registry` unless it has one of that name.

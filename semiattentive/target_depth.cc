@@ -68,6 +68,65 @@ const OptionFields<DepthOptions>& DepthOptions::Fields() {
 
 std::string DepthOptions::Check() const { return CheckFieldRanges(*this, Fields()); }
 
+namespace {
+
+// The template's samples (every `step`-th pixel of `mask` in `inside`, a box in the image), and
+// for each shift d below matches->size() how many of them match the right view at x - d in
+// colour (a sum of absolute differences at most `tolerance`) and how many the right view shows
+// at that shift (in_view).
+int CountMatches(const cv::Mat& left, const cv::Mat& right, const cv::Mat& mask,
+                 const cv::Rect& inside, int step, int tolerance, std::vector<int>* matches,
+                 std::vector<int>* in_view) {
+  const int max_disparity = static_cast<int>(matches->size());
+  // The right row's channels in reverse order from column `end` - 1 down, planar: the partners
+  // of left pixel x at shifts 0, 1, ... are then consecutive (reversed[end - 1 - x + d]), and
+  // the loop over the shifts vectorises.
+  const int end = inside.br().x;
+  const int begin = std::max(0, inside.x - max_disparity + 1);
+  std::vector<uint8_t> reversed(3 * static_cast<size_t>(end - begin));
+  const size_t plane = end - begin;
+  std::vector<int> last_count(max_disparity, 0);  // samples whose last shift in view is d
+  int samples = 0;
+  for (int y = inside.y; y < inside.br().y; y += step) {
+    const uint8_t* m = mask.ptr<uint8_t>(y);
+    const cv::Vec3b* l = left.ptr<cv::Vec3b>(y);
+    const cv::Vec3b* r = right.ptr<cv::Vec3b>(y);
+    bool loaded = false;
+    for (int x = inside.x; x < end; x += step) {
+      if (m[x] == 0) continue;
+      if (!loaded) {
+        for (int c = begin; c < end; ++c) {
+          const size_t k = end - 1 - c;
+          reversed[k] = r[c][0];
+          reversed[plane + k] = r[c][1];
+          reversed[2 * plane + k] = r[c][2];
+        }
+        loaded = true;
+      }
+      ++samples;
+      const int p0 = l[x][0], p1 = l[x][1], p2 = l[x][2];
+      const int last = std::min(max_disparity - 1, x);
+      ++last_count[last];
+      const uint8_t* q0 = &reversed[end - 1 - x];
+      const uint8_t* q1 = q0 + plane;
+      const uint8_t* q2 = q1 + plane;
+      int* match = matches->data();
+      for (int d = 0; d <= last; ++d) {
+        const int cost = std::abs(p0 - q0[d]) + std::abs(p1 - q1[d]) + std::abs(p2 - q2[d]);
+        match[d] += cost <= tolerance;
+      }
+    }
+  }
+  // in_view[d]: the samples whose last shift is d or more.
+  for (int d = max_disparity - 1, running = 0; d >= 0; --d) {
+    running += last_count[d];
+    (*in_view)[d] = running;
+  }
+  return samples;
+}
+
+}  // namespace
+
 DisparityEstimate TemplateDisparity(const cv::Mat& left, const cv::Mat& right, const cv::Mat& mask,
                                     const cv::Rect& box, int max_disparity,
                                     const DepthOptions& options, int window) {
@@ -84,24 +143,7 @@ DisparityEstimate TemplateDisparity(const cv::Mat& left, const cv::Mat& right, c
   // has no partner: at each shift the overlap is taken over the pixels in view, and a shift
   // that leaves fewer than half of them in view is not tried.
   std::vector<int> matches(max_disparity, 0), in_view(max_disparity, 0);
-  int samples = 0;
-  for (int y = inside.y; y < inside.br().y; y += step) {
-    const uint8_t* m = mask.ptr<uint8_t>(y);
-    const cv::Vec3b* l = left.ptr<cv::Vec3b>(y);
-    const cv::Vec3b* r = right.ptr<cv::Vec3b>(y);
-    for (int x = inside.x; x < inside.br().x; x += step) {
-      if (m[x] == 0) continue;
-      ++samples;
-      const cv::Vec3b& p = l[x];
-      const int last = std::min(max_disparity - 1, x);
-      for (int d = 0; d <= last; ++d) {
-        const cv::Vec3b& q = r[x - d];
-        const int cost = std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]);
-        matches[d] += cost <= tolerance;
-        ++in_view[d];
-      }
-    }
-  }
+  const int samples = CountMatches(left, right, mask, inside, step, tolerance, &matches, &in_view);
   if (samples == 0) return {};
   std::vector<double> overlap(max_disparity, -1.0);  // -1: not tried
   int best = -1;

@@ -11,6 +11,12 @@ ExecutionContext::ExecutionContext(int threads)
       threads_(threads > 0 ? threads
                            : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))) {}
 
+ThreadPool* ExecutionContext::pool() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (pool_ == nullptr) pool_ = std::make_unique<ThreadPool>(threads_ - 1);
+  return pool_.get();
+}
+
 ScopedOpenCvThreads::ScopedOpenCvThreads(const ExecutionContext& context) {
   if (context.asked_threads() <= 0) return;
   previous_ = cv::getNumThreads();

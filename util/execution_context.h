@@ -1,7 +1,7 @@
 // What the stages of one run (or of one Python object) share, made by the caller and passed
 // down, rather than set for the whole process (as Ceres' include/ceres/context.h): the number
-// of threads, and the pools of buffers that objects built one after another lend each other
-// (the pyramids' BipPool, pyramid/bip.h). `attend run` makes one for the run
+// of threads and the threads themselves, and the pools of buffers that objects built one after
+// another lend each other (the pyramids' BipPool, pyramid/bip.h). `attend run` makes one for the run
 // (pipeline/run.cc), the Python module one per Pipeline (python/pipeline_bindings.cc);
 // FramePipeline hands its parts the pools they use.
 #pragma once
@@ -11,6 +11,8 @@
 #include <typeindex>
 #include <utility>
 #include <vector>
+
+#include "util/thread_pool.h"
 
 namespace attend {
 
@@ -25,6 +27,11 @@ class ExecutionContext {
   int asked_threads() const { return asked_threads_; }
   // The threads to use: as asked, or the number of cores (at least 1).
   int threads() const { return threads_; }
+
+  // The context's threads: threads() - 1 workers beside the caller's thread, started on first
+  // use and joined when the context ends. The stages of a frame share them (RunTasks), and
+  // `attend run` works on the next frame on one while it finishes the current one.
+  ThreadPool* pool();
 
   // The context's one T (default-constructed on first use), for every part that is handed it:
   // e.g. Shared<BipPool>(), the pyramids' buffers. Thread-safe; lives as long as the context.
@@ -44,6 +51,8 @@ class ExecutionContext {
   std::mutex mutex_;
   // shared_ptr<void> keeps each T's own deleter.
   std::vector<std::pair<std::type_index, std::shared_ptr<void>>> shared_;
+  // Last: its workers are joined before the shared objects they may use go.
+  std::unique_ptr<ThreadPool> pool_;
 };
 
 // The one place where attend limits OpenCV's own parallelism (cv::parallel_for_, which the

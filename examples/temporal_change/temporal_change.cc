@@ -34,6 +34,10 @@ class TemporalChange : public attend::FeatureMap {
   // A new sequence starts afresh: its first frame has no previous one.
   void BeginSequence(const attend::SequenceStart&) override { previous_.release(); }
 
+  // It never looks at where attention looked, so `attend run` with two threads may compute it
+  // for the next frame while the attention stage finishes the current one.
+  bool ReadsAttentionRegions() const override { return false; }
+
   void Compute(const attend::FrameContext& context, cv::Mat* out) override {
     cv::cvtColor(context.left(), luminance_, cv::COLOR_BGR2GRAY);
     luminance_.convertTo(current_, CV_32F);

@@ -83,7 +83,7 @@ TEST(FrameContext, TheDisparityFeatureUsesTheContextsMap) {
   // tell a shared map from an equal one computed again, the shared one is overwritten here.
   cv::Mat& shared = const_cast<cv::Mat&>(context.Disparity(WithWindow(9)));
   shared.setTo(3.0f);
-  features.Compute(context, false);
+  features.Compute(context);
   const cv::Mat& map = features.results()[0].map;
   EXPECT_NEAR(cv::norm(map, cv::NORM_INF), 3.0 / 15.0, 1e-6);
   EXPECT_NEAR(cv::norm(map, cv::NORM_L1), 3.0 / 15.0 * map.total(), 1e-3);

@@ -107,7 +107,7 @@ TEST(FeatureSet, DisabledFeatureIsCheckedButNotRun) {
   LazyFrameContext context;
   const cv::Mat image = Picture();
   context.Reset(0, image);
-  set.Compute(context, false);
+  set.Compute(context);
   EXPECT_EQ(set.results()[0].name, "constant");
   EXPECT_EQ(set.results()[0].map.at<float>(3, 3), 2.f);
   // Its parameters are still checked.
@@ -151,7 +151,7 @@ TEST(FeatureSet, EnabledFeaturesHearWhereASequenceStartsAndEnds) {
   set.BeginSequence({"walk", image.size(), false, 4});
   for (int frame = 4; frame < 6; ++frame) {
     context.Reset(frame, image);
-    set.Compute(context, false);
+    set.Compute(context);
   }
   set.EndSequence();
   const std::string size = std::to_string(image.cols) + "x" + std::to_string(image.rows);
@@ -169,13 +169,14 @@ TEST(FeatureSet, ConcurrentAndSerialGiveTheSameMaps) {
   setup.home = testing::ProjectRoot();
   FeatureSet serial(specs, registry, setup);
   FeatureSet concurrent(specs, registry, setup);
+  ThreadPool pool(2);
   const cv::Mat image = Picture();
   for (int round = 0; round < 3; ++round) {
     LazyFrameContext a, b;
     a.Reset(round, image);
     b.Reset(round, image);
-    serial.Compute(a, false);
-    concurrent.Compute(b, true);
+    serial.Compute(a);
+    concurrent.Compute(b, &pool);
     for (size_t i = 0; i < serial.results().size(); ++i) {
       EXPECT_EQ(cv::norm(serial.results()[i].map, concurrent.results()[i].map, cv::NORM_INF), 0.0)
           << serial.results()[i].name;
@@ -190,7 +191,8 @@ TEST(FeatureSet, WrongOutputNamesThePluginAndItsLibrary) {
   const cv::Mat image = Picture();
   context.Reset(0, image);
   // The plugin's failure (exit status 4), not the configuration's.
-  const std::string message = testing::ErrorOf<PluginError>([&] { set.Compute(context, true); });
+  ThreadPool pool(1);
+  const std::string message = testing::ErrorOf<PluginError>([&] { set.Compute(context, &pool); });
   EXPECT_NE(message.find("feature 'wrong_size' (libtest.so)"), std::string::npos) << message;
   EXPECT_NE(message.find("64x48"), std::string::npos) << message;
 }
@@ -201,8 +203,9 @@ TEST(FeatureSet, FirstFailingPluginInListOrderIsReported) {
   LazyFrameContext context;
   const cv::Mat image = Picture();
   context.Reset(0, image);
-  for (const bool concurrent : {false, true}) {
-    EXPECT_EQ(ConfigErrorOf([&] { set.Compute(context, concurrent); }), "thrown by plugin");
+  ThreadPool pool(2);
+  for (ThreadPool* threads : {static_cast<ThreadPool*>(nullptr), &pool}) {
+    EXPECT_EQ(ConfigErrorOf([&] { set.Compute(context, threads); }), "thrown by plugin");
   }
 }
 

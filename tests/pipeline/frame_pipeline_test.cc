@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <future>
 #include <opencv2/imgproc.hpp>
 
 #include "features/builtin.h"
@@ -61,6 +62,146 @@ TEST(FramePipeline, OneThreadOrTwoGiveTheSameRecords) {
       EXPECT_EQ(a.targets[t].bbox, b.targets[t].bbox);
     }
   }
+}
+
+// A feature that paints where attention looked in the frame before: its map, and so the
+// saliency and the targets, depend on the attention stage's last frame. `claims_not` makes it
+// say it does not read them, wrongly.
+class LookedFeature final : public FeatureMap {
+ public:
+  explicit LookedFeature(bool claims_not) : claims_not_(claims_not) {}
+  void Compute(const FrameContext& context, cv::Mat* out) override {
+    out->create(context.size(), CV_32FC1);
+    out->setTo(0.f);
+    for (const cv::Rect& region : context.AttentionRegions()) {
+      (*out)(region & cv::Rect(cv::Point(), context.size())).setTo(1.f);
+    }
+  }
+  bool ReadsAttentionRegions() const override { return !claims_not_; }
+
+ private:
+  bool claims_not_;
+};
+
+FeatureRegistry RegistryWithLooked() {
+  FeatureRegistry registry = BuiltinFeatures();
+  registry.Add("looked", "paints where attention looked",
+               [](const ParamBlock& params, const FeatureSetup&) {
+                 return std::make_unique<LookedFeature>(params.GetBool("claims_not", false));
+               });
+  return registry;
+}
+
+StereoFrame Moving(int index) {
+  StereoFrame frame;
+  frame.index = index;
+  frame.left = cv::Mat(120, 160, CV_8UC3, cv::Scalar(90, 90, 90));
+  cv::rectangle(frame.left, cv::Rect(10 + 4 * index, 20, 30, 24), cv::Scalar(40, 40, 220),
+                cv::FILLED);
+  cv::rectangle(frame.left, cv::Rect(100, 70 - 2 * index, 24, 26), cv::Scalar(200, 120, 40),
+                cv::FILLED);
+  cv::circle(frame.left, cv::Point(60 + 3 * index, 90), 9, cv::Scalar(30, 200, 60), cv::FILLED);
+  return frame;
+}
+
+struct FrameResult {
+  FrameRecord record;
+  cv::Mat saliency;
+  cv::Mat inhibited;
+  int feature_frame = -1;  // the frame index the pipeline's context holds
+};
+
+// `frames` frames through Process, one after the other.
+std::vector<FrameResult> Processed(const std::string& features, int frames) {
+  const AttendOptions options = testing::WithFeatures(features);
+  ExecutionContext execution(1);
+  FramePipeline pipeline(options, RegistryWithLooked(), testing::SetupFor(false), &execution);
+  std::vector<FrameResult> results(frames);
+  std::vector<StereoFrame> images;
+  for (int i = 0; i < frames; ++i) images.push_back(Moving(i));
+  for (int i = 0; i < frames; ++i) {
+    pipeline.Process(images[i], &results[i].record);
+    results[i].saliency = pipeline.saliency().clone();
+    results[i].inhibited = pipeline.inhibited().clone();
+    results[i].feature_frame = pipeline.context().frame_index();
+  }
+  return results;
+}
+
+// The same through Ahead and Finish as `attend run` with two threads calls them: Ahead of
+// frame t + 1 on a worker while this thread finishes frame t.
+std::vector<FrameResult> Overlapped(const std::string& features, int frames) {
+  const AttendOptions options = testing::WithFeatures(features);
+  ExecutionContext execution(2);
+  FramePipeline pipeline(options, RegistryWithLooked(), testing::SetupFor(false), &execution);
+  std::vector<StereoFrame> images;
+  for (int i = 0; i < frames; ++i) images.push_back(Moving(i));
+  std::vector<FrameResult> results(frames);
+  pipeline.Ahead(images[0]);
+  for (int i = 0; i < frames; ++i) {
+    std::future<void> ahead;
+    if (i + 1 < frames) {
+      ahead = execution.pool()->Submit([&, i] { pipeline.Ahead(images[i + 1]); });
+    }
+    pipeline.Finish(&results[i].record);
+    results[i].saliency = pipeline.saliency().clone();
+    results[i].inhibited = pipeline.inhibited().clone();
+    results[i].feature_frame = pipeline.context().frame_index();
+    if (ahead.valid()) ahead.get();
+  }
+  return results;
+}
+
+// How many frames' targets or maps differ between `a` and `b`.
+int FramesThatDiffer(const std::vector<FrameResult>& a, const std::vector<FrameResult>& b) {
+  int differ = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    bool same = a[i].feature_frame == b[i].feature_frame &&
+                cv::norm(a[i].saliency, b[i].saliency, cv::NORM_INF) == 0.0 &&
+                cv::norm(a[i].inhibited, b[i].inhibited, cv::NORM_INF) == 0.0 &&
+                a[i].record.targets.size() == b[i].record.targets.size() &&
+                a[i].record.new_ids == b[i].record.new_ids;
+    for (size_t t = 0; same && t < a[i].record.targets.size(); ++t) {
+      same = a[i].record.targets[t].id == b[i].record.targets[t].id &&
+             a[i].record.targets[t].bbox == b[i].record.targets[t].bbox &&
+             a[i].record.targets[t].saliency == b[i].record.targets[t].saliency;
+    }
+    differ += same ? 0 : 1;
+  }
+  return differ;
+}
+
+// Frame t + 1's segmentation and features beside frame t's tracking and selection give the
+// records, maps and accessors of one frame after the other; the feature that reads where
+// attention looked waits for the frame before.
+TEST(FramePipeline, AheadAndFinishGiveTheResultsOfProcess) {
+  const std::string features =
+      "[{name: colour_contrast}, {name: intensity_contrast}, {name: looked, weight: 2}]";
+  const std::vector<FrameResult> serial = Processed(features, 12);
+  const std::vector<FrameResult> overlapped = Overlapped(features, 12);
+  EXPECT_EQ(FramesThatDiffer(serial, overlapped), 0);
+  for (int i = 0; i < 12; ++i) EXPECT_EQ(overlapped[i].feature_frame, i);
+  int targets = 0;
+  for (const FrameResult& result : serial) targets += result.record.targets.size();
+  EXPECT_GT(targets, 12);
+}
+
+// The test above can fail: a feature that reads where attention looked but says it does not
+// runs ahead, on the regions of two frames before, and the results change.
+TEST(FramePipeline, AFeatureThatHidesThatItReadsTheRegionsGetsOtherResults) {
+  const std::string features =
+      "[{name: colour_contrast}, {name: intensity_contrast}, "
+      "{name: looked, weight: 2, claims_not: true}]";
+  EXPECT_GT(FramesThatDiffer(Processed(features, 12), Overlapped(features, 12)), 0);
+}
+
+TEST(FramePipeline, FinishWithoutAheadIsRefused) {
+  const AttendOptions options =
+      testing::WithFeatures("[{name: colour_contrast}, {name: intensity_contrast}]");
+  ExecutionContext execution(2);
+  FramePipeline pipeline(options, BuiltinFeatures(), testing::SetupFor(false), &execution);
+  FrameRecord record;
+  EXPECT_THROW(pipeline.Finish(&record), InternalError);
 }
 
 }  // namespace
