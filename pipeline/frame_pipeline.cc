@@ -210,9 +210,20 @@ void FramePipeline::Finish(FrameRecord* record) {
   ATTEND_CHECK(pending_.load() >= 1) << "Finish needs a frame given to Ahead";
   current_ = 1 - current_;
   Slot& slot = *slots_[current_];
+  // The features that read where attention looked (a detector gated by attention, on its
+  // crops) run beside the tracking, which does not depend on them: on the pool's thread once
+  // it is done with the next frame's Ahead, else one after the other on this one.
+  bool tracked = false;
   if (has_late_features_) {
     slot.context.set_attention_regions(attention_.look_regions());
-    ComputeFeatures(&slot, FeaturePhase::kAfterAttention, nullptr);
+    RunTasks(execution_->pool(), 2, [&](int task) {
+      if (task == 0) {
+        ComputeFeatures(&slot, FeaturePhase::kAfterAttention, nullptr);
+      } else {
+        Track(slot);
+      }
+    });
+    tracked = true;
   }
   for (const auto& [name, ms] : slot.timings.stages()) record->timings.Add(name, ms);
   for (const FeatureResult& result : slot.features) {
@@ -223,7 +234,7 @@ void FramePipeline::Finish(FrameRecord* record) {
     Saliency(&slot);
     record->timings.Add("saliency", stage.ElapsedMs());
   }
-  Track(slot);
+  if (!tracked) Track(slot);
   Select(slot, record);
   --pending_;
 }

@@ -86,19 +86,25 @@ TEST(RunSequence, TheRecordsNameTheTrackerKind) {
   EXPECT_EQ(LoadOptions(dir.File("run/config.yaml"), {}).attention.tracker.kind, TrackerKind::kKcf);
 }
 
+// One thread stops after the frame it is on; two finish the frame the second thread had
+// already read as well (it was taken from the source), and take no further one.
 TEST(RunSequence, StopFlagFinishesWithInterruptedSummary) {
-  testing::TempDir dir;
-  RunRequest request = TinyRequest(dir, 5);
-  std::atomic<bool> stop{false};
-  request.stop = &stop;
-  request.on_progress = [&](const RunProgress& p) {
-    if (p.done == 2) stop = true;
-  };
-  const RunSummary summary = RunSequence(request);
-  EXPECT_EQ(summary.frames, 2);
-  EXPECT_TRUE(summary.interrupted);
-  EXPECT_EQ(ReadJsonLines(dir.File("run/frames.jsonl")).size(), 2u);
-  EXPECT_EQ(ReadJson(dir.File("run/summary.json"))["interrupted"], true);
+  for (const int threads : {1, 2}) {
+    testing::TempDir dir;
+    RunRequest request = TinyRequest(dir, 6);
+    request.options.threads = threads;
+    std::atomic<bool> stop{false};
+    request.stop = &stop;
+    request.on_progress = [&](const RunProgress& p) {
+      if (p.done == 2) stop = true;
+    };
+    const RunSummary summary = RunSequence(request);
+    const int expected = threads == 1 ? 2 : 3;
+    EXPECT_EQ(summary.frames, expected) << threads;
+    EXPECT_TRUE(summary.interrupted);
+    EXPECT_EQ(ReadJsonLines(dir.File("run/frames.jsonl")).size(), static_cast<size_t>(expected));
+    EXPECT_EQ(ReadJson(dir.File("run/summary.json"))["interrupted"], true);
+  }
 }
 
 TEST(RunSequence, CorruptFrameKeepsEarlierFramesAndNamesTheFrame) {
