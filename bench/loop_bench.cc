@@ -246,7 +246,8 @@ int main(int argc, char** argv) {
         << Mb(run.peak_rss_kb) << ") |\n";
   }
   out << "\nStage means of the last round, ms a frame (summary.json's timings_ms; with 2 threads "
-         "`features` runs beside `track`):\n\n";
+         "`read`, `segment` and `features` of frame t + 1 run beside `saliency`, `track`, "
+         "`inhibit` and `select` of frame t):\n\n";
   std::vector<std::string> stages;
   for (const auto& [key, value] : runs[0].stages.items()) {
     if (key.rfind("feature.", 0) != 0 || key == "feature.disparity") stages.push_back(key);
@@ -264,15 +265,18 @@ int main(int argc, char** argv) {
     }
     out << "\n";
   }
-  // The issue-28 bars.
+  // The bars of issue 47 (and SPEC 5's memory).
   const double ratio320 = Median(runs[0].ratio);
   const double fps640 = 1000.0 / Median(runs[2].frame_ms);
+  const double fps640_two = 1000.0 / Median(runs[3].frame_ms);
   const long rss640 = std::max(runs[2].peak_rss_kb, runs[3].peak_rss_kb);
   out << "\n| bar | measured | met |\n|---|---:|---|\n"
-      << "| 320x240, 1 thread: at most 1.3 SGBM calls a frame | " << Fixed(ratio320, 2) << " | "
-      << (ratio320 <= 1.3 ? "yes" : "no") << " |\n"
+      << "| 320x240, 1 thread: at most 1.0 SGBM call a frame | " << Fixed(ratio320, 2) << " | "
+      << (ratio320 <= 1.0 ? "yes" : "no") << " |\n"
       << "| 640x480, D = 64, 1 thread: at least 40 frames/s | " << Fixed(fps640, 1) << " | "
       << (fps640 >= 40.0 ? "yes" : "no") << " |\n"
+      << "| 640x480, D = 64, 2 threads: at least 55 frames/s | " << Fixed(fps640_two, 1) << " | "
+      << (fps640_two >= 55.0 ? "yes" : "no") << " |\n"
       << "| 640x480, D = 64: peak resident set under 128 MB (SPEC 5) | " << Mb(rss640) << " MB | "
       << (rss640 * 1024.0 < 128e6 ? "yes" : "no") << " |\n";
   std::cout << out.str();

@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
     attend::Stopwatch stage;
     context.Regions();
     ours_segment.ms.push_back(stage.ElapsedMs());
-    features.Compute(context, false);
+    features.Compute(context);
     stage.Restart();
     for (size_t i = 0; i < normalised.size(); ++i) {
       attend::NormaliseMap(features.results()[i].map, saliency_options, &normalised[i]);

@@ -155,6 +155,20 @@ void BgrToCylinder(const cv::Mat& bgr, cv::Mat* out) {
 void BgrToTsl(const cv::Mat& bgr, cv::Mat* out) {
   ATTEND_CHECK(bgr.type() == CV_8UC3) << "expected an 8-bit BGR image, got type " << bgr.type();
   out->create(bgr.size(), CV_32FC3);
+  ForEachTslRow(bgr, [out](int row, const float* t, const float* s, const float* l) {
+    float* result = out->ptr<float>(row);
+    for (int col = 0; col < out->cols; ++col) {
+      result[3 * col] = t[col];
+      result[3 * col + 1] = s[col];
+      result[3 * col + 2] = l[col];
+    }
+  });
+}
+
+void ForEachTslRow(const cv::Mat& bgr,
+                   const std::function<void(int y, const float* t, const float* s,
+                                            const float* l)>& row_done) {
+  ATTEND_CHECK(bgr.type() == CV_8UC3) << "expected an 8-bit BGR image, got type " << bgr.type();
   // Row by row through planar buffers, so that the arithmetic runs on whole vectors.
   const int cols = bgr.cols;
   cv::AutoBuffer<float> buffer(6 * cols);
@@ -172,12 +186,7 @@ void BgrToTsl(const cv::Mat& bgr, cv::Mat* out) {
       r[col] = in[3 * col + 2];
     }
     TslRow(r, g, b, t, s, l, cols);
-    float* result = out->ptr<float>(row);
-    for (int col = 0; col < cols; ++col) {
-      result[3 * col] = t[col];
-      result[3 * col + 1] = s[col];
-      result[3 * col + 2] = l[col];
-    }
+    row_done(row, t, s, l);
   }
 }
 

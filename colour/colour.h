@@ -12,6 +12,8 @@
 // exactly, as 3G = R + G + B.
 #pragma once
 
+#include <functional>
+
 #include <cmath>
 #include <opencv2/core.hpp>
 
@@ -43,6 +45,11 @@ void BgrToCylinder(const cv::Mat& bgr, cv::Mat* out);
 // 8-bit BGR (CV_8UC3) to TSL (CV_32FC3: T, S, L), SPEC 2.1. Black pixels (R+G+B = 0) get
 // T = S = 0.
 void BgrToTsl(const cv::Mat& bgr, cv::Mat* out);
+// The TSL of `bgr` a row at a time, without the whole image: row(y, t, s, l) for each row y,
+// with its T, S and L planes (the values of BgrToTsl, bit for bit), valid during the call.
+void ForEachTslRow(const cv::Mat& bgr,
+                   const std::function<void(int y, const float* t, const float* s,
+                                            const float* l)>& row);
 
 // The TSL chrominance (T, S) of one RGB colour.
 cv::Vec2f TslChrominance(float r, float g, float b);

@@ -9,8 +9,25 @@
 
 namespace attend {
 
-LazyFrameContext::LazyFrameContext(const SegmentationOptions& segmentation, BipPool* pool)
-    : segmenter_(segmentation, pool) {}
+void DisparityEstimators::Compute(const DisparityOptions& options, const cv::Mat& left,
+                                  const cv::Mat& right, cv::Mat* out) {
+  Entry* entry = nullptr;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (Entry& candidate : entries_) {
+      if (candidate.estimator.options() == options) entry = &candidate;
+    }
+    if (entry == nullptr) entry = &entries_.emplace_back(options);
+  }
+  const std::lock_guard<std::mutex> lock(entry->mutex);
+  entry->estimator.Compute(left, right, out);
+}
+
+LazyFrameContext::LazyFrameContext(const SegmentationOptions& segmentation, BipPool* pool,
+                                   std::shared_ptr<DisparityEstimators> estimators)
+    : estimators_(estimators != nullptr ? std::move(estimators)
+                                        : std::make_shared<DisparityEstimators>()),
+      segmenter_(segmentation, pool) {}
 
 void LazyFrameContext::Reset(int frame_index, const cv::Mat& left, const cv::Mat& right) {
   ATTEND_CHECK(!left.empty() && left.type() == CV_8UC3) << "the left image must be 8-bit BGR";
@@ -53,7 +70,6 @@ const cv::Mat& LazyFrameContext::Tsl() const {
 }
 
 const cv::Mat& LazyFrameContext::SkinDistance(const SkinModel& model) const {
-  const cv::Mat& tsl = Tsl();
   std::lock_guard<std::mutex> lock(skin_mutex_);
   auto slot = std::find_if(skin_slots_.begin(), skin_slots_.end(), [&](const SkinSlot& s) {
     return s.mean == model.mean && s.covariance == model.covariance;
@@ -65,7 +81,18 @@ const cv::Mat& LazyFrameContext::SkinDistance(const SkinModel& model) const {
     slot = skin_slots_.insert(skin_slots_.end(), std::move(added));
   }
   if (!slot->ready) {
-    SkinDistanceMap(tsl, model, &slot->distance);
+    // From the TSL image when someone asked for it, else a row at a time from the frame: the
+    // same values, without the whole frame's TSL.
+    bool have_tsl = false;
+    {
+      const std::lock_guard<std::mutex> tsl_lock(tsl_slot_.mutex);
+      have_tsl = tsl_slot_.ready;
+    }
+    if (have_tsl) {
+      SkinDistanceMap(tsl_, model, &slot->distance);
+    } else {
+      SkinDistanceMapOfBgr(left_, model, &slot->distance);
+    }
     slot->ready = true;
   }
   return slot->distance;
@@ -75,12 +102,12 @@ const cv::Mat& LazyFrameContext::Disparity(const DisparityOptions& options) cons
   ATTEND_CHECK(stereo()) << "the disparity needs a stereo frame (frame " << frame_index_ << ")";
   std::lock_guard<std::mutex> lock(disparity_mutex_);
   auto slot = std::find_if(disparity_slots_.begin(), disparity_slots_.end(),
-                           [&](const DisparitySlot& s) { return s.estimator.options() == options; });
+                           [&](const DisparitySlot& s) { return s.options == options; });
   if (slot == disparity_slots_.end()) {
-    slot = disparity_slots_.emplace(disparity_slots_.end(), options);
+    slot = disparity_slots_.insert(disparity_slots_.end(), DisparitySlot{options, false, cv::Mat()});
   }
   if (!slot->ready) {
-    slot->estimator.Compute(left_, right_, &slot->disparity);
+    estimators_->Compute(options, left_, right_, &slot->disparity);
     slot->ready = true;
   }
   return slot->disparity;

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <list>
+#include <memory>
 #include <mutex>
 #include <opencv2/core.hpp>
 
@@ -20,10 +21,33 @@
 
 namespace attend {
 
+// The disparity estimators of one frame context or of several that share them: each estimator
+// keeps its buffers from frame to frame (the cost volume: tens of MB at 640x480 with D = 64),
+// so the two contexts of a pipeline that works on two frames at once share one
+// (pipeline/frame_pipeline.h) instead of holding two. Thread-safe: calls with the same options
+// wait for each other.
+class DisparityEstimators {
+ public:
+  // The disparity of the pair by the estimator of `options` (made on first use) into `out`.
+  void Compute(const DisparityOptions& options, const cv::Mat& left, const cv::Mat& right,
+               cv::Mat* out);
+
+ private:
+  struct Entry {
+    explicit Entry(const DisparityOptions& options) : estimator(options) {}
+    std::mutex mutex;  // guards the estimator's buffers while it computes
+    DisparityEstimator estimator;
+  };
+  std::mutex mutex_;         // guards the list
+  std::list<Entry> entries_;  // a list, so that entries stay where they are
+};
+
 class LazyFrameContext final : public FrameContext {
  public:
-  // `pool`: the segmentation's pyramid pool (pyramid/bip.h); nullptr: its own.
-  explicit LazyFrameContext(const SegmentationOptions& segmentation = {}, BipPool* pool = nullptr);
+  // `pool`: the segmentation's pyramid pool (pyramid/bip.h); nullptr: its own. `estimators`:
+  // the disparity's, shared with other contexts; nullptr: its own.
+  explicit LazyFrameContext(const SegmentationOptions& segmentation = {}, BipPool* pool = nullptr,
+                            std::shared_ptr<DisparityEstimators> estimators = nullptr);
 
   // Starts a frame: `left` (and `right`, empty when monocular) are 8-bit BGR images of the
   // same size. The images are referenced, not copied; they must outlive the frame.
@@ -83,16 +107,15 @@ class LazyFrameContext final : public FrameContext {
   };
   mutable std::mutex skin_mutex_;
   mutable std::list<SkinSlot> skin_slots_;
-  // One estimator and disparity map per options asked for; a list, so that references stay
-  // valid.
+  // One disparity map per options asked for; a list, so that references stay valid.
   struct DisparitySlot {
-    explicit DisparitySlot(const DisparityOptions& options) : estimator(options) {}
-    DisparityEstimator estimator;
+    DisparityOptions options;
     bool ready = false;
     cv::Mat disparity;
   };
   mutable std::mutex disparity_mutex_;
   mutable std::list<DisparitySlot> disparity_slots_;
+  std::shared_ptr<DisparityEstimators> estimators_;
   DisparityOptions disparity_options_;
   mutable Segmenter segmenter_;
   mutable Segmentation regions_;

@@ -57,26 +57,47 @@ void SkinMapFromDistance(const cv::Mat& distance, const SkinModel& model, SkinOu
   }
 }
 
+namespace {
+
+// d^2 = a dt^2 + 2 b dt ds + c ds^2 with [a b; b c] the inverse covariance; SkinMap thresholds
+// it, so d^2 < T_s is exactly SkinMap's skin.
+struct SkinMahalanobis {
+  explicit SkinMahalanobis(const SkinModel& model) {
+    const Eigen::Matrix2d inverse = model.covariance.inverse();
+    a = static_cast<float>(inverse(0, 0));
+    b2 = static_cast<float>(inverse(0, 1) + inverse(1, 0));
+    c = static_cast<float>(inverse(1, 1));
+    mean_t = static_cast<float>(model.mean.x());
+    mean_s = static_cast<float>(model.mean.y());
+  }
+  float operator()(float t, float s) const {
+    const float dt = t - mean_t;
+    const float ds = s - mean_s;
+    return a * dt * dt + b2 * dt * ds + c * ds * ds;
+  }
+  float a, b2, c, mean_t, mean_s;
+};
+
+}  // namespace
+
 void SkinDistanceMap(const cv::Mat& tsl, const SkinModel& model, cv::Mat* out) {
   CV_Assert(tsl.type() == CV_32FC3);
   out->create(tsl.size(), CV_32FC1);
-  // d^2 = a dt^2 + 2 b dt ds + c ds^2 with [a b; b c] the inverse covariance; SkinMap thresholds
-  // this, so d^2 < T_s here is exactly SkinMap's skin.
-  const Eigen::Matrix2d inverse = model.covariance.inverse();
-  const float a = static_cast<float>(inverse(0, 0));
-  const float b2 = static_cast<float>(inverse(0, 1) + inverse(1, 0));
-  const float c = static_cast<float>(inverse(1, 1));
-  const float mean_t = static_cast<float>(model.mean.x());
-  const float mean_s = static_cast<float>(model.mean.y());
+  const SkinMahalanobis distance(model);
   for (int y = 0; y < tsl.rows; ++y) {
     const float* pixel = tsl.ptr<float>(y);
     float* value = out->ptr<float>(y);
-    for (int x = 0; x < tsl.cols; ++x) {
-      const float dt = pixel[3 * x] - mean_t;
-      const float ds = pixel[3 * x + 1] - mean_s;
-      value[x] = a * dt * dt + b2 * dt * ds + c * ds * ds;
-    }
+    for (int x = 0; x < tsl.cols; ++x) value[x] = distance(pixel[3 * x], pixel[3 * x + 1]);
   }
+}
+
+void SkinDistanceMapOfBgr(const cv::Mat& bgr, const SkinModel& model, cv::Mat* out) {
+  out->create(bgr.size(), CV_32FC1);
+  const SkinMahalanobis distance(model);
+  ForEachTslRow(bgr, [&](int y, const float* t, const float* s, const float*) {
+    float* value = out->ptr<float>(y);
+    for (int x = 0; x < bgr.cols; ++x) value[x] = distance(t[x], s[x]);
+  });
 }
 
 namespace {

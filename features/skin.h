@@ -37,6 +37,9 @@ void SkinMapFromDistance(const cv::Mat& distance, const SkinModel& model, SkinOu
 // (CV_32FC1), the quantity SkinMap thresholds: d^2 < T_s is skin, d^2 < confident x T_s is
 // confident skin (SkinRegionOptions).
 void SkinDistanceMap(const cv::Mat& tsl, const SkinModel& model, cv::Mat* out);
+// The same from the 8-bit BGR image, its TSL taken a row at a time (ForEachTslRow) instead of
+// as a whole image: the same values, bit for bit, without the image's TSL (12 bytes a pixel).
+void SkinDistanceMapOfBgr(const cv::Mat& bgr, const SkinModel& model, cv::Mat* out);
 
 // Whether a region (a BIP colour region, a candidate target) is skin the attention stage may
 // track as such: a face or a hand, not a brick wall, a lawn or a wooden door that happens to

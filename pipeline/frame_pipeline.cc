@@ -97,9 +97,9 @@ SaliencyStage MakeSaliencyStage(const AttendOptions& options, const FeatureRegis
 }  // namespace
 
 FramePipeline::Slot::Slot(const SegmentationOptions& segmentation, BipPool* pool,
-                          const DisparityOptions& disparity, SaliencyStage saliency,
-                          std::vector<FeatureResult> features)
-    : context(segmentation, pool), features(std::move(features)), saliency(std::move(saliency)) {
+                          std::shared_ptr<DisparityEstimators> estimators,
+                          const DisparityOptions& disparity, std::vector<FeatureResult> features)
+    : context(segmentation, pool, std::move(estimators)), features(std::move(features)) {
   context.set_disparity_options(disparity);
 }
 
@@ -109,7 +109,7 @@ FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry
       execution_(execution),
       threads_(execution->threads()),
       features_(options.features, registry, setup),
-      saliency_prototype_(MakeSaliencyStage(options, registry)),
+      saliency_(MakeSaliencyStage(options, registry)),
       has_late_features_(features_.ReadsAttentionRegions()),
       attention_(options.attention, LoadAttentionSkinModel(options.attention.skin_model, setup),
                  execution->Shared<BipPool>()) {
@@ -121,7 +121,7 @@ FramePipeline::FramePipeline(const AttendOptions& options, const FeatureRegistry
     }
   }
   slots_[0] = std::make_unique<Slot>(options_.segmentation, execution_->Shared<BipPool>(),
-                                     disparity_options_, saliency_prototype_,
+                                     estimators_, disparity_options_,
                                      features_.NewResults());
 }
 
@@ -129,7 +129,6 @@ FramePipeline::Slot& FramePipeline::Begin(int index, const StereoFrame& frame) {
   Slot& slot = *slots_[index];
   slot.frame = frame;
   slot.context.Reset(frame.index, frame.left, frame.right);
-  slot.has_saliency = false;
   slot.timings = StageTimes();
   return slot;
 }
@@ -185,7 +184,7 @@ void FramePipeline::Process(const StereoFrame& frame, FrameRecord* record) {
 void FramePipeline::Ahead(const StereoFrame& frame) {
   if (slots_[1] == nullptr) {
     slots_[1] = std::make_unique<Slot>(options_.segmentation, execution_->Shared<BipPool>(),
-                                       disparity_options_, saliency_prototype_,
+                                       estimators_, disparity_options_,
                                        features_.NewResults());
   }
   ATTEND_CHECK(pending_.fetch_add(1) <= 1) << "Ahead is at most one frame ahead of Finish";
@@ -198,12 +197,6 @@ void FramePipeline::Ahead(const StereoFrame& frame) {
   // caller's are busy with two frames.
   ThreadPool* pool = threads_ > 2 ? execution_->pool() : nullptr;
   ComputeFeatures(&slot, FeaturePhase::kAhead, pool);
-  if (!has_late_features_) {
-    stage.Restart();
-    Saliency(&slot);
-    slot.timings.Add("saliency", stage.ElapsedMs());
-    slot.has_saliency = true;
-  }
 }
 
 void FramePipeline::Finish(FrameRecord* record) {
@@ -229,11 +222,9 @@ void FramePipeline::Finish(FrameRecord* record) {
   for (const FeatureResult& result : slot.features) {
     record->timings.Add("feature." + result.name, result.milliseconds);
   }
-  if (!slot.has_saliency) {
-    const Stopwatch stage;
-    Saliency(&slot);
-    record->timings.Add("saliency", stage.ElapsedMs());
-  }
+  const Stopwatch stage;
+  Saliency(&slot);
+  record->timings.Add("saliency", stage.ElapsedMs());
   if (!tracked) Track(slot);
   Select(slot, record);
   --pending_;
@@ -250,7 +241,7 @@ void FramePipeline::Select(const Slot& slot, FrameRecord* record) {
     detections_.insert(detections_.end(), result.detections.begin(), result.detections.end());
   }
   attention_.Select(slot.frame.left, slot.context.SkinDistance(attention_.skin_model()),
-                    tracked_, slot.saliency.saliency(), slot.context.Regions(), &attended_,
+                    tracked_, saliency_.saliency(), slot.context.Regions(), &attended_,
                     detections_, StereoOf(slot));
   record->timings.Add("track", attended_.track_ms);
   record->timings.Add("inhibit", attended_.inhibit_ms);
@@ -285,8 +276,8 @@ StereoInput FramePipeline::StereoOf(const Slot& slot) const {
 void FramePipeline::Saliency(Slot* slot) {
   maps_.clear();
   for (const FeatureResult& result : slot->features) maps_.push_back(&result.map);
-  slot->grey = IsGreyImage(slot->frame.left);
-  slot->saliency.Combine(maps_, slot->grey, slot->context.size());
+  grey_ = IsGreyImage(slot->frame.left);
+  saliency_.Combine(maps_, grey_, slot->context.size());
 }
 
 void FramePipeline::RecordTargets(FrameRecord* record) const {

@@ -55,9 +55,8 @@ class FramePipeline {
   //
   // Ahead: the stages of `frame` that do not depend on the attention stage's work on the frame
   // before: the colour conversions and segmentation, the features that do not read where
-  // attention looked (FeatureMap::ReadsAttentionRegions) and, when no feature does, the
-  // saliency map. Its images must outlive the Finish() of this frame. Not beside another
-  // Ahead, and at most one frame ahead of Finish.
+  // attention looked (FeatureMap::ReadsAttentionRegions). Its images must outlive the Finish()
+  // of this frame. Not beside another Ahead, and at most one frame ahead of Finish.
   void Ahead(const StereoFrame& frame);
   // The rest of the frame last given to Ahead, which becomes the frame of the accessors below:
   // the features that read where attention looked, the saliency, tracking, inhibition and
@@ -76,12 +75,12 @@ class FramePipeline {
   const FrameContext& context() const { return current().context; }
   const std::vector<FeatureResult>& features() const { return current().features; }
   // Each feature's map normalised to [0, 1], in the order of features().
-  const std::vector<cv::Mat>& normalised() const { return current().saliency.normalised(); }
-  const cv::Mat& saliency() const { return current().saliency.saliency(); }
+  const std::vector<cv::Mat>& normalised() const { return saliency_.normalised(); }
+  const cv::Mat& saliency() const { return saliency_.saliency(); }
   // Whether the last frame was grey (colour/grey.h): on a grey frame a feature whose map is
   // constant (colour contrast and skin, which are 0 there) gets weight 0 in its saliency, so
   // it does not dilute the features that see something.
-  bool grey() const { return current().grey; }
+  bool grey() const { return grey_; }
   const cv::Mat& inhibition() const { return attention_.inhibition(); }
   const cv::Mat& inhibited() const { return attention_.inhibited(); }
   int targets_attended() const { return attention_.targets_attended(); }
@@ -93,14 +92,11 @@ class FramePipeline {
   // What one frame in flight holds: Ahead fills one slot while Finish works on the other.
   struct Slot {
     Slot(const SegmentationOptions& segmentation, BipPool* pool,
-         const DisparityOptions& disparity, SaliencyStage saliency,
+         std::shared_ptr<DisparityEstimators> estimators, const DisparityOptions& disparity,
          std::vector<FeatureResult> features);
     StereoFrame frame;  // headers: the caller's images
     LazyFrameContext context;
     std::vector<FeatureResult> features;  // FeatureSet::NewResults()
-    SaliencyStage saliency;
-    bool grey = false;
-    bool has_saliency = false;  // Ahead combined the maps already
     StageTimes timings;         // those of Ahead
   };
 
@@ -108,7 +104,9 @@ class FramePipeline {
   Slot& Begin(int index, const StereoFrame& frame);
   // Ahead's features (`phase`) with their wall time added to the slot's `features` time.
   void ComputeFeatures(Slot* slot, FeaturePhase phase, ThreadPool* pool);
-  // The feature maps normalised, weighted and combined by the slot's saliency (SPEC 2.3).
+  // The slot's feature maps normalised, weighted and combined by saliency_ (SPEC 2.3). Only
+  // the frame that Finish works on needs them, so unlike the features' maps there is one
+  // saliency stage, not one a slot (at 640x480, 6 MB less).
   void Saliency(Slot* slot);
   // Tracking (the existing targets) in the slot's frame.
   void Track(const Slot& slot);
@@ -124,8 +122,9 @@ class FramePipeline {
   ExecutionContext* const execution_;
   const int threads_;  // the execution context's
   FeatureSet features_;
-  SaliencyStage saliency_prototype_;  // what each slot's saliency starts as
-  std::vector<const cv::Mat*> maps_;  // the features' maps, for a slot's saliency
+  SaliencyStage saliency_;
+  bool grey_ = false;                 // of the current frame
+  std::vector<const cv::Mat*> maps_;  // the features' maps, for saliency_
   // Two slots once Ahead is used (the second is made then), else one.
   std::unique_ptr<Slot> slots_[2];
   // Frames take the two slots in turn. Finish (and Process) set current_, the slot of the
@@ -142,6 +141,8 @@ class FramePipeline {
   AttentionFrame attended_;
   bool has_disparity_ = false;  // the disparity feature is enabled
   DisparityOptions disparity_options_;  // its options: the frame contexts' disparity
+  // The slots' contexts share the disparity's estimators (one cost volume, not two).
+  std::shared_ptr<DisparityEstimators> estimators_ = std::make_shared<DisparityEstimators>();
   std::shared_ptr<const StereoCalibration> calibration_;
   double scale_x_ = 1.0, scale_y_ = 1.0;
 };

@@ -395,11 +395,9 @@ RunSummary RunSequence(const RunRequest& request) {
   // Everything that can reject the configuration runs before the run folder exists.
   ExecutionContext execution(options.threads);
   const ScopedOpenCvThreads opencv_threads(execution);
-  // With a second core the next frame is read and decoded while this one is worked on (1.3 of
-  // the 13 ms a frame of the bundled scene at 320x240 on one core; docs/PERFORMANCE.md).
-  if (execution.threads() >= 2 && !options.sequence.source.IsLive()) {
-    source = ReadAhead(std::move(source));
-  }
+  // With a second core the next frame is read and decoded, and its first stages run, while
+  // this one is finished (RunFramesOverlapped), so no reader thread of its own (ReadAhead) is
+  // needed: one more frame in memory, and a third thread on two cores, for no gain.
   const FeatureRegistry registry = LoadFeatureRegistry(options.plugins);
   RunSummary summary;
   summary.stereo = std::move(stereo);

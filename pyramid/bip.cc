@@ -74,12 +74,13 @@ const Bip& BipBuilder::Build(const cv::Mat& features, const SimilarityPolicy& po
   struct ScratchLease {
     BipPool* pool;
     BipScratch** held;
+    size_t cells;
     std::unique_ptr<BipScratch> scratch;
     ~ScratchLease() {
       *held = nullptr;
-      pool->GiveScratch(std::move(scratch));
+      pool->GiveScratch(std::move(scratch), cells);
     }
-  } lease{pool_, &scratch_, pool_->TakeScratch()};
+  } lease{pool_, &scratch_, cells, pool_->TakeScratch(cells)};
   scratch_ = lease.scratch.get();
 
   BipLevel& base = (*levels_)[0];
@@ -199,11 +200,13 @@ int Bip::CountRoots() const {
 
 int Bip::LabelRoots(cv::Mat* labels, std::vector<VertexRef>* root_refs) const {
   ATTEND_CHECK(levels_ != nullptr) << "labelling a released pyramid";
+  const size_t cells = static_cast<size_t>(width_) * height_;
   struct ScratchLease {
     BipPool* pool;
+    size_t cells;
     std::unique_ptr<BipScratch> scratch;
-    ~ScratchLease() { pool->GiveScratch(std::move(scratch)); }
-  } lease{pool_, pool_->TakeScratch()};
+    ~ScratchLease() { pool->GiveScratch(std::move(scratch), cells); }
+  } lease{pool_, cells, pool_->TakeScratch(cells)};
   // Top-down: a vertex takes its parent's root, or starts a new one.
   std::vector<int32_t>& above = lease.scratch->label_[0];
   std::vector<int32_t>& current = lease.scratch->label_[1];

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <condition_variable>
 #include <memory>
 #include <mutex>
 #include <opencv2/core.hpp>
@@ -136,8 +137,16 @@ class BipPool {
   BipPool(const BipPool&) = delete;
   BipPool& operator=(const BipPool&) = delete;
 
+  // A build over this many cells or more is large (above 362 x 362: 640x480 frames, not
+  // 320x240 ones). One large scratch is lent at a time, a second large build waiting for it:
+  // at 640x480 a scratch is 8.6 MB, and two threads that each build a frame's pyramid at once
+  // (attend run with two threads, pipeline/frame_pipeline.h) would otherwise hold two.
+  static constexpr size_t kLargeCells = size_t{1} << 17;
+
   // Idle buffers, in bytes of capacity (what the pool holds beyond what is lent out).
   size_t IdleBytes() const;
+  // The idle scratches' part of it.
+  size_t IdleScratchBytes() const;
   // Idle scratches and level sets.
   int IdleScratches() const;
   int IdleLevelSets() const;
@@ -151,13 +160,16 @@ class BipPool {
   // At most this many idle level sets are kept; a set given back beyond it is freed.
   static constexpr int kMaxIdleLevelSets = 6;
 
-  std::unique_ptr<BipScratch> TakeScratch();
-  void GiveScratch(std::unique_ptr<BipScratch> scratch);
+  // A scratch for a build or a labelling over `cells` cells; GiveScratch with the same count.
+  std::unique_ptr<BipScratch> TakeScratch(size_t cells);
+  void GiveScratch(std::unique_ptr<BipScratch> scratch, size_t cells);
   // A level set for a pyramid over `cells` pixels: the idle one that fits best.
   std::unique_ptr<Levels> TakeLevels(size_t cells);
   void GiveLevels(std::unique_ptr<Levels> levels);
 
   mutable std::mutex mutex_;
+  std::condition_variable scratch_returned_;
+  bool large_lent_ = false;  // a large scratch is lent out
   std::vector<std::unique_ptr<BipScratch>> idle_scratch_;
   std::vector<std::unique_ptr<Levels>> idle_levels_;
 };

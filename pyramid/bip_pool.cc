@@ -40,21 +40,39 @@ size_t LevelBytes(const std::vector<BipLevel>& levels) {
 BipPool::BipPool() = default;
 BipPool::~BipPool() = default;
 
-std::unique_ptr<BipScratch> BipPool::TakeScratch() {
+std::unique_ptr<BipScratch> BipPool::TakeScratch(size_t cells) {
   {
-    const std::lock_guard<std::mutex> lock(mutex_);
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (cells >= kLargeCells) {
+      // A build holds its scratch for a few milliseconds and takes nothing else meanwhile, so
+      // the wait ends.
+      scratch_returned_.wait(lock, [this] { return !large_lent_; });
+      large_lent_ = true;
+    }
     if (!idle_scratch_.empty()) {
-      std::unique_ptr<BipScratch> scratch = std::move(idle_scratch_.back());
-      idle_scratch_.pop_back();
+      // A large build takes the largest idle scratch and a small one the smallest, so that
+      // the large scratch is not grown again elsewhere.
+      const auto by_bytes = [](const auto& a, const auto& b) { return a->Bytes() < b->Bytes(); };
+      const auto chosen =
+          cells >= kLargeCells
+              ? std::max_element(idle_scratch_.begin(), idle_scratch_.end(), by_bytes)
+              : std::min_element(idle_scratch_.begin(), idle_scratch_.end(), by_bytes);
+      std::unique_ptr<BipScratch> scratch = std::move(*chosen);
+      idle_scratch_.erase(chosen);
       return scratch;
     }
   }
   return std::make_unique<BipScratch>();
 }
 
-void BipPool::GiveScratch(std::unique_ptr<BipScratch> scratch) {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  idle_scratch_.push_back(std::move(scratch));
+void BipPool::GiveScratch(std::unique_ptr<BipScratch> scratch, size_t cells) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    idle_scratch_.push_back(std::move(scratch));
+    if (cells < kLargeCells) return;
+    large_lent_ = false;
+  }
+  scratch_returned_.notify_all();
 }
 
 std::unique_ptr<BipPool::Levels> BipPool::TakeLevels(size_t cells) {
@@ -102,6 +120,13 @@ size_t BipPool::IdleBytes() const {
   size_t bytes = 0;
   for (const auto& scratch : idle_scratch_) bytes += scratch->Bytes();
   for (const auto& levels : idle_levels_) bytes += LevelBytes(*levels);
+  return bytes;
+}
+
+size_t BipPool::IdleScratchBytes() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  size_t bytes = 0;
+  for (const auto& scratch : idle_scratch_) bytes += scratch->Bytes();
   return bytes;
 }
 

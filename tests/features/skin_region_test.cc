@@ -2,6 +2,7 @@
 // construction, then the UCI skin samples and real street frames (skipped without the data).
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -90,6 +91,24 @@ TEST(SkinRegion, DistanceMapIsTheSkinMapsDistance) {
   cv::Mat skin = binary > 0.5f;
   EXPECT_EQ(cv::countNonZero(below != skin), 0);
   EXPECT_NEAR(distances.at<float>(100, 100), SquaredDistanceOf(model, kSkin), 1e-3);
+}
+
+// The distance map from the frame a row at a time is the one from its whole TSL image, bit for
+// bit, black pixels and saturated colours included (the frame context uses it without the TSL).
+TEST(SkinRegion, DistanceMapOfTheFrameIsTheTslImagesBitForBit) {
+  const SkinModel model = Shipped();
+  cv::Mat bgr(61, 97, CV_8UC3);
+  cv::randu(bgr, cv::Scalar::all(0), cv::Scalar::all(256));
+  bgr(cv::Rect(0, 0, 10, 5)).setTo(cv::Scalar(0, 0, 0));
+  bgr(cv::Rect(20, 7, 9, 4)).setTo(cv::Scalar(255, 255, 255));
+  bgr(cv::Rect(40, 9, 6, 6)).setTo(cv::Scalar(0, 0, 255));
+  cv::Mat tsl, from_tsl, from_bgr;
+  BgrToTsl(bgr, &tsl);
+  SkinDistanceMap(tsl, model, &from_tsl);
+  SkinDistanceMapOfBgr(bgr, model, &from_bgr);
+  ASSERT_EQ(from_bgr.type(), CV_32FC1);
+  ASSERT_EQ(from_bgr.size(), bgr.size());
+  EXPECT_EQ(std::memcmp(from_tsl.data, from_bgr.data, from_tsl.total() * sizeof(float)), 0);
 }
 
 TEST(SkinRegion, ACompactConfidentBlobIsSkin) {

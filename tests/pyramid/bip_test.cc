@@ -420,6 +420,43 @@ TEST(BipPool, ConcurrentBuildsEqualSerialOnes) {
   EXPECT_LE(pool.IdleScratches(), 2);
 }
 
+// Large builds (640x480 frames) take turns with the one large scratch: two threads that build
+// such pyramids at once leave one large scratch, not two, and the same pyramids. Small builds
+// beside them keep scratches of their own.
+TEST(BipPool, LargeBuildsTakeTurnsWithOneScratch) {
+  const cv::Mat a = BlurredNoise(640, 480, 10), b = BlurredNoise(600, 460, 11);
+  const cv::Mat small = BlurredNoise(60, 40, 12);
+  ASSERT_GE(static_cast<size_t>(b.total()), BipPool::kLargeCells);
+  const HsvSimilarity policy(25.f);
+  BipPool serial_pool;
+  BipBuilder serial(BipOptions{}, &serial_pool);
+  const cv::Mat labels_a = Labels(serial.Build(PoolFeatures(a), policy));
+  const cv::Mat labels_b = Labels(serial.Build(PoolFeatures(b), policy));
+  const size_t one_large = serial_pool.IdleScratchBytes();
+  BipPool pool;
+  for (int round = 0; round < 4; ++round) {
+    cv::Mat got_a, got_b;
+    std::thread other([&] {
+      BipBuilder builder(BipOptions{}, &pool);
+      got_b = Labels(builder.Build(PoolFeatures(b), policy));
+    });
+    std::thread third([&] {
+      BipBuilder builder(BipOptions{}, &pool);
+      for (int k = 0; k < 5; ++k) Labels(builder.Build(PoolFeatures(small), policy));
+    });
+    BipBuilder builder(BipOptions{}, &pool);
+    got_a = Labels(builder.Build(PoolFeatures(a), policy));
+    other.join();
+    third.join();
+    ASSERT_EQ(cv::countNonZero(got_a != labels_a), 0) << "round " << round;
+    ASSERT_EQ(cv::countNonZero(got_b != labels_b), 0) << "round " << round;
+  }
+  // One large scratch (and the small builds' small ones), where two large builds at once
+  // would have made two.
+  EXPECT_GE(pool.IdleScratchBytes(), one_large);
+  EXPECT_LT(pool.IdleScratchBytes(), one_large + one_large / 2);
+}
+
 // Releasing gives the levels back; a builder can build again after it.
 TEST(BipPool, ReleaseThenBuildAgain) {
   const cv::Mat a = BlurredNoise(60, 40, 10);
