@@ -47,7 +47,7 @@ class CandidateFinder {
   int min_area_;
   float t_max_;
   BipBuilder builder_;
-  cv::Mat scaled_, zero_, features_;  // kept from frame to frame (Find)
+  cv::Mat scaled_row_, features_;  // kept from frame to frame (Find)
 };
 
 // Ranks `candidates` (best first) as the order of attention says (SelectOptions::order,
