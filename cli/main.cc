@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
+#include <malloc.h>
 #include <string_view>
 #include <iostream>
 #include <opencv2/core/utils/logger.hpp>
@@ -73,6 +74,11 @@ int main(int argc, char** argv) {
   // only after every other backend refused it: 1 is the lowest priority (0 would turn the
   // backend off, and --gst with it).
   setenv("OPENCV_VIDEOIO_PRIORITY_GSTREAMER", "1", 0);
+  // One malloc arena for the whole process. attend's threads keep their buffers from frame to
+  // frame and allocate little while they run, so they do not contend for it, and a second
+  // arena for the thread that works on the next frame (pipeline/run.cc) held 3-4 MB more at
+  // 640x480 (docs/PERFORMANCE.md, "Two frames at once"). MALLOC_ARENA_MAX, when set, wins.
+  if (std::getenv("MALLOC_ARENA_MAX") == nullptr) mallopt(M_ARENA_MAX, 1);
 
   const int bad_arguments = CheckArguments(argc, argv);
   if (bad_arguments != 0) return bad_arguments;
