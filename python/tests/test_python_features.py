@@ -1,6 +1,7 @@
 """Feature plugins written in Python: registered from Python or named as a .py file in
 `plugins:`, computed on the frame context's arrays, with their options from the YAML entry."""
 
+import json
 import os
 import textwrap
 
@@ -251,3 +252,25 @@ def test_the_program_does_not_link_python():
     import subprocess
     libraries = subprocess.run(["ldd", ATTEND], capture_output=True, text=True).stdout
     assert "libpython" not in libraries
+
+
+def test_a_feature_that_runs_ahead_gives_the_records_of_one_thread(lab, tmp_path):
+    """With two threads `attend run` computes frame t + 1's features on a second thread while
+    it finishes frame t: a Python feature that says it never reads attention_regions runs
+    there (holding the interpreter only while it computes), one that does not say so waits,
+    and both give the records of one thread."""
+    ahead = write(tmp_path, "ahead.py", PLUGIN.replace(
+        'options = {"scale": 1.0}', 'options = {"scale": 1.0}\n    reads_attention_regions = False'))
+    waits = write(tmp_path, "waits.py", PLUGIN.replace('"red"', '"red_late"'))
+    records = {}
+    for name, threads in (("one", 1), ("two", 2)):
+        out = tmp_path / name
+        run_attend("run", "--sequence", lab, "--out", out, "--quiet", "--frames", "0:8",
+                   "--set", f"plugins=[{ahead}, {waits}]",
+                   "--set", "features=[{name: colour_contrast}, {name: red, scale: 0.5}, "
+                            "{name: red_late, scale: 0.25}]",
+                   "--set", f"threads={threads}")
+        with open(out / "frames.jsonl") as lines:
+            records[name] = [without_timings(json.loads(line)) for line in lines]
+    assert len(records["one"]) == 9
+    assert records["two"] == records["one"]
