@@ -362,6 +362,69 @@ FeatureSetup SetUpFeatures(const RunRequest& request, const SequenceInfo& info,
   return setup;
 }
 
+// A live source captures from the moment it opens, and the first frames through a new pipeline
+// cost several times a frame (their buffers' first pages, OpenCV's first calls: 161 ms for
+// the first 320x240 frame of a live run against 18 ms later), while the capture queue fills
+// and drops (docs/LIVE.md). So before it opens, a pipeline of the run's configuration works
+// on three frames of noise at the largest working size the options allow, as the run will
+// (two at once with two threads), and is dropped: its buffers go back to the run's pools and
+// the allocator, where the run's pipeline finds them. Nothing of it reaches the run; a
+// failure here is left for the run to meet and report.
+void WarmUpBeforeCapture(const RunRequest& request, const AttendOptions& options,
+                         const FeatureRegistry& registry, ExecutionContext* execution) {
+  const SourceSpec& source = options.sequence.source;
+  const bool stereo =
+      source.camera_right >= 0 || !source.gst_right.empty() || source.live.side_by_side;
+  const cv::Size size = options.sequence.resize == "native"
+                            ? cv::Size(640, 480)
+                            : cv::Size(options.sequence.width, options.sequence.height);
+  try {
+    AttendOptions warm_options = options;
+    FeatureSetup setup;
+    setup.home = request.home;
+    if (!stereo && request.stereo_features_optional) {
+      LeaveOutStereoFeatures(registry, setup, &warm_options.features);
+    }
+    setup.stereo = stereo;
+    FramePipeline pipeline(warm_options, registry, setup, execution);
+    cv::Mat left(size, CV_8UC3), right;
+    cv::randu(left, cv::Scalar::all(0), cv::Scalar::all(256));
+    if (stereo) {
+      right = cv::Mat(size, CV_8UC3, cv::Scalar::all(0));
+      left.colRange(4, size.width).copyTo(right.colRange(0, size.width - 4));
+    }
+    pipeline.BeginSequence({"warm-up", size, stereo, 0});
+    std::vector<StereoFrame> frames(3);
+    for (int i = 0; i < 3; ++i) {
+      frames[i].index = i;
+      frames[i].left = left;
+      frames[i].right = right;
+    }
+    FrameRecord record;
+    if (execution->threads() >= 2) {
+      pipeline.Ahead(frames[0]);
+      for (int i = 0; i < 3; ++i) {
+        std::future<void> ahead;
+        if (i + 1 < 3) {
+          ahead = execution->pool()->Submit([&, i] { pipeline.Ahead(frames[i + 1]); });
+        }
+        try {
+          pipeline.Finish(&record);
+        } catch (...) {
+          if (ahead.valid()) ahead.wait();  // it uses the frames and the pipeline
+          throw;
+        }
+        if (ahead.valid()) ahead.get();
+      }
+    } else {
+      for (const StereoFrame& frame : frames) pipeline.Process(frame, &record);
+    }
+    pipeline.EndSequence();
+  } catch (const std::exception&) {
+    // The run's own pipeline meets the same failure, and reports it with the run's context.
+  }
+}
+
 // Fills the summary's timings, rates and live status from `totals`, and writes scanpath.json
 // and summary.json.
 void FinishRun(const RunRequest& request, const FrameSource& source, const RunTotals& totals,
@@ -388,17 +451,24 @@ void FinishRun(const RunRequest& request, const FrameSource& source, const RunTo
 
 RunSummary RunSequence(const RunRequest& request) {
   AttendOptions options = request.options;
+  ExecutionContext execution(options.threads);
+  const ScopedOpenCvThreads opencv_threads(execution);
+  // A live source captures from the moment it opens, so its pipeline is warmed up before.
+  std::optional<FeatureRegistry> loaded;
+  if (options.sequence.source.IsLive()) {
+    loaded.emplace(LoadFeatureRegistry(options.plugins));
+    WarmUpBeforeCapture(request, options, *loaded, &execution);
+  }
   std::unique_ptr<FrameSource> source = OpenFrameSource(options.sequence);
   // A stereo pair whose rows do not match is refused before anything is written.
   std::optional<StereoSummary> stereo = CheckStereoSource(options.sequence.check_rows, &source);
   const SequenceInfo& info = source->info();
   // Everything that can reject the configuration runs before the run folder exists.
-  ExecutionContext execution(options.threads);
-  const ScopedOpenCvThreads opencv_threads(execution);
   // With a second core the next frame is read and decoded, and its first stages run, while
   // this one is finished (RunFramesOverlapped), so no reader thread of its own (ReadAhead) is
   // needed: one more frame in memory, and a third thread on two cores, for no gain.
-  const FeatureRegistry registry = LoadFeatureRegistry(options.plugins);
+  if (!loaded) loaded.emplace(LoadFeatureRegistry(options.plugins));
+  const FeatureRegistry& registry = *loaded;
   RunSummary summary;
   summary.stereo = std::move(stereo);
   const FeatureSetup setup = SetUpFeatures(request, info, registry, &options, &summary);
