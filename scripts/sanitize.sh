@@ -48,8 +48,8 @@ cd "$build"
 # Left out here, and run by scripts/test.sh: the tests whose time is a real service's rather
 # than attend's code. The four SweepSlurm tests wait on a Slurm cluster's scheduler (its
 # one-minute time limit, its start) for 90-100 s each, sanitized or not, and the two CompareCli
-# Chromium tests on a headless browser rendering a page; together about a quarter of this
-# pass's test time on 2 cores, and the C++ they reach (the sweep's Slurm records, the
+# Chromium tests on a headless browser rendering a page; together about 430 of this pass's
+# 2,800 test-seconds, and the C++ they reach (the sweep's Slurm records, the
 # report's writer) also runs in tests that stay (SweepCli, SweepRecords, CompareCli).
 # A longer timeout than scripts/test.sh's 300 s, as instrumented code runs slower.
 ctest --output-on-failure --timeout 900 -j"$(nproc)" -E '^SweepSlurm\.|^CompareCli\..*Chromium$'
