@@ -147,6 +147,8 @@ class BipPool {
   size_t IdleBytes() const;
   // The idle scratches' part of it.
   size_t IdleScratchBytes() const;
+  // The most scratches of large builds (kLargeCells) lent at once so far: 1 once any was.
+  int MostLargeScratchesLent() const;
   // Idle scratches and level sets.
   int IdleScratches() const;
   int IdleLevelSets() const;
@@ -169,8 +171,10 @@ class BipPool {
 
   mutable std::mutex mutex_;
   std::condition_variable scratch_returned_;
-  bool large_lent_ = false;  // a large scratch is lent out
-  std::vector<std::unique_ptr<BipScratch>> idle_scratch_;
+  int large_lent_ = 0;       // large scratches lent out: 0 or 1
+  int most_large_lent_ = 0;  // the most at once so far
+  std::vector<std::unique_ptr<BipScratch>> idle_scratch_;  // those of small builds
+  std::unique_ptr<BipScratch> large_idle_;  // the large builds' one, when idle
   std::vector<std::unique_ptr<Levels>> idle_levels_;
 };
 

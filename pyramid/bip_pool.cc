@@ -46,12 +46,16 @@ std::unique_ptr<BipScratch> BipPool::TakeScratch(size_t cells) {
     if (cells >= kLargeCells) {
       // A build holds its scratch for a few milliseconds and takes nothing else meanwhile, so
       // the wait ends.
-      scratch_returned_.wait(lock, [this] { return !large_lent_; });
-      large_lent_ = true;
+      scratch_returned_.wait(lock, [this] { return large_lent_ == 0; });
+      ++large_lent_;
+      most_large_lent_ = std::max(most_large_lent_, large_lent_);
     }
+    // The large scratch is kept apart, for large builds only: a small build that took it
+    // would leave the next large build to grow a second one.
+    if (cells >= kLargeCells && large_idle_ != nullptr) return std::move(large_idle_);
     if (!idle_scratch_.empty()) {
-      // A large build takes the largest idle scratch and a small one the smallest, so that
-      // the large scratch is not grown again elsewhere.
+      // Otherwise a large build takes the largest small scratch, which it grows, and a small
+      // build the smallest.
       const auto by_bytes = [](const auto& a, const auto& b) { return a->Bytes() < b->Bytes(); };
       const auto chosen =
           cells >= kLargeCells
@@ -68,9 +72,12 @@ std::unique_ptr<BipScratch> BipPool::TakeScratch(size_t cells) {
 void BipPool::GiveScratch(std::unique_ptr<BipScratch> scratch, size_t cells) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    idle_scratch_.push_back(std::move(scratch));
-    if (cells < kLargeCells) return;
-    large_lent_ = false;
+    if (cells < kLargeCells) {
+      idle_scratch_.push_back(std::move(scratch));
+      return;
+    }
+    large_idle_ = std::move(scratch);  // the one large scratch: none was idle while it was lent
+    --large_lent_;
   }
   scratch_returned_.notify_all();
 }
@@ -119,20 +126,27 @@ size_t BipPool::IdleBytes() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   size_t bytes = 0;
   for (const auto& scratch : idle_scratch_) bytes += scratch->Bytes();
+  if (large_idle_ != nullptr) bytes += large_idle_->Bytes();
   for (const auto& levels : idle_levels_) bytes += LevelBytes(*levels);
   return bytes;
+}
+
+int BipPool::MostLargeScratchesLent() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return most_large_lent_;
 }
 
 size_t BipPool::IdleScratchBytes() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   size_t bytes = 0;
   for (const auto& scratch : idle_scratch_) bytes += scratch->Bytes();
+  if (large_idle_ != nullptr) bytes += large_idle_->Bytes();
   return bytes;
 }
 
 int BipPool::IdleScratches() const {
   const std::lock_guard<std::mutex> lock(mutex_);
-  return static_cast<int>(idle_scratch_.size());
+  return static_cast<int>(idle_scratch_.size()) + (large_idle_ != nullptr ? 1 : 0);
 }
 
 int BipPool::IdleLevelSets() const {
@@ -143,6 +157,7 @@ int BipPool::IdleLevelSets() const {
 void BipPool::Clear() {
   const std::lock_guard<std::mutex> lock(mutex_);
   idle_scratch_.clear();
+  large_idle_.reset();
   idle_levels_.clear();
 }
 
