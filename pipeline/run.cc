@@ -279,6 +279,22 @@ bool StopAsked(const RunRequest& request) {
   return request.stop != nullptr && request.stop->load();
 }
 
+// Runs `finish` on this thread while `ahead` (none when empty) runs on a thread of `pool`, and
+// returns once both have ended: `ahead` uses what `finish`'s caller holds, so it is waited for
+// even when `finish` throws. `finish`'s exception wins; else `ahead`'s is thrown.
+void BesideAhead(ThreadPool* pool, std::function<void()> ahead,
+                 const std::function<void()>& finish) {
+  std::future<void> job;
+  if (ahead) job = pool->Submit(std::move(ahead));
+  try {
+    finish();
+  } catch (...) {
+    if (job.valid()) job.wait();
+    throw;
+  }
+  if (job.valid()) job.get();
+}
+
 // The frames of `source`, one after the other, until its end or a stop request (then
 // `summary` says it was interrupted); what stops it otherwise is thrown.
 void RunFrames(const RunRequest& request, FrameSource* source, FramePipeline* pipeline,
@@ -324,20 +340,16 @@ void RunFramesOverlapped(const RunRequest& request, FrameSource* source, ThreadP
   if (!StopAsked(request)) read_ahead(&current);
   while (current.more) {
     ReadFrame next;
-    std::future<void> ahead;
-    if (!StopAsked(request)) ahead = pool->Submit([&] { read_ahead(&next); });
-    try {
+    std::function<void()> ahead;
+    if (!StopAsked(request)) ahead = [&] { read_ahead(&next); };
+    BesideAhead(pool, std::move(ahead), [&] {
       FrameRecord record;
       record.frame = current.frame.index;
       record.timings.Add("read", current.read_ms);
       pipeline->Finish(&record);
       RecordFrame(current.frame, *pipeline, observers, info, folder, totals, &record);
       CountFrame(request, info, *pipeline, *totals, summary);
-    } catch (...) {
-      if (ahead.valid()) ahead.wait();  // it uses `next` and the pipeline
-      throw;
-    }
-    if (ahead.valid()) ahead.get();
+    });
     current = std::move(next);
   }
   // A live source stops waiting for its next frame when the run is asked to stop.
@@ -404,17 +416,9 @@ void WarmUpBeforeCapture(const RunRequest& request, const AttendOptions& options
     if (execution->threads() >= 2) {
       pipeline.Ahead(frames[0]);
       for (int i = 0; i < 3; ++i) {
-        std::future<void> ahead;
-        if (i + 1 < 3) {
-          ahead = execution->pool()->Submit([&, i] { pipeline.Ahead(frames[i + 1]); });
-        }
-        try {
-          pipeline.Finish(&record);
-        } catch (...) {
-          if (ahead.valid()) ahead.wait();  // it uses the frames and the pipeline
-          throw;
-        }
-        if (ahead.valid()) ahead.get();
+        std::function<void()> ahead;
+        if (i + 1 < 3) ahead = [&, i] { pipeline.Ahead(frames[i + 1]); };
+        BesideAhead(execution->pool(), std::move(ahead), [&] { pipeline.Finish(&record); });
       }
     } else {
       for (const StereoFrame& frame : frames) pipeline.Process(frame, &record);
