@@ -275,8 +275,11 @@ class LiveSource final : public FrameSource {
                    ? " of the range (frame " + std::to_string(options.first_frame) + ")"
                    : std::string());
       }
+      // A thread still opening a pipeline that never starts is blocked in OpenCV for good:
+      // it is left to itself at once rather than given the second a stalled read gets.
+      const bool opening = !state_->opened && !state_->finished;
       lock.unlock();
-      StopCapture();
+      StopCapture(opening ? std::chrono::milliseconds(0) : std::chrono::seconds(1));
       throw InputError(why);
     }
     if (state_->fps > 0) info_.fps = state_->fps;
@@ -360,15 +363,16 @@ class LiveSource final : public FrameSource {
   }
 
   // Stops the capture thread and joins it. A thread blocked in a read of a stalled source
-  // (OpenCV's GStreamer backend waits for the next buffer without a timeout) is given a second,
-  // then left to end by itself when the read returns: it owns what it uses.
-  void StopCapture() {
+  // (OpenCV's GStreamer backend waits for the next buffer without a timeout) is given `grace`,
+  // a second unless told, then left to end by itself when the read returns: it owns what it
+  // uses.
+  void StopCapture(std::chrono::milliseconds grace = std::chrono::seconds(1)) {
     if (!thread_.joinable()) return;
     std::unique_lock<std::mutex> lock(state_->mutex);
     state_->stop = true;
     state_->changed.notify_all();
     const bool finished =
-        state_->changed.wait_for(lock, std::chrono::seconds(1), [&] { return state_->finished; });
+        state_->changed.wait_for(lock, grace, [&] { return state_->finished; });
     lock.unlock();
     if (finished) {
       thread_.join();

@@ -17,6 +17,7 @@
 #include "pipeline/run_folder.h"
 #include "pipeline/stereo_check.h"
 #include "util/error.h"
+#include "util/folder_lock.h"
 
 namespace fs = std::filesystem;
 
@@ -377,10 +378,10 @@ FeatureSetup SetUpFeatures(const RunRequest& request, const SequenceInfo& info,
 // A live source captures from the moment it opens, and the first frames through a new pipeline
 // cost several times a frame (their buffers' first pages, OpenCV's first calls: 161 ms for
 // the first 320x240 frame of a live run against 18 ms later), while the capture queue fills
-// and drops (docs/LIVE.md). So before it opens, a pipeline of the run's configuration works
-// on three frames of noise at the largest working size the options allow, as the run will
-// (two at once with two threads), and is dropped: its buffers go back to the run's pools and
-// the allocator, where the run's pipeline finds them. Nothing of it reaches the run; a
+// and drops (docs/LIVE.md). So before the source opens, a pipeline of the run's configuration
+// works on three frames of noise at the largest working size the options allow, as the run
+// will (two at once with two threads), and is dropped: its buffers go back to the run's pools
+// and the allocator, where the run's pipeline finds them. Nothing of it reaches the run; a
 // failure here is left for the run to meet and report.
 void WarmUpBeforeCapture(const RunRequest& request, const AttendOptions& options,
                          const FeatureRegistry& registry, ExecutionContext* execution) {
@@ -457,7 +458,11 @@ RunSummary RunSequence(const RunRequest& request) {
   AttendOptions options = request.options;
   ExecutionContext execution(options.threads);
   const ScopedOpenCvThreads opencv_threads(execution);
+  // A folder in use by another run is refused before the source opens and the warm-up works.
+  if (!request.out_dir.empty()) RefuseFolderInUse(request.out_dir, "run");
   // A live source captures from the moment it opens, so its pipeline is warmed up before.
+  // (Opened first and left unread while the warm-up works, a pipeline queues what it captures
+  // meanwhile and hands it over in a burst: the run then starts behind, and drops.)
   std::optional<FeatureRegistry> loaded;
   if (options.sequence.source.IsLive()) {
     loaded.emplace(LoadFeatureRegistry(options.plugins));

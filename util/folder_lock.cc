@@ -71,6 +71,12 @@ bool StillLinked(int fd, const std::string& path) {
   return open_file.st_dev == named.st_dev && open_file.st_ino == named.st_ino;
 }
 
+// The message of a folder locked by the live process `holder`.
+std::string InUse(const std::string& folder, const std::string& what, const std::string& holder) {
+  return folder + ": in use by another attend " + what + " (" + holder +
+         "); wait until it ends, or write to another folder";
+}
+
 }  // namespace
 
 FolderLock::FolderLock(const std::string& folder, const std::string& what)
@@ -94,9 +100,7 @@ FolderLock::FolderLock(const std::string& folder, const std::string& what)
       const std::string holder = ReadHolder(fd);
       ::close(fd);
       if (error_number == EWOULDBLOCK) {
-        throw OutputError(folder + ": in use by another attend " + what + " (" +
-                          (holder.empty() ? std::string("holder unknown") : holder) +
-                          "); wait until it ends, or write to another folder");
+        throw OutputError(InUse(folder, what, holder.empty() ? "holder unknown" : holder));
       }
       throw OutputError(folder + ": cannot lock " + kFileName + ": " +
                         std::strerror(error_number));
@@ -144,6 +148,11 @@ void FolderLock::Release() {
   ::unlink(path_.c_str());
   ::close(fd_);
   fd_ = -1;
+}
+
+void RefuseFolderInUse(const std::string& folder, const std::string& what) {
+  const std::string holder = FolderLockHolder(folder);
+  if (!holder.empty()) throw OutputError(InUse(folder, what, holder));
 }
 
 std::string FolderLockHolder(const std::string& folder) {

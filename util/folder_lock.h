@@ -43,4 +43,9 @@ class FolderLock {
 // process holds its lock, "" when it is free or the lock is stale. For status listings.
 std::string FolderLockHolder(const std::string& folder);
 
+// The OutputError a FolderLock of `folder` would throw now, when another live process holds it;
+// nothing otherwise. For a command that works a while before it writes (a live run warms up):
+// it refuses a folder in use at once. The lock itself is still taken later.
+void RefuseFolderInUse(const std::string& folder, const std::string& what);
+
 }  // namespace attend

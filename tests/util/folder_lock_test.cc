@@ -35,9 +35,15 @@ TEST(FolderLock, ASecondWriterIsRefusedNamingTheHolderUntilTheFirstReleases) {
                                  std::to_string(getpid())))
         << message;
     EXPECT_TRUE(Has(FolderLockHolder(dir.path().string()), "pid " + std::to_string(getpid())));
+    // Asked before the lock is taken, a writer is refused with the same message.
+    EXPECT_EQ(testing::ErrorOf<OutputError>(
+                  [&] { RefuseFolderInUse(dir.path().string(), "run"); }),
+              message);
   }
   EXPECT_FALSE(fs::exists(dir.path() / FolderLock::kFileName));
   EXPECT_EQ(FolderLockHolder(dir.path().string()), "");
+  EXPECT_NO_THROW(RefuseFolderInUse(dir.path().string(), "run"));
+  EXPECT_NO_THROW(RefuseFolderInUse((dir.path() / "not-yet").string(), "run"));
   FolderLock again(dir.path().string(), "run");
   EXPECT_TRUE(again.held());
 }
@@ -54,6 +60,7 @@ TEST(FolderLock, TheLockOfAProcessThatDiedIsTakenOverAndNamed) {
   ASSERT_EQ(waitpid(child, &status, 0), child);
   ASSERT_TRUE(fs::exists(dir.path() / FolderLock::kFileName));
   EXPECT_EQ(FolderLockHolder(dir.path().string()), "");  // stale: nobody holds it
+  EXPECT_NO_THROW(RefuseFolderInUse(dir.path().string(), "run"));
   FolderLock taken(dir.path().string(), "run");
   EXPECT_TRUE(Has(taken.stale_holder(), "pid " + std::to_string(child))) << taken.stale_holder();
 }
