@@ -229,6 +229,35 @@ bool ReadRecordLine(std::istream& in, const std::string& path, int number, std::
   }
 }
 
+// The record's targets into `record`, and each id's first position into `ids`. An id has at
+// most one box a frame (a state that is seen: new, tracked, resumed) and at most one entry
+// without: a target released or lost in a frame may be resumed from its object file under the
+// same id in that frame, which records the id twice.
+void ReadTargets(const nlohmann::json& targets, FrameRecord* record, std::map<int, size_t>* ids) {
+  if (!targets.is_array()) throw std::runtime_error("'targets' is not a list");
+  if (targets.size() > static_cast<size_t>(kMaxTargetsPerRecord)) {
+    throw std::runtime_error(std::to_string(targets.size()) + " targets, more than " +
+                             std::to_string(kMaxTargetsPerRecord) + " (docs/LIMITS.md)");
+  }
+  std::map<int, size_t> seen, unseen;  // id -> its position in the record, for duplicates
+  for (const nlohmann::json& t : targets) {
+    TargetRecord target = ReadTarget(t);
+    ReadDepth(t, &target);
+    std::map<int, size_t>& same = Visible(target.state) ? seen : unseen;
+    const auto [at, first] = same.emplace(target.id, record->targets.size());
+    if (!first) {
+      throw std::runtime_error(
+          "target id " + std::to_string(target.id) + " twice (targets " +
+          std::to_string(at->second + 1) + " and " + std::to_string(record->targets.size() + 1) +
+          "): a target is recorded once a frame, and once more only when it ended there and "
+          "was resumed under its id");
+    }
+    record->targets.push_back(target);
+  }
+  *ids = std::move(seen);
+  for (const auto& [id, at] : unseen) ids->emplace(id, at);
+}
+
 }  // namespace
 
 std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
@@ -249,25 +278,8 @@ std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
       const nlohmann::json json = nlohmann::json::parse(line);
       FrameRecord record;
       record.frame = IntIn(json.at("frame"), "frame", 0, kMaxFrameNumber);
-      const nlohmann::json& targets = json.at("targets");
-      if (!targets.is_array()) throw std::runtime_error("'targets' is not a list");
-      if (targets.size() > static_cast<size_t>(kMaxTargetsPerRecord)) {
-        throw std::runtime_error(std::to_string(targets.size()) + " targets, more than " +
-                                 std::to_string(kMaxTargetsPerRecord) + " (docs/LIMITS.md)");
-      }
-      std::map<int, size_t> seen;  // id -> its position in the record, for duplicates
-      for (const nlohmann::json& t : targets) {
-        TargetRecord target = ReadTarget(t);
-        ReadDepth(t, &target);
-        const auto [at, first] = seen.emplace(target.id, record.targets.size());
-        if (!first) {
-          throw std::runtime_error("target id " + std::to_string(target.id) + " twice (targets " +
-                                   std::to_string(at->second + 1) + " and " +
-                                   std::to_string(record.targets.size() + 1) +
-                                   "): a target is recorded once a frame");
-        }
-        record.targets.push_back(target);
-      }
+      std::map<int, size_t> seen;  // id -> its first position in the record
+      ReadTargets(json.at("targets"), &record, &seen);
       record.new_ids = json.at("new").get<std::vector<int>>();
       for (const int id : record.new_ids) {
         // Each new id is one of the record's targets, which are unique and capped.
