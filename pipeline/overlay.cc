@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
+#include <set>
 #include <string>
 
 namespace attend {
@@ -62,6 +63,13 @@ std::string TargetDepthLabel(const TargetRecord& target) {
 cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record) {
   cv::Mat overlay = left.clone();
   const double font_scale = OverlayFontScale(left.cols);
+  // A target that ended in this frame and was resumed in it under its id is recorded twice:
+  // its old box is drawn, but only the resumed one is labelled, so the two labels do not
+  // cover each other.
+  std::set<int> seen_ids;
+  for (const TargetRecord& target : record.targets) {
+    if (Visible(target.state)) seen_ids.insert(target.id);
+  }
   for (const TargetRecord& target : record.targets) {
     const bool visible = Visible(target.state);
     const int thickness =
@@ -75,7 +83,9 @@ cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record) {
     if (!visible || target.state == TargetState::kResumed) {
       suffix.append(" (").append(TargetStateName(target.state)).append(")");
     }
-    DrawTargetLabel(&overlay, target.id, target.bbox, suffix, font_scale);
+    if (visible || seen_ids.count(target.id) == 0) {
+      DrawTargetLabel(&overlay, target.id, target.bbox, suffix, font_scale);
+    }
   }
   DrawCaption(&overlay,
               "frame " + std::to_string(record.frame) + "  targets " +

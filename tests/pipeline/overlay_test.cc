@@ -71,5 +71,30 @@ TEST(Overlay, ALabelAtTheRightEdgeMovesLeftToStayInTheImage) {
   EXPECT_LT(cv::countNonZero(difference(cv::Rect(239, 0, 1, 20))), 3);
 }
 
+// A target released and resumed under its id in one frame (configs/people.yaml): both boxes
+// are drawn, and only the resumed one is labelled.
+TEST(Overlay, AReleasedTargetResumedInItsFrameIsLabelledOnce) {
+  const cv::Mat left(120, 240, CV_8UC3, cv::Scalar(90, 90, 90));
+  FrameRecord resumed_only;
+  resumed_only.targets.push_back(Target(7, {150, 60, 40, 40}));
+  resumed_only.targets[0].state = TargetState::kResumed;
+  FrameRecord both = resumed_only;
+  both.targets.insert(both.targets.begin(), Target(7, {20, 60, 40, 40}));
+  both.targets[0].state = TargetState::kReleased;
+  cv::Mat difference;
+  cv::absdiff(DrawOverlay(left, both), DrawOverlay(left, resumed_only), difference);
+  cv::cvtColor(difference, difference, cv::COLOR_BGR2GRAY);
+  // No label above the released box: its row (the box's top edge is at y = 60) is unchanged.
+  EXPECT_EQ(cv::countNonZero(difference(cv::Rect(0, 40, 140, 19))), 0);
+  // Its box is drawn.
+  EXPECT_GT(cv::countNonZero(difference(cv::Rect(19, 59, 43, 43))), 100);
+  // A released target that nobody resumed keeps its label.
+  FrameRecord released_only;
+  released_only.targets.push_back(both.targets[0]);
+  cv::absdiff(DrawOverlay(left, released_only), left, difference);
+  cv::cvtColor(difference, difference, cv::COLOR_BGR2GRAY);
+  EXPECT_GT(cv::countNonZero(difference(cv::Rect(0, 40, 140, 19))), 30);
+}
+
 }  // namespace
 }  // namespace attend
