@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <stdexcept>
 
 #include "util/error.h"
@@ -229,11 +230,11 @@ bool ReadRecordLine(std::istream& in, const std::string& path, int number, std::
   }
 }
 
-// The record's targets into `record`, and each id's first position into `ids`. An id has at
+// The record's targets into `record`, and their ids into `ids`. An id has at
 // most one box a frame (a state that is seen: new, tracked, resumed) and at most one entry
 // without: a target released or lost in a frame may be resumed from its object file under the
 // same id in that frame, which records the id twice.
-void ReadTargets(const nlohmann::json& targets, FrameRecord* record, std::map<int, size_t>* ids) {
+void ReadTargets(const nlohmann::json& targets, FrameRecord* record, std::set<int>* ids) {
   if (!targets.is_array()) throw std::runtime_error("'targets' is not a list");
   if (targets.size() > static_cast<size_t>(kMaxTargetsPerRecord)) {
     throw std::runtime_error(std::to_string(targets.size()) + " targets, more than " +
@@ -253,9 +254,8 @@ void ReadTargets(const nlohmann::json& targets, FrameRecord* record, std::map<in
           "was resumed under its id");
     }
     record->targets.push_back(target);
+    ids->insert(target.id);
   }
-  *ids = std::move(seen);
-  for (const auto& [id, at] : unseen) ids->emplace(id, at);
 }
 
 }  // namespace
@@ -278,7 +278,7 @@ std::vector<FrameRecord> ReadFrameRecords(const std::string& path) {
       const nlohmann::json json = nlohmann::json::parse(line);
       FrameRecord record;
       record.frame = IntIn(json.at("frame"), "frame", 0, kMaxFrameNumber);
-      std::map<int, size_t> seen;  // id -> its first position in the record
+      std::set<int> seen;  // the record's target ids
       ReadTargets(json.at("targets"), &record, &seen);
       record.new_ids = json.at("new").get<std::vector<int>>();
       for (const int id : record.new_ids) {

@@ -247,7 +247,7 @@ class LiveSource final : public FrameSource {
     state_->capacity = static_cast<size_t>(options.source.live.queue);
     state_->duration_s = options.source.live.duration_s;
 
-    info_.stereo = !right.empty() || options.source.live.side_by_side;
+    info_.stereo = LiveIsStereo(options.source);
     info_.name = right.empty() ? left.Name() : left.Name() + "-" + right.Name();
     info_.frame_count = -1;  // drops make the count unknown ahead
     what_ = options.source.Describe();

@@ -142,4 +142,8 @@ LiveView RightView(const SourceSpec& spec) {
   return {spec.camera_right, spec.gst_right, "gst_right"};
 }
 
+bool LiveIsStereo(const SourceSpec& spec) {
+  return !RightView(spec).empty() || spec.live.side_by_side;
+}
+
 }  // namespace attend

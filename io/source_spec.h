@@ -90,5 +90,8 @@ struct LiveView {
 
 LiveView LeftView(const SourceSpec& spec);
 LiveView RightView(const SourceSpec& spec);
+// Whether the live source of `spec` gives stereo frames: a right view, or one side-by-side
+// source.
+bool LiveIsStereo(const SourceSpec& spec);
 
 }  // namespace attend

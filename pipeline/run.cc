@@ -385,9 +385,7 @@ FeatureSetup SetUpFeatures(const RunRequest& request, const SequenceInfo& info,
 // failure here is left for the run to meet and report.
 void WarmUpBeforeCapture(const RunRequest& request, const AttendOptions& options,
                          const FeatureRegistry& registry, ExecutionContext* execution) {
-  const SourceSpec& source = options.sequence.source;
-  const bool stereo =
-      source.camera_right >= 0 || !source.gst_right.empty() || source.live.side_by_side;
+  const bool stereo = LiveIsStereo(options.sequence.source);
   const cv::Size size = options.sequence.resize == "native"
                             ? cv::Size(640, 480)
                             : cv::Size(options.sequence.width, options.sequence.height);

@@ -168,6 +168,8 @@ class BipPool {
   // A level set for a pyramid over `cells` pixels: the idle one that fits best.
   std::unique_ptr<Levels> TakeLevels(size_t cells);
   void GiveLevels(std::unique_ptr<Levels> levels);
+  // The idle scratches' bytes, the large one's included; `mutex_` held.
+  size_t IdleScratchBytesLocked() const;
 
   mutable std::mutex mutex_;
   std::condition_variable scratch_returned_;

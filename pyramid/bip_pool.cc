@@ -124,9 +124,7 @@ void BipPool::GiveLevels(std::unique_ptr<Levels> levels) {
 
 size_t BipPool::IdleBytes() const {
   const std::lock_guard<std::mutex> lock(mutex_);
-  size_t bytes = 0;
-  for (const auto& scratch : idle_scratch_) bytes += scratch->Bytes();
-  if (large_idle_ != nullptr) bytes += large_idle_->Bytes();
+  size_t bytes = IdleScratchBytesLocked();
   for (const auto& levels : idle_levels_) bytes += LevelBytes(*levels);
   return bytes;
 }
@@ -138,6 +136,10 @@ int BipPool::MostLargeScratchesLent() const {
 
 size_t BipPool::IdleScratchBytes() const {
   const std::lock_guard<std::mutex> lock(mutex_);
+  return IdleScratchBytesLocked();
+}
+
+size_t BipPool::IdleScratchBytesLocked() const {
   size_t bytes = 0;
   for (const auto& scratch : idle_scratch_) bytes += scratch->Bytes();
   if (large_idle_ != nullptr) bytes += large_idle_->Bytes();
