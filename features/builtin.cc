@@ -70,8 +70,8 @@ const std::vector<BuiltinFeature>& BuiltinFeatureTable() {
       {"skin", "TSL skin chrominance within a Mahalanobis threshold (thesis 5.1.1)",
        &CreateSkinFeature, [] { return DescribeFields(SkinFeatureOptions::Fields()); }},
       {"disparity",
-       "stereo disparity, nearer is more salient: box-filtered ZNCC and Sun's two-stage "
-       "dynamic programming (thesis 5.1.1)",
+       "stereo disparity (box-filtered ZNCC and Sun's two-stage dynamic programming, thesis "
+       "5.1.1), scored as depth contrast against the surround and the ground, or as nearness",
        &CreateDisparityFeature, &DisparityKeys},
       {"motion",
        "luminance change against the previous frames, less global brightness change and "

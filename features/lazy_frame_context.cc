@@ -10,7 +10,7 @@
 namespace attend {
 
 void DisparityEstimators::Compute(const DisparityOptions& options, const cv::Mat& left,
-                                  const cv::Mat& right, cv::Mat* out) {
+                                  const cv::Mat& right, cv::Mat* out, cv::Mat* measured) {
   Entry* entry = nullptr;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -21,6 +21,7 @@ void DisparityEstimators::Compute(const DisparityOptions& options, const cv::Mat
   }
   const std::lock_guard<std::mutex> lock(entry->mutex);
   entry->estimator.Compute(left, right, out);
+  entry->estimator.measured().copyTo(*measured);
 }
 
 LazyFrameContext::LazyFrameContext(const SegmentationOptions& segmentation, BipPool* pool,
@@ -48,7 +49,10 @@ void LazyFrameContext::Reset(int frame_index, const cv::Mat& left, const cv::Mat
   ReleaseIfShared(&tsl_);
   ReleaseIfShared(&regions_.labels);
   for (SkinSlot& slot : skin_slots_) ReleaseIfShared(&slot.distance);
-  for (DisparitySlot& slot : disparity_slots_) ReleaseIfShared(&slot.disparity);
+  for (DisparitySlot& slot : disparity_slots_) {
+    ReleaseIfShared(&slot.disparity);
+    ReleaseIfShared(&slot.measured);
+  }
 }
 
 const cv::Mat& LazyFrameContext::Cylinder() const {
@@ -99,18 +103,27 @@ const cv::Mat& LazyFrameContext::SkinDistance(const SkinModel& model) const {
 }
 
 const cv::Mat& LazyFrameContext::Disparity(const DisparityOptions& options) const {
+  return DisparitySlotOf(options).disparity;
+}
+
+const cv::Mat& LazyFrameContext::DisparityMeasured(const DisparityOptions& options) const {
+  return DisparitySlotOf(options).measured;
+}
+
+const LazyFrameContext::DisparitySlot& LazyFrameContext::DisparitySlotOf(
+    const DisparityOptions& options) const {
   ATTEND_CHECK(stereo()) << "the disparity needs a stereo frame (frame " << frame_index_ << ")";
   std::lock_guard<std::mutex> lock(disparity_mutex_);
   auto slot = std::find_if(disparity_slots_.begin(), disparity_slots_.end(),
                            [&](const DisparitySlot& s) { return s.options == options; });
   if (slot == disparity_slots_.end()) {
-    slot = disparity_slots_.insert(disparity_slots_.end(), DisparitySlot{options, false, cv::Mat()});
+    slot = disparity_slots_.insert(disparity_slots_.end(), DisparitySlot{options});
   }
   if (!slot->ready) {
-    estimators_->Compute(options, left_, right_, &slot->disparity);
+    estimators_->Compute(options, left_, right_, &slot->disparity, &slot->measured);
     slot->ready = true;
   }
-  return slot->disparity;
+  return *slot;
 }
 
 const Segmentation& LazyFrameContext::Regions() const {

@@ -28,9 +28,10 @@ namespace attend {
 // wait for each other.
 class DisparityEstimators {
  public:
-  // The disparity of the pair by the estimator of `options` (made on first use) into `out`.
+  // The disparity of the pair by the estimator of `options` (made on first use) into `out`, and
+  // where it was measured (DisparityEstimator::measured) into `measured`.
   void Compute(const DisparityOptions& options, const cv::Mat& left, const cv::Mat& right,
-               cv::Mat* out);
+               cv::Mat* out, cv::Mat* measured);
 
  private:
   struct Entry {
@@ -74,6 +75,10 @@ class LazyFrameContext final : public FrameContext {
   // each options (each keeps its estimator and buffers between frames).
   const cv::Mat& Disparity(const DisparityOptions& options) const override;
   const DisparityOptions& disparity_options() const override { return disparity_options_; }
+  // Where Disparity(options) measured a disparity (CV_8UC1, 255 where it did: the left-right
+  // check passed on a textured window; DisparityEstimator::measured). Not part of the plugin
+  // API: the built-in disparity feature and the attention stage read it.
+  const cv::Mat& DisparityMeasured(const DisparityOptions& options) const;
   // Where attention looks (FrameContext::AttentionRegions); Reset keeps them, the pipeline
   // sets them for each frame before its features run.
   const std::vector<cv::Rect>& AttentionRegions() const override { return attention_regions_; }
@@ -112,9 +117,12 @@ class LazyFrameContext final : public FrameContext {
     DisparityOptions options;
     bool ready = false;
     cv::Mat disparity;
+    cv::Mat measured;
   };
   mutable std::mutex disparity_mutex_;
   mutable std::list<DisparitySlot> disparity_slots_;
+  // The slot of `options`, computed on first use in the frame.
+  const DisparitySlot& DisparitySlotOf(const DisparityOptions& options) const;
   std::shared_ptr<DisparityEstimators> estimators_;
   DisparityOptions disparity_options_;
   mutable Segmenter segmenter_;

@@ -225,20 +225,26 @@ SkinRegionVerdict JudgeSkinRegionTsl(const cv::Mat& mask, const cv::Mat& tsl,
   return JudgeSkinRegion(mask, distances, model.threshold, options);
 }
 
-void AverageOverRegions(const Segmentation& segmentation, cv::Mat* map) {
+void AverageOverRegions(const Segmentation& segmentation, cv::Mat* map, const cv::Mat& over) {
   const cv::Mat& labels = segmentation.labels;
   CV_Assert(map->type() == CV_32FC1 && map->size() == labels.size());
+  CV_Assert(over.empty() || (over.type() == CV_8UC1 && over.size() == labels.size()));
   std::vector<double> sums(segmentation.regions.size(), 0.0);
+  std::vector<int> counts(segmentation.regions.size(), 0);
   for (int y = 0; y < labels.rows; ++y) {
     const int* label = labels.ptr<int>(y);
     const float* value = map->ptr<float>(y);
+    const uint8_t* counted = over.empty() ? nullptr : over.ptr<uint8_t>(y);
     for (int x = 0; x < labels.cols; ++x) {
-      if (label[x] >= 0) sums[label[x]] += value[x];
+      if (label[x] < 0 || (counted != nullptr && counted[x] == 0)) continue;
+      sums[label[x]] += value[x];
+      ++counts[label[x]];
     }
   }
   std::vector<float> means(sums.size());
   for (size_t i = 0; i < sums.size(); ++i) {
-    means[i] = static_cast<float>(sums[i] / std::max(1, segmentation.regions[i].area));
+    const int pixels = over.empty() ? segmentation.regions[i].area : counts[i];
+    means[i] = static_cast<float>(sums[i] / std::max(1, pixels));
   }
   for (int y = 0; y < labels.rows; ++y) {
     const int* label = labels.ptr<int>(y);

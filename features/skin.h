@@ -87,8 +87,10 @@ SkinRegionVerdict JudgeSkinRegion(const cv::Mat& mask, const cv::Mat& distances,
 SkinRegionVerdict JudgeSkinRegionTsl(const cv::Mat& mask, const cv::Mat& tsl,
                                      const SkinModel& model, const SkinRegionOptions& options);
 
-// Each region's mean of `map` painted over its pixels (0 outside the mask).
-void AverageOverRegions(const Segmentation& segmentation, cv::Mat* map);
+// Each region's mean of `map` painted over its pixels (0 outside the mask). With `over`
+// (CV_8UC1), the mean over the pixels it marks only (0 for a region with none of them).
+void AverageOverRegions(const Segmentation& segmentation, cv::Mat* map,
+                        const cv::Mat& over = cv::Mat());
 
 // Parameters: SkinFeatureOptions::Fields().
 std::unique_ptr<FeatureMap> CreateSkinFeature(const ParamBlock& params, const FeatureSetup& setup);

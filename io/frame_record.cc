@@ -134,6 +134,7 @@ std::string FrameRecordToJson(const FrameRecord& record) {
       target["position_m"] = Rounded3(t.position_m, 1e-4);
       target["position_sd_m"] = Rounded3(t.position_sd_m, 1e-4);
     }
+    if (!t.depth_missing.empty()) target["depth_missing"] = t.depth_missing;
     targets.push_back(target);
   }
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
@@ -210,6 +211,7 @@ TargetRecord ReadTarget(const nlohmann::json& t) {
     target.absent_frames = IntIn(t.at("absent_frames"), "absent_frames", 0, kMaxFrameNumber);
   }
   if (t.contains("label")) target.label = t.at("label").get<std::string>();
+  if (t.contains("depth_missing")) target.depth_missing = t.at("depth_missing").get<std::string>();
   return target;
 }
 

@@ -35,6 +35,9 @@ struct TargetRecord {
   double disparity_px = std::numeric_limits<double>::quiet_NaN();
   double disparity_sd_px = std::numeric_limits<double>::quiet_NaN();
   bool has_position = false;
+  // A stereo run, a target seen this frame without a disparity: why ("unmeasured": fewer than
+  // depth.min_measured of its pixels have a measured disparity); "" otherwise.
+  std::string depth_missing;
   cv::Vec3d position_m;
   cv::Vec3d position_sd_m;
 };

@@ -5,7 +5,7 @@
 namespace attend {
 
 const std::vector<std::string>& SequenceOptions::ResizeModes() {
-  static const std::vector<std::string> modes = {"fit", "stretch", "native"};
+  static const std::vector<std::string> modes = {"fit", "pixels", "stretch", "native"};
   return modes;
 }
 
@@ -18,7 +18,7 @@ const OptionFields<SequenceOptions>& SequenceOptions::Fields() {
       {"stride", &O::stride, Range::Closed(1, 1e6), "take every n-th frame of the range"},
       {"width", &O::width, Range::AboveUpTo(0, 16384), "working width, px"},
       {"height", &O::height, Range::AboveUpTo(0, 16384), "working height, px"},
-      {"resize", &O::resize, "fit: keep the aspect ratio; stretch: exactly; native: no scaling",
+      {"resize", &O::resize, "fit: keep the aspect ratio within width x height; pixels: keep the aspect ratio with width x height pixels; stretch: exactly; native: no scaling",
        &SequenceOptions::ResizeModes},
       {"check_rows", &O::check_rows,
        "refuse a stereo pair whose first frame's rows do not match (not rectified)"}};

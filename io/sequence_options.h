@@ -22,10 +22,13 @@ struct SequenceOptions {
 
   // Working size (io/working_size.h). "fit": scale, up or down, to the largest size that fits in
   // width x height keeping the aspect ratio (640x480 -> 320x240, 1280x720 -> 320x180,
-  // 160x120 -> 320x240); "stretch": exactly width x height; "native": keep the source size.
+  // 160x120 -> 320x240); "pixels" (the default): scale, up or down, to width x height pixels
+  // keeping the aspect ratio, so that a wide frame keeps its detail (640x480 -> 320x240, KITTI's
+  // 1242x375 -> 504x152 where fit gives 320x97); "stretch": exactly width x height; "native":
+  // keep the source size.
   int width = 320;
   int height = 240;
-  std::string resize = "fit";
+  std::string resize = "pixels";
 
   // `attend run` measures the rows of the first stereo frame (stereo/row_check.h) and refuses a
   // pair whose rows do not match (not rectified); false skips the check.

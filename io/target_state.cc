@@ -15,7 +15,7 @@ constexpr EnumTable<TargetState, 6> kStateNames = {{{
     {TargetState::kResumed, "resumed"},
 }}};
 
-constexpr EnumTable<ReleaseReason, 8> kReasonNames = {{{
+constexpr EnumTable<ReleaseReason, 10> kReasonNames = {{{
     {ReleaseReason::kNone, ""},
     {ReleaseReason::kTooLarge, "too_large"},
     {ReleaseReason::kSpansImage, "spans_image"},
@@ -24,6 +24,8 @@ constexpr EnumTable<ReleaseReason, 8> kReasonNames = {{{
     {ReleaseReason::kDuplicate, "duplicate"},
     {ReleaseReason::kUnrecognised, "unrecognised"},
     {ReleaseReason::kDepthJump, "depth_jump"},
+    {ReleaseReason::kBackground, "background"},
+    {ReleaseReason::kDwell, "dwell"},
 }}};
 
 }  // namespace

@@ -22,7 +22,9 @@ enum class ReleaseReason {
   kLowSaliency,
   kDuplicate,
   kUnrecognised,
-  kDepthJump
+  kDepthJump,
+  kBackground,  // its mask is mostly background (select.background)
+  kDwell        // attended for attention.dwell_s: attention moves on
 };
 
 // "new", "tracked", "occluded", "lost", "released", "resumed".
@@ -30,7 +32,7 @@ const char* TargetStateName(TargetState state);
 // The state called `name`; false when there is none.
 bool TargetStateFromName(const std::string& name, TargetState* state);
 // "" (kNone), "too_large", "spans_image", "too_small", "low_saliency", "duplicate",
-// "unrecognised", "depth_jump".
+// "unrecognised", "depth_jump", "background", "dwell".
 const char* ReleaseReasonName(ReleaseReason reason);
 
 // Whether a target in this state was seen in its frame (new, tracked or resumed): it has a box

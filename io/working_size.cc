@@ -37,6 +37,14 @@ std::string Gigabytes(double bytes) {
 cv::Size WorkingSize(const SequenceOptions& options, cv::Size native) {
   if (options.resize == "native") return native;
   if (options.resize == "stretch") return {options.width, options.height};
+  if (options.resize == "pixels") {
+    // The pixel count of width x height, the aspect ratio kept: a wide frame keeps its detail
+    // (KITTI's 1242x375 is 504x152 rather than fit's 320x97), a 4:3 frame is as with fit.
+    const double scale = std::sqrt(static_cast<double>(options.width) * options.height /
+                                   (static_cast<double>(native.width) * native.height));
+    return {std::max(1, static_cast<int>(std::lround(native.width * scale))),
+            std::max(1, static_cast<int>(std::lround(native.height * scale)))};
+  }
   // fit: the side that limits gets the box's size exactly, the other keeps the aspect ratio.
   const int64_t width_limited = static_cast<int64_t>(native.width) * options.height;
   const int64_t height_limited = static_cast<int64_t>(native.height) * options.width;

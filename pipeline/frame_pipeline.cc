@@ -254,22 +254,26 @@ void FramePipeline::SetCamera(const SequenceInfo& info) {
   calibration_ = info.calibration;
   scale_x_ = info.scale_x;
   scale_y_ = info.scale_y;
+  attention_.SetFrameRate(info.fps);
+  attention_.SetBaseline(calibration_ != nullptr ? calibration_->baseline_m() : 0.0);
 }
 
 StereoInput FramePipeline::StereoOf(const Slot& slot) const {
   const DepthOptions& depth = options_.attention.depth;
   StereoInput stereo;
-  if (depth.method == TargetDisparityMethod::kOff || slot.frame.right.empty()) return stereo;
-  stereo.right = slot.frame.right;
+  if (slot.frame.right.empty()) return stereo;
   const DisparityOptions& disparity = slot.context.disparity_options();
+  // The dense map is the disparity feature's: without that feature none is computed (method
+  // map then measures by the template, and the background has no depth rules). The background
+  // (select.background) reads it even where the targets' depth is off.
+  if (has_disparity_) {
+    stereo.disparity = slot.context.Disparity(disparity);
+    stereo.measured = slot.context.DisparityMeasured(disparity);
+  }
+  if (depth.method == TargetDisparityMethod::kOff) return stereo;
+  stereo.right = slot.frame.right;
   stereo.max_disparity = disparity.max_disparity;
   stereo.window = disparity.window;
-  // The dense map is the disparity feature's: without that feature none is computed for the
-  // targets (method map then measures by the template).
-  if (has_disparity_ && (depth.method == TargetDisparityMethod::kMap ||
-                         depth.inhibit_band_px > 0.f || depth.separate_px > 0.f)) {
-    stereo.disparity = slot.context.Disparity(disparity);
-  }
   return stereo;
 }
 
@@ -298,6 +302,7 @@ void FramePipeline::RecordTargets(FrameRecord* record) const {
     out.label = target.label;
     out.disparity_px = target.disparity;
     out.disparity_sd_px = target.disparity_sd;
+    if (target.depth_unmeasured) out.depth_missing = "unmeasured";
     if (calibration_ != nullptr && target.centroid.x >= 0.f) {
       // The calibration's pixels are the native frame's (SPEC 3.3's input pixels).
       const cv::Point2d centroid((target.centroid.x + 0.5) / scale_x_ - 0.5,

@@ -82,6 +82,8 @@ class FramePipeline {
   // it does not dilute the features that see something.
   bool grey() const { return grey_; }
   const cv::Mat& inhibition() const { return attention_.inhibition(); }
+  // Each pixel's BackgroundKind in the last frame (AttentionStage::background).
+  const cv::Mat& background() const { return attention_.background(); }
   const cv::Mat& inhibited() const { return attention_.inhibited(); }
   int targets_attended() const { return attention_.targets_attended(); }
   // The maps above are overwritten by the next Process, unless someone else holds one (a

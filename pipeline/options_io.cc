@@ -354,8 +354,9 @@ const OptionFields<AttendOptions>& AttendOptions::Fields() {
 }
 
 const std::vector<std::string>& OutputOptions::DumpKinds() {
-  static const std::vector<std::string> kinds = {"overlay",  "regions",    "features",
-                                                 "saliency", "inhibition", "inhibited"};
+  static const std::vector<std::string> kinds = {"overlay",    "regions",   "features",
+                                                 "saliency",   "inhibition", "inhibited",
+                                                 "background"};
   return kinds;
 }
 

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace attend {
 
@@ -33,7 +34,7 @@ void DrawCaption(cv::Mat* image, const std::string& text, double font_scale) {
 }
 
 void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::string& suffix,
-                     double font_scale) {
+                     double font_scale, std::vector<cv::Rect>* placed) {
   // Ids count up in the order objects were attended, so the label is the focus order.
   std::string label = "#";
   label += std::to_string(id);
@@ -43,8 +44,45 @@ void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::str
   int baseline = 0;
   const int width =
       cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, font_scale, 3, &baseline).width;
+  const int height = cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, font_scale, 3, &baseline)
+                         .height + baseline;
   const int x = std::max(0, std::min(box.x, image->cols - width));
-  DrawLabel(image, label, cv::Point(x, std::max(10, box.y - 3)), TargetColour(id), font_scale);
+  // Above the box; where a label drawn before is there, the first free place of: inside the
+  // box's top, below the box, then further up a line at a time.
+  std::vector<int> baselines = {std::max(10, box.y - 3), box.y + height,
+                                box.y + box.height + height};
+  for (int k = 1; k <= 6; ++k) baselines.push_back(box.y - 3 - k * height);
+  int y = baselines.front();
+  if (placed != nullptr) {
+    for (const int candidate : baselines) {
+      const cv::Rect area(x, candidate - height + baseline, width, height);
+      if (candidate < 10 || candidate > image->rows) continue;
+      const bool free = std::none_of(placed->begin(), placed->end(),
+                                     [&](const cv::Rect& r) { return (r & area).area() > 0; });
+      if (free) {
+        y = candidate;
+        break;
+      }
+    }
+    placed->push_back(cv::Rect(x, y - height + baseline, width, height));
+  }
+  DrawLabel(image, label, cv::Point(x, y), TargetColour(id), font_scale);
+}
+
+cv::Mat DrawBackground(const cv::Mat& left, const cv::Mat& kinds) {
+  // BGR tints by BackgroundKind, index 0 (none) unused.
+  static const cv::Vec3b kTints[] = {{0, 0, 0},     {60, 200, 60},  {220, 120, 40},
+                                     {220, 220, 40}, {200, 60, 200}, {40, 220, 220}};
+  cv::Mat out = left.clone();
+  for (int y = 0; y < out.rows; ++y) {
+    const uint8_t* kind = kinds.ptr<uint8_t>(y);
+    cv::Vec3b* pixel = out.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < out.cols; ++x) {
+      if (kind[x] == 0 || kind[x] >= std::size(kTints)) continue;
+      for (int c = 0; c < 3; ++c) pixel[x][c] = static_cast<uint8_t>((pixel[x][c] + kTints[kind[x]][c]) / 2);
+    }
+  }
+  return out;
 }
 
 std::string TargetDepthLabel(const TargetRecord& target) {
@@ -67,6 +105,7 @@ cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record) {
   // its old box is drawn, but only the resumed one is labelled, so the two labels do not
   // cover each other.
   std::set<int> seen_ids;
+  std::vector<cv::Rect> placed;  // the labels drawn so far, which the next ones keep clear of
   for (const TargetRecord& target : record.targets) {
     if (Visible(target.state)) seen_ids.insert(target.id);
   }
@@ -84,7 +123,7 @@ cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record) {
       suffix.append(" (").append(TargetStateName(target.state)).append(")");
     }
     if (visible || seen_ids.count(target.id) == 0) {
-      DrawTargetLabel(&overlay, target.id, target.bbox, suffix, font_scale);
+      DrawTargetLabel(&overlay, target.id, target.bbox, suffix, font_scale, &placed);
     }
   }
   DrawCaption(&overlay,

@@ -4,6 +4,7 @@
 
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 #include "io/frame_record.h"
 
@@ -15,6 +16,11 @@ cv::Scalar TargetColour(int id);
 // Draws `record` over a copy of `left` (8-bit BGR): each target's box, and above it its id,
 // kind, label, state and depth (TargetDepthLabel).
 cv::Mat DrawOverlay(const cv::Mat& left, const FrameRecord& record);
+
+// The background of select.background over `left` (8-bit BGR): each pixel's kind (`kinds`,
+// CV_8UC1, semiattentive/background.h's BackgroundKind) tints it: ground green, no_depth blue,
+// high cyan, border magenta, large yellow; the rest, the candidates' pixels, as they are.
+cv::Mat DrawBackground(const cv::Mat& left, const cv::Mat& kinds);
 
 // A target's depth as the overlay shows it after its id: " Z 2.41 m" with a position (metres,
 // whatever the image's size), else " d 12.3 px" with a disparity, "" with neither. The
@@ -32,8 +38,10 @@ void DrawLabel(cv::Mat* image, const std::string& text, cv::Point at, const cv::
 // the caption in the bottom-left corner (white on a dark outline),
 void DrawCaption(cv::Mat* image, const std::string& text, double font_scale);
 // and a target's label above its box: "#ID", then `suffix` (moved left, as far as the image's
-// left edge, where it would run over the right edge).
+// left edge, where it would run over the right edge). With `placed`, the labels drawn before,
+// it goes where it covers none of them (inside the box's top, below it, or higher up), and is
+// added to them.
 void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::string& suffix,
-                     double font_scale);
+                     double font_scale, std::vector<cv::Rect>* placed = nullptr);
 
 }  // namespace attend

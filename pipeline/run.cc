@@ -61,6 +61,10 @@ class MapDumps final : public RunObserver {
       folder_->WriteMap("inhibition", frame.index, pipeline.inhibition(), pipeline.inhibition(),
                         pfm, png);
     }
+    if (output_.Dumps("background") && !pipeline.background().empty()) {
+      folder_->WriteImage("background", frame.index,
+                          DrawBackground(frame.left, pipeline.background()));
+    }
     if (output_.Dumps("inhibited")) {
       folder_->WriteMap("inhibited", frame.index, pipeline.inhibited(), pipeline.inhibited(), pfm,
                         png);

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "features/skin.h"
+#include "semiattentive/background.h"
 #include "semiattentive/candidates.h"
 #include "semiattentive/followed_targets.h"
 #include "semiattentive/inhibition.h"
@@ -54,6 +55,14 @@ struct AttentionStage::Impl {
   void Track(const cv::Mat& bgr, const cv::Mat& skin_distance, TrackedTargets* tracked,
              const cv::Mat& cylinder);
   void Select(const Frame& in, AttentionFrame* frame);
+  void SetFrameRate(double fps) {
+    dwell_frames_ = options_.memory.dwell_s > 0.f
+                        ? std::max(1, static_cast<int>(std::lround(options_.memory.dwell_s * fps)))
+                        : 0;
+  }
+  // Why a found target kept so far is released by the rules of this stage's own: mostly on
+  // background (select.background), attended for its dwell (attention.dwell_s).
+  ReleaseReason WhyMovedOn(const cv::Mat& mask, const cv::Rect& box, FollowedTarget* followed);
 
   // The targets tracked this frame: their states, the release rules, recognition and
   // re-anchoring, their inhibition; ended targets are removed.
@@ -73,6 +82,8 @@ struct AttentionStage::Impl {
   // `inhibited_pixels`; `looked` gets the candidates' boxes.
   void StartTargets(const Frame& in, int inhibited_pixels, AttentionFrame* frame,
                     std::vector<cv::Rect>* looked);
+  // The inhibited saliency the candidates are found on: without the background.
+  const cv::Mat& Selectable();
   // Whether a seed on colour region `region` starts a skin target.
   bool IsSkin(const Frame& in, int region) const;
   // select.every_detection: starts targets on the free detections, the most salient first,
@@ -120,6 +131,9 @@ struct AttentionStage::Impl {
   SeedMaker seeds_;
   std::unique_ptr<MotionGrouping> grouping_;  // select.group_min_speed > 0 only
   TargetDepths depths_;
+  SceneAnalysis scene_;      // select.background and depth grouping
+  cv::Mat selectable_;       // the inhibited saliency without the background
+  int dwell_frames_ = 0;     // attention.dwell_s at the sequence's frame rate; 0: off
   // Per detection of the frame: a target is on it (recognised, or started on it).
   std::vector<uint8_t> detection_used_;
   std::vector<cv::Rect> look_regions_;
@@ -140,7 +154,9 @@ AttentionStage::Impl::Impl(const AttentionOptions& options, SkinModel skin_model
       recogniser_(options_.select, options_.drop, options_.label_overlap, reidentifier_.get()),
       candidates_(options_.select, pool),
       seeds_(options_.select),
-      depths_(options_.depth) {
+      depths_(options_.depth),
+      scene_(options_.select) {
+  SetFrameRate(kDefaultFrameRate);
   if (options_.select.group_min_speed > 0.f) {
     grouping_ = std::make_unique<MotionGrouping>(options_.select.group_min_speed,
                                                  options_.select.group_flow_tolerance);
@@ -163,6 +179,9 @@ void AttentionStage::Impl::Select(const Frame& in, AttentionFrame* frame) {
   files_.Age();
   if (grouping_ != nullptr) grouping_->NextFrame(in.bgr);
   Stopwatch stage;
+  if (scene_.enabled()) {
+    scene_.Analyse(in.segmentation, in.stereo.disparity, in.stereo.measured);
+  }
   FollowTargets(in, frame);
   const int inhibited_pixels = inhibition_.Apply(in.saliency, files_);
   frame->inhibited_fraction =
@@ -229,6 +248,7 @@ void AttentionStage::Impl::FollowFound(const Frame& in, const TrackResult& resul
       release_.duplicates() && result.area > 0 ? held_.Shared(mask, result.area) : 0.0;
   target->reason =
       release_.WhyReleased(target->box, target->area, followed->low_frames, shared, in.image);
+  if (target->reason == ReleaseReason::kNone) target->reason = WhyMovedOn(mask, target->box, followed);
   // Depth in the loop: a target whose disparity jumps has slid onto another object.
   const bool depth = depths_.enabled() && !in.stereo.empty();
   const DisparityEstimate raw =
@@ -256,6 +276,18 @@ void AttentionStage::Impl::FollowFound(const Frame& in, const TrackResult& resul
   // A target restarted on its detection is measured again on its new mask.
   if (depth) Depth(in, own, target, raw, own.data == mask.data);
   Keep(in, own, *target, followed);
+}
+
+ReleaseReason AttentionStage::Impl::WhyMovedOn(const cv::Mat& mask, const cv::Rect& box,
+                                             FollowedTarget* followed) {
+  ++followed->found_frames;
+  // A target that has slid onto the road or the sky (or was started there by the thesis's
+  // rules of an earlier frame) is no object.
+  if (scene_.enabled() && scene_.OnBackground(mask, box, &followed->background_frames)) {
+    return ReleaseReason::kBackground;
+  }
+  if (dwell_frames_ > 0 && followed->found_frames >= dwell_frames_) return ReleaseReason::kDwell;
+  return ReleaseReason::kNone;
 }
 
 cv::Mat AttentionStage::Impl::Recognise(const Frame& in, const TrackResult& result,
@@ -310,7 +342,10 @@ void AttentionStage::Impl::StartTargets(const Frame& in, int inhibited_pixels,
                                         AttentionFrame* frame, std::vector<cv::Rect>* looked) {
   const int free_slots = options_.select.max_targets - targets_.size();
   if (free_slots <= 0) return;
-  Candidates candidates = candidates_.Find(inhibition_.inhibited());
+  // Background is no candidate: its saliency is left out of the selection (not out of the
+  // inhibited map that is recorded), and its regions count as taken for the seeds.
+  const cv::Mat& selectable = Selectable();
+  Candidates candidates = candidates_.Find(selectable);
   RankCandidates(options_.select, focus_ ? &*focus_ : nullptr, in.detections, in.bgr.size(),
                  &candidates);
   for (size_t k = 0; k < candidates.ranked.size() && k < kLookCandidates; ++k) {
@@ -320,6 +355,12 @@ void AttentionStage::Impl::StartTargets(const Frame& in, int inhibited_pixels,
       options_.select.every_detection && options_.select.seed == SeedKind::kDetection;
   if (candidates.ranked.empty() && !every_detection) return;
   CandidateRegions under = RegionsUnder(candidates, in.segmentation, inhibition_.covered());
+  if (scene_.enabled()) {
+    const std::vector<BackgroundKind>& kind = scene_.regions().kind;
+    for (size_t r = 0; r < under.taken.size() && r < kind.size(); ++r) {
+      if (kind[r] != BackgroundKind::kNone) under.taken[r] = 1;
+    }
+  }
   // New targets are started only while the inhibition stays within
   // select.max_inhibited_fraction of the image: attention that covers everything attends
   // nothing (each new region counts with its own area).
@@ -335,8 +376,9 @@ void AttentionStage::Impl::StartTargets(const Frame& in, int inhibited_pixels,
     }
   }
   const double max_area = options_.select.max_area_fraction * in.bgr.total();
-  const SeedFrame seed_frame{in.segmentation, inhibition_.inhibited(), candidates, under,
-                             in.detections,   detection_used_,         followed,   max_area};
+  const SeedFrame seed_frame{in.segmentation, selectable, candidates, under,
+                             in.detections,   detection_used_, followed,   max_area,
+                             scene_.enabled() ? &scene_ : nullptr};
   int started = 0;
   for (size_t k = 0; k < candidates.ranked.size(); ++k) {
     if (started >= std::min(options_.select.max_new, free_slots)) break;
@@ -384,6 +426,13 @@ void AttentionStage::Impl::StartOnDetections(const Frame& in, const SeedFrame& s
     detection_used_[d] = 1;
     if (Start(in, seed, false, frame)) ++*started;
   }
+}
+
+const cv::Mat& AttentionStage::Impl::Selectable() {
+  if (!scene_.enabled()) return inhibition_.inhibited();
+  inhibition_.inhibited().copyTo(selectable_);
+  selectable_.setTo(0.f, scene_.regions().mask);
+  return selectable_;
 }
 
 bool AttentionStage::Impl::IsSkin(const Frame& in, int region) const {
@@ -498,6 +547,7 @@ void AttentionStage::Impl::Depth(const Frame& in, const cv::Mat& own, AttendedTa
   const DisparityEstimate filtered = depths_.Update(target->id, raw);
   target->disparity = filtered.disparity;
   target->disparity_sd = filtered.sd;
+  target->depth_unmeasured = raw.unmeasured;
   const cv::Moments moments = cv::moments(own(target->box & in.image), true);
   if (moments.m00 > 0) {
     target->centroid = cv::Point2f(static_cast<float>(moments.m10 / moments.m00 + target->box.x),
@@ -549,8 +599,12 @@ void AttentionStage::Select(const cv::Mat& bgr, const cv::Mat& skin_distance,
                 frame);
 }
 
+void AttentionStage::SetFrameRate(double fps) { impl_->SetFrameRate(fps); }
+void AttentionStage::SetBaseline(double baseline_m) { impl_->scene_.set_baseline(baseline_m); }
+
 const std::vector<cv::Rect>& AttentionStage::look_regions() const { return impl_->look_regions_; }
 const ObjectFiles& AttentionStage::object_files() const { return impl_->files_; }
+const cv::Mat& AttentionStage::background() const { return impl_->scene_.regions().mask; }
 const cv::Mat& AttentionStage::inhibition() const { return impl_->inhibition_.inhibition(); }
 const cv::Mat& AttentionStage::inhibited() const { return impl_->inhibition_.inhibited(); }
 int AttentionStage::targets_attended() const { return impl_->targets_.attended(); }

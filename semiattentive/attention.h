@@ -61,6 +61,7 @@ struct AttendedTarget {
   // (NaN when it has none), and its mask's centroid.
   double disparity = std::numeric_limits<double>::quiet_NaN();
   double disparity_sd = std::numeric_limits<double>::quiet_NaN();
+  bool depth_unmeasured = false;  // no disparity: too few of its pixels measured
   cv::Point2f centroid{-1.f, -1.f};
 };
 
@@ -87,6 +88,12 @@ class AttentionStage {
   AttentionStage(const AttentionOptions& options, SkinModel skin_model, BipPool* pool = nullptr);
   ~AttentionStage();
 
+  // The sequence's frame rate, which attention.dwell_s counts in (kDefaultFrameRate until set).
+  void SetFrameRate(double fps);
+  // The stereo pair's baseline in metres, for the heights of select.max_height (0: unknown).
+  void SetBaseline(double baseline_m);
+  static constexpr double kDefaultFrameRate = 25.0;
+
   // The model whose SkinDistanceMap the steps below take (FrameContext::SkinDistance).
   const SkinModel& skin_model() const;
   // Tracks the existing targets in the frame (8-bit BGR, with `skin_distance`, its
@@ -110,6 +117,9 @@ class AttentionStage {
   const ObjectFiles& object_files() const;
 
   const cv::Mat& inhibition() const;  // CV_32FC1, 0 or 1
+  // The last frame's background (select.background): CV_8UC1, each pixel's BackgroundKind
+  // (semiattentive/background.h), 0 off it; empty when off.
+  const cv::Mat& background() const;
   const cv::Mat& inhibited() const;   // CV_32FC1
   int targets_attended() const;
   // The tracker kind that follows the targets ("bip", "kcf", "csrt").

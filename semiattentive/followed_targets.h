@@ -21,6 +21,8 @@ struct FollowedTarget {
   int unrecognised = 0;  // consecutive frames with detections, none on it
   int since_kept = 0;    // frames since last_box was last updated
   int since_embedding = 0;  // frames kept since its appearance's embedding was last taken
+  int found_frames = 0;     // frames found since it was started or resumed (attention.dwell_s)
+  int background_frames = 0;  // frames in a row found mostly on background (select.background)
   std::string label;     // from the top-down channels, once given
   // For its object file (object files or the re-anchoring's look gate only): where it was last
   // found and kept, how fast it moved, and what it looked like.

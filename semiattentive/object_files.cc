@@ -20,7 +20,10 @@ const OptionFields<ObjectFileOptions>& ObjectFileOptions::Fields() {
       {"memory_min_similarity", &O::min_similarity, Range::Closed(0, 1),
        "its appearance at least this like the remembered one"},
       {"memory_velocity_decay", &O::velocity_decay, Range::Closed(0, 1),
-       "the remembered velocity's factor each frame unseen"}};
+       "the remembered velocity's factor each frame unseen"},
+      {"dwell_s", &O::dwell_s, Range::Closed(0, 1e6),
+       "a target found this many seconds is released into its object file; 0: held while "
+       "salient (the thesis)"}};
   return fields;
 }
 

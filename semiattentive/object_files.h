@@ -40,6 +40,11 @@ struct ObjectFileOptions {
   float min_similarity = 0.6f;
   // Each frame unseen, the remembered velocity is multiplied by this.
   float velocity_decay = 0.9f;
+  // Attention moves on: a target found for this many seconds of the sequence's frame rate
+  // since it was started (or resumed) is released ("dwell") into its object file, whose fading
+  // inhibition keeps it from being attended again at once. 0: never; a target is held while it
+  // is salient (the thesis's rule).
+  float dwell_s = 0.f;
   // "" when valid; otherwise names the field and the broken constraint.
   std::string Check() const;
   static const OptionFields<ObjectFileOptions>& Fields();

@@ -61,6 +61,9 @@ bool SeedMaker::Make(const SeedFrame& frame, size_t k, MotionGrouping* grouping,
     FromBox(segmentation, frame.detections[under].box, seed);
     return seed->area >= options_.min_area && seed->area <= frame.max_area;
   }
+  // A region seed stays one region: grouping it by depth alone joined touching objects at one
+  // depth on the bundled crowd scene (a revisit), where the object seed's salient area keeps
+  // them apart (docs/ATTENTION.md, "Background and proto-objects").
   if (object_seed) GrowObject(frame, r, grouping, seed);
   return true;
 }
@@ -120,6 +123,10 @@ void SeedMaker::GrowObject(const SeedFrame& frame, int r, MotionGrouping* groupi
   if (seed->area > frame.max_area) {
     seed->members.resize(1);
     seed->area = segmentation.regions[seed->best].area;
+  }
+  // Stereo: the neighbours at the seed's depth join it (one object at one depth).
+  if (frame.scene != nullptr) {
+    frame.scene->GroupByDepth(segmentation, taken, frame.max_area, &seed->members, &seed->area);
   }
   if (grouping != nullptr) {
     grouping->Group(segmentation, taken, frame.max_area, &seed->members, &seed->area);

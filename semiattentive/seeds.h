@@ -21,6 +21,7 @@
 
 #include "features/feature_map.h"
 #include "pyramid/regions.h"
+#include "semiattentive/background.h"
 #include "semiattentive/candidates.h"
 #include "semiattentive/motion_grouping.h"
 #include "semiattentive/select_options.h"
@@ -48,6 +49,8 @@ struct SeedFrame {
   const std::vector<uint8_t>& detection_used;  // per detection: a target is on it
   const std::vector<cv::Rect>& followed;       // the boxes of the targets followed now
   double max_area;                             // select.max_area_fraction of the image
+  // The frame's background and region depths (select.background); nullptr: off.
+  const SceneAnalysis* scene = nullptr;
 };
 
 // Makes seeds; keeps the masks they are painted in between frames.

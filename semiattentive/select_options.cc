@@ -66,7 +66,22 @@ const OptionFields<SelectOptions>& SelectOptions::Fields() {
       {"group_min_speed", &O::group_min_speed, Range::Closed(0, 1000),
        "object: motion grouping above this speed, px a frame; 0: off"},
       {"group_flow_tolerance", &O::group_flow_tolerance, Range::Closed(0, 10),
-       "motion grouping: a region joins when its flow differs by at most this times the speed"}};
+       "motion grouping: a region joins when its flow differs by at most this times the speed"},
+      {"background", &O::background,
+       "the ground, regions without measured depth, regions along the border and large ones "
+       "are no candidates and no targets (semiattentive/background.h); false: the thesis's"},
+      {"border_share", &O::border_share, Range::Closed(0, 1),
+       "background: a colour region on this share of the image's border is background; 1: off"},
+      {"min_measured", &O::min_measured, Range::Closed(0, 1),
+       "background, stereo: a colour region with less of its pixels measured has no depth"},
+      {"ground_share", &O::ground_share, Range::Closed(0, 1),
+       "background, stereo: a region this much of whose measured pixels are ground is ground"},
+      {"max_height", &O::max_height, Range::Closed(0, 1000),
+       "background, stereo with a baseline: a region higher above the ground (m) is background; "
+       "0: off"},
+      {"group_depth", &O::group_depth, Range::Closed(0, 1),
+       "object, stereo: neighbouring regions within this share of the seed's disparity join "
+       "it; 0: off"}};
   return fields;
 }
 

@@ -94,6 +94,25 @@ struct SelectOptions {
   // 0: off (the thesis's stage has no motion).
   float group_min_speed = 0.f;
   float group_flow_tolerance = 0.5f;
+  // Background is not a candidate (semiattentive/background.h): the colour regions on the
+  // ground plane (at least `ground_share` of their measured pixels), those with less than
+  // `min_measured` of their pixels measured by the stereo matcher (the sky, blank walls), those
+  // on at least `border_share` of the image's border (the boundary prior) and those larger than
+  // max_area_fraction take no part in candidates, seeds or targets; a found target mostly on
+  // them is released ("background"). false: the thesis's stage.
+  bool background = true;
+  float border_share = 0.25f;
+  float min_measured = 0.15f;
+  float ground_share = 0.5f;
+  // Stereo with a known baseline and a ground plane: a colour region whose measured pixels lie
+  // on average higher than this above the ground (metres) is background: tree tops, the upper
+  // floors of buildings, the sky when measured. What a street holds (cars, cyclists, people)
+  // stands on the ground below it. 0: off.
+  float max_height = 2.5f;
+  // object seeds, stereo: the neighbouring colour regions whose mean measured disparity lies
+  // within this share of the seed's join it, region by region outwards (a proto-object: one
+  // object at one depth, off the ground). 0: off.
+  float group_depth = 0.1f;
   // The fields (util/option_fields.h), for AttentionOptions::Check and the configuration's
   // `select` section.
   static const OptionFields<SelectOptions>& Fields();

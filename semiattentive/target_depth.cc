@@ -62,7 +62,10 @@ const OptionFields<DepthOptions>& DepthOptions::Fields() {
       {"jump_px", &O::jump_px, Range::Closed(0, 1000),
        "a target whose disparity jumps this much from its filtered one is released; 0 off"},
       {"inhibit_band_px", &O::inhibit_band_px, Range::Closed(0, 1000),
-       "a target inhibits only pixels within this disparity of its own; 0 off"}};
+       "a target inhibits only pixels within this disparity of its own; 0 off"},
+      {"min_measured", &O::min_measured, Range::Closed(0, 1),
+       "map: a target with less of its mask measured (left-right consistent, textured) has no "
+       "disparity and no position; 0: every pixel, the filled ones too"}};
   return fields;
 }
 
@@ -173,19 +176,32 @@ DisparityEstimate TemplateDisparity(const cv::Mat& left, const cv::Mat& right, c
 }
 
 DisparityEstimate MapDisparity(const cv::Mat& disparity, const cv::Mat& mask, const cv::Rect& box,
-                               const DepthOptions& options, int window) {
+                               const DepthOptions& options, int window, const cv::Mat& measured) {
   ATTEND_CHECK(disparity.type() == CV_32FC1 && mask.type() == CV_8UC1)
       << "MapDisparity takes a float disparity map and an 8-bit mask";
   const cv::Rect inside = box & cv::Rect(0, 0, disparity.cols, disparity.rows);
   const int pixels = inside.empty() ? 0 : cv::countNonZero(mask(inside));
   if (pixels == 0) return {};
+  const bool only_measured = !measured.empty() && options.min_measured > 0.f;
+  if (only_measured) {
+    // Depth only where it was measured: the filled pixels (sky, blank walls, occlusions) hold
+    // the matcher's guess, and a thin object's would be what lies behind it.
+    const int seen = cv::countNonZero(mask(inside) & measured(inside));
+    if (seen < options.min_measured * pixels || seen == 0) {
+      DisparityEstimate none;
+      none.unmeasured = true;
+      return none;
+    }
+  }
   const int step = SampleStep(pixels, options.max_samples);
   std::vector<float> values;
   std::vector<int> columns;
   for (int y = inside.y; y < inside.br().y; y += step) {
     const uint8_t* m = mask.ptr<uint8_t>(y);
+    const uint8_t* seen = only_measured ? measured.ptr<uint8_t>(y) : nullptr;
     const float* d = disparity.ptr<float>(y);
     for (int x = inside.x; x < inside.br().x; x += step) {
+      if (seen != nullptr && seen[x] == 0) continue;
       if (m[x] != 0 && d[x] >= 0.f && std::isfinite(d[x])) {
         values.push_back(d[x]);
         columns.push_back(x);
@@ -271,11 +287,13 @@ DisparityEstimate TargetDepths::Measure(const cv::Mat& left, const StereoInput& 
     return TemplateDisparity(left, stereo.right, mask, box, stereo.max_disparity, options_,
                              stereo.window);
   }
-  return MapDisparity(stereo.disparity, mask, box, options_, stereo.window);
+  return MapDisparity(stereo.disparity, mask, box, options_, stereo.window, stereo.measured);
 }
 
 DisparityEstimate TargetDepths::Update(int id, const DisparityEstimate& raw) {
   auto it = tracks_.find(id);
+  // Unmeasured this frame: no depth this frame (the filter keeps its state for the next).
+  if (raw.unmeasured) return raw;
   if (!raw.valid()) return it == tracks_.end() ? DisparityEstimate{} : it->second.last;
   if (it == tracks_.end()) it = tracks_.emplace(id, Track(options_.low_pass)).first;
   Track& track = it->second;

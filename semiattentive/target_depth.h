@@ -65,6 +65,11 @@ struct DepthOptions {
   // a target inhibits only the pixels whose disparity is within `inhibit_band_px` of its own
   // (an object passing in front of it is not inhibited by it).
   float inhibit_band_px = 0.f;
+  // map: only the pixels where the disparity was measured (StereoInput::measured) count, and a
+  // target with less than this share of its mask measured has no disparity (nor position) in
+  // that frame, recorded as "depth_missing": "unmeasured". 0: every pixel, the filled ones too
+  // (as before; the sky then got a position at 30-75 m).
+  float min_measured = 0.2f;
 
   std::string Check() const;
   static const OptionFields<DepthOptions>& Fields();
@@ -74,6 +79,8 @@ struct DepthOptions {
 struct DisparityEstimate {
   double disparity = std::numeric_limits<double>::quiet_NaN();
   double sd = std::numeric_limits<double>::quiet_NaN();
+  // Not valid because too few of the target's pixels were measured (DepthOptions::min_measured).
+  bool unmeasured = false;
   bool valid() const { return disparity == disparity; }
 };
 
@@ -85,9 +92,13 @@ DisparityEstimate TemplateDisparity(const cv::Mat& left, const cv::Mat& right, c
                                     const cv::Rect& box, int max_disparity,
                                     const DepthOptions& options, int window);
 // The interquartile mean of `disparity` (CV_32FC1; values < 0 are invalid and left out) over
-// `mask` within `box`. Invalid when no valid value is under the mask.
+// `mask` within `box`. Invalid when no valid value is under the mask. With `measured` (CV_8UC1,
+// 255 where the disparity was measured) and options.min_measured > 0, only the measured pixels
+// count, and the estimate is invalid and `unmeasured` when fewer than min_measured of the
+// mask's pixels are.
 DisparityEstimate MapDisparity(const cv::Mat& disparity, const cv::Mat& mask, const cv::Rect& box,
-                               const DepthOptions& options, int window);
+                               const DepthOptions& options, int window,
+                               const cv::Mat& measured = cv::Mat());
 
 // A fourth-order Butterworth low-pass filter (two biquads by the bilinear transform); cutoff a
 // fraction of the sampling rate, in (0, 0.5); the first value starts it in its steady state.
@@ -128,6 +139,9 @@ bool Triangulate(double focal_px, double cx, double cy, double baseline_m, cv::P
 struct StereoInput {
   cv::Mat right;      // 8-bit BGR, the working size; empty on a monocular frame
   cv::Mat disparity;  // CV_32FC1, the frame's disparity map (method map, inhibit_band_px)
+  // CV_8UC1, 255 where the disparity was measured (DisparityEstimator::measured); empty when
+  // unknown (every pixel counts).
+  cv::Mat measured;
   int max_disparity = 0;  // the disparities searched, at the working size
   int window = 5;         // the disparity's matching window
   bool empty() const { return right.empty(); }

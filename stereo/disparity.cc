@@ -134,16 +134,36 @@ void DisparityEstimator::Compute(const cv::Mat& left, const cv::Mat& right, cv::
     map = &b.small_map;
   }
   Estimate(*left_grey, *right_grey, depth, map);
-  if (options_.left_right_check) {
-    CheckLeftRight(b.right_view, options_.lr_tolerance, map);
-    FillInvalidDisparities(map);
-  }
+  if (options_.left_right_check) CheckLeftRight(b.right_view, options_.lr_tolerance, map);
+  MarkMeasured(*map, *left_grey, depth, left.size());
+  if (options_.left_right_check) FillInvalidDisparities(map);
   if (options_.median > 1) cv::medianBlur(*map, *map, options_.median);
   if (factor > 1) {
     cv::resize(*map, *disparity, left.size(), 0, 0, cv::INTER_NEAREST);
     *disparity *= static_cast<double>(factor);
   }
   milliseconds_ = stopwatch.ElapsedMs();
+}
+
+void DisparityEstimator::MarkMeasured(const cv::Mat& map, const cv::Mat& left_grey, int depth,
+                                      cv::Size size) {
+  // The window's grey standard deviation, from box filters of the image and its square.
+  cv::Mat grey, mean, mean_square;
+  left_grey.convertTo(grey, CV_32F);
+  const cv::Size window(options_.window, options_.window);
+  cv::boxFilter(grey, mean, CV_32F, window, cv::Point(-1, -1), true, cv::BORDER_REFLECT);
+  cv::boxFilter(grey.mul(grey), mean_square, CV_32F, window, cv::Point(-1, -1), true,
+                cv::BORDER_REFLECT);
+  cv::Mat variance = mean_square - mean.mul(mean);
+  cv::Mat measured = (variance >= kMeasuredMinTexture * kMeasuredMinTexture) & (map >= 0.f);
+  // The first D - 1 columns have no partner in the right view at the larger disparities: their
+  // value is the best of the shifts that fit, whatever the truth.
+  measured.colRange(0, std::min(depth - 1, measured.cols)).setTo(0);
+  if (measured.size() != size) {
+    cv::resize(measured, measured_, size, 0, 0, cv::INTER_NEAREST);
+  } else {
+    measured_ = measured;
+  }
 }
 
 void DisparityEstimator::Estimate(const cv::Mat& left_grey, const cv::Mat& right_grey, int depth,

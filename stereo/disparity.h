@@ -103,6 +103,16 @@ class DisparityEstimator {
   // differ or D is not below the width.
   void Compute(const cv::Mat& left, const cv::Mat& right, cv::Mat* disparity);
 
+  // Where the last Compute measured a disparity (CV_8UC1, the pair's size, 255 where it did):
+  // the pixels that passed the left-right check (every pixel without the check), whose
+  // matching window has texture, a grey standard deviation of at least kMeasuredMinTexture,
+  // and that lie right of the first D - 1 columns (which the right view does not show at every
+  // disparity searched).
+  // The map itself is dense: it fills the others (the sky, a blank wall, occlusions) with a
+  // guess, which carries no depth evidence (docs/DISPARITY.md, "Measured pixels").
+  const cv::Mat& measured() const { return measured_; }
+  static constexpr double kMeasuredMinTexture = 2.0;
+
   // Milliseconds of the last Compute (conversion to grey included).
   double milliseconds() const { return milliseconds_; }
   const DisparityOptions& options() const { return options_; }
@@ -116,7 +126,12 @@ class DisparityEstimator {
   void EstimateSemiGlobal(const cv::Mat& left, const cv::Mat& right, int depth,
                           cv::Mat* disparity);
 
+  // measured_ from the map before filling (`map`, negative where the check failed) and the
+  // grey left image it was computed from.
+  void MarkMeasured(const cv::Mat& map, const cv::Mat& left_grey, int depth, cv::Size size);
+
   DisparityOptions options_;
+  cv::Mat measured_;
   // Owned through unique_ptr so that it is freed when the constructor throws on bad options.
   std::unique_ptr<Buffers> buffers_;
   double milliseconds_ = 0.0;

@@ -72,7 +72,8 @@ TEST(FrameContext, TheDisparityFeatureUsesTheContextsMap) {
   FeatureSetup setup;
   setup.stereo = true;
   FeatureSet features(ReadFeatureList(ParamBlock::Parse("features: [{name: disparity, "
-                                                        "max_disparity: 16, window: 9}]",
+                                                        "max_disparity: 16, window: 9, "
+                                                        "score: nearness}]",
                                                         "test.yaml"),
                                       "features"),
                       registry, setup);

@@ -83,7 +83,7 @@ TEST(SequenceOptions, DefaultsAreValid) {
   EXPECT_EQ(options.Check(), "");
   EXPECT_EQ(options.width, 320);
   EXPECT_EQ(options.height, 240);
-  EXPECT_EQ(options.resize, "fit");
+  EXPECT_EQ(options.resize, "pixels");
   EXPECT_EQ(options.stride, 1);
   EXPECT_EQ(options.first_frame, 0);
   EXPECT_EQ(options.last_frame, -1);
@@ -122,7 +122,8 @@ TEST(SequenceOptions, CheckNamesTheFieldAndConstraint) {
             "");
   const std::string typo = problem([](SequenceOptions* o) { o->resize = "fitt"; });
   EXPECT_NE(
-      typo.find("resize must be one of fit, stretch, native, got 'fitt' (did you mean 'fit'?)"),
+      typo.find("resize must be one of fit, pixels, stretch, native, got 'fitt' (did you mean "
+                "'fit'?)"),
       std::string::npos)
       << typo;
   EXPECT_NE(
@@ -444,6 +445,10 @@ TEST(Sequence, ResizeModesGiveTheWorkingSizeAndScale) {
       {"fit", 100, 12, {16, 12}, 0.25, 0.25},  // height limits
       {"fit", 128, 128, {128, 96}, 2.0, 2.0},  // small frames are enlarged
       {"fit", 32, 24, {32, 24}, 0.5, 0.5},     // same aspect ratio
+      // pixels: width x height pixels with the frames' aspect ratio, whatever the box's shape
+      {"pixels", 32, 24, {32, 24}, 0.5, 0.5},
+      {"pixels", 16, 48, {32, 24}, 0.5, 0.5},
+      {"pixels", 128, 96, {128, 96}, 2.0, 2.0},
       {"stretch", 32, 32, {32, 32}, 0.5, 32.0 / 48.0},
       {"stretch", 80, 24, {80, 24}, 1.25, 0.5},
   };
@@ -850,6 +855,7 @@ TEST(Sequence, SideBySideVideoIsSplitIntoHalves) {
   options.source.side_by_side_video = path;
   options.width = 16;
   options.height = 16;
+  options.resize = "fit";
   auto source = OpenFrameSource(options);
   const SequenceInfo& info = source->info();
   EXPECT_TRUE(info.stereo);

@@ -145,11 +145,11 @@ TEST(OptionRanges, EveryNumericKeyOfTheConfigurationHasARange) {
       check("", name);
     }
   }
-  // sequence 7, live 3, segmentation 3, saliency 3, select 25, drop 4, inhibition 1,
-  // attention 8 (5 of the object files, 3 of the appearance network), tracker 47 (24 of the
-  // template modes and the OpenCV kinds, 23 of the correlation mode), threads: so that a
-  // writer change that hid the numbers fails here.
-  EXPECT_EQ(numeric, 108);
+  // sequence 7, live 3, segmentation 3, saliency 3, select 30, drop 4, inhibition 1,
+  // attention 9 (6 of the object files, 3 of the appearance network), depth 7, tracker 47 (24
+  // of the template modes and the OpenCV kinds, 23 of the correlation mode), threads: so that
+  // a writer change that hid the numbers fails here.
+  EXPECT_EQ(numeric, 115);
 }
 
 }  // namespace

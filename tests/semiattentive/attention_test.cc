@@ -600,3 +600,69 @@ TEST(Attention, MotionGroupingJoinsTheRegionsThatMoveWithTheSeedAndNoOthers) {
 
 }  // namespace
 }  // namespace attend
+
+namespace attend {
+namespace {
+
+// attention.dwell_s: a target found for its dwell (in frames of the sequence's frame rate) is
+// released ("dwell") into its object file, which keeps inhibiting it, so that the next salient
+// object is attended; with dwell_s 0 it is held while salient (the thesis's rule).
+TEST(Attention, ATargetAttendedForItsDwellIsReleasedAndAttentionMovesOn) {
+  const cv::Rect first(20, 40, 30, 24), second(100, 40, 30, 24);
+  const cv::Scalar red(40, 40, 210), blue(210, 60, 40);
+  for (const float dwell_s : {0.f, 0.2f}) {
+    AttentionOptions options;
+    options.select.max_targets = 1;  // one focus at a time: attention must move on
+    options.memory.memory_frames = 50;
+    options.memory.dwell_s = dwell_s;
+    AttentionStage stage(options, ShippedSkinModel());
+    stage.SetFrameRate(10.0);  // 0.2 s: two frames
+    std::vector<int> attended;
+    std::vector<ReleaseReason> reasons;
+    for (int f = 0; f < 8; ++f) {
+      const AttentionFrame frame =
+          Step(&stage, Draw({{first, red}, {second, blue}}, {first, second}, f));
+      for (const AttendedTarget& target : frame.targets) {
+        if (target.state == TargetState::kNew) attended.push_back(target.id);
+        if (target.state == TargetState::kReleased) reasons.push_back(target.reason);
+      }
+    }
+    SCOPED_TRACE("dwell_s " + std::to_string(dwell_s));
+    if (dwell_s == 0.f) {
+      EXPECT_EQ(attended, std::vector<int>{1});  // held: the second object is never attended
+      EXPECT_TRUE(reasons.empty());
+    } else {
+      ASSERT_GE(attended.size(), 2u);
+      EXPECT_EQ(attended[1], 2);
+      ASSERT_FALSE(reasons.empty());
+      EXPECT_EQ(reasons[0], ReleaseReason::kDwell);
+    }
+  }
+}
+
+// select.background on a monocular frame: a salient band along the top of the frame (the sky
+// of a street scene) is background by the boundary prior and starts nothing, while a salient
+// object inside the frame does; with background false (the thesis's stage) the band is
+// attended too.
+TEST(Attention, ASalientBandAlongTheBorderIsBackground) {
+  const cv::Rect band(0, 0, 160, 20), object(60, 60, 30, 24);
+  const cv::Scalar sky(230, 200, 160), red(40, 40, 210);
+  for (const bool background : {true, false}) {
+    AttentionOptions options;
+    options.select.background = background;
+    options.select.min_area = 50;
+    AttentionStage stage(options, ShippedSkinModel());
+    const AttentionFrame frame = Step(&stage, Draw({{band, sky}, {object, red}}, {band, object}, 0));
+    bool on_band = false, on_object = false;
+    for (const AttendedTarget& target : frame.targets) {
+      on_band |= (target.box & band).area() > target.box.area() / 2;
+      on_object |= (target.box & object).area() > target.box.area() / 2;
+    }
+    SCOPED_TRACE(background ? "background" : "thesis");
+    EXPECT_TRUE(on_object);
+    EXPECT_EQ(on_band, !background);
+  }
+}
+
+}  // namespace
+}  // namespace attend

@@ -96,6 +96,35 @@ TEST(MapDisparity, IgnoresOutliersAndIsSubPixelOnAnIntegerMap) {
   EXPECT_FALSE(MapDisparity(map, cv::Mat::zeros(map.size(), CV_8UC1), box, {}, 5).valid());
 }
 
+// Depth only where it was measured: a thin object (10 px of a 40 px box) in front of a wall
+// whose filled pixels hold the wall's disparity. Over the measured pixels the object's own
+// disparity; with too few measured, no estimate, marked unmeasured; min_measured 0 reads every
+// pixel as before.
+TEST(MapDisparity, ReadsOnlyTheMeasuredPixelsAndRefusesTooFew) {
+  cv::Mat map(60, 60, CV_32FC1, cv::Scalar(4.f));  // the wall behind, filled in
+  map(cv::Rect(10, 10, 40, 40)).setTo(4.f);
+  map(cv::Rect(10, 10, 40, 8)).setTo(20.f);  // the object's measured rows
+  cv::Mat measured = cv::Mat::zeros(map.size(), CV_8UC1);
+  measured(cv::Rect(10, 10, 40, 8)).setTo(255);  // 20 % of the box
+  const cv::Rect box(10, 10, 40, 40);
+  const cv::Mat mask = BoxMask(map.size(), box);
+  DepthOptions options;
+  DisparityEstimate estimate = MapDisparity(map, mask, box, options, 5, measured);
+  ASSERT_TRUE(estimate.valid());
+  EXPECT_NEAR(estimate.disparity, 20.0, 1e-6);
+  EXPECT_FALSE(estimate.unmeasured);
+  // Every pixel, the filled ones too: the wall's value wins the interquartile mean.
+  options.min_measured = 0.f;
+  EXPECT_NEAR(MapDisparity(map, mask, box, options, 5, measured).disparity, 4.0, 1e-6);
+  // 10 % measured, under min_measured 0.2: none.
+  options.min_measured = 0.2f;
+  measured.setTo(0);
+  measured(cv::Rect(10, 10, 40, 4)).setTo(255);
+  estimate = MapDisparity(map, mask, box, options, 5, measured);
+  EXPECT_FALSE(estimate.valid());
+  EXPECT_TRUE(estimate.unmeasured);
+}
+
 TEST(LowPass4, StartsInItsSteadyStateAndPassesAConstant) {
   LowPass4 filter(0.1);
   for (int i = 0; i < 20; ++i) EXPECT_NEAR(filter.Step(7.5), 7.5, 1e-9);
