@@ -46,6 +46,17 @@ constexpr double kRowOfHorizon = 23.5;
 
 Scene StreetScene() { return ParseScene(kStreetText, "tiny_street.yaml"); }
 
+TEST(StreetScene, DefaultsAreValid) {
+  Scene scene;
+  scene.street = StreetSetting();
+  EXPECT_EQ(scene.Check(), "");
+  scene.street->backdrop.max_height_m = 1.0;  // below min_height
+  EXPECT_NE(scene.Check().find("max_height"), std::string::npos);
+  scene.street->backdrop = StreetBackdrop();
+  scene.pitch_deg = 31.0;
+  EXPECT_NE(scene.Check().find("camera.pitch_deg"), std::string::npos);
+}
+
 TEST(StreetScene, HorizonAtThePrincipalPointsRowWithoutPitch) {
   const Scene scene = StreetScene();
   const std::array<double, 3> line = StreetHorizon(scene);
