@@ -3,12 +3,15 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <sstream>
 #include <vector>
 
 #include "eval/disparity_scores.h"
 #include "eval/depth_scores.h"
+#include "eval/landing.h"
 #include "eval/mot_metrics.h"
+#include "eval/rendered_truth.h"
 #include "eval/run_evaluation.h"
 #include "features/disparity_feature.h"
 #include "io/ground_truth.h"
@@ -173,6 +176,19 @@ nlohmann::ordered_json DepthJson(const DepthScores& s) {
           {"share_within_2_sd", value(s.share_within_2_sd)}};
 }
 
+// The scene truth of the ground-truth folder `gt` for where attention lands (eval/landing.h),
+// or none when it has no per-pixel truth. One source today: a rendered street scene
+// (gt/classes/), read with its sequence folder, gt's parent (sequence.yaml's focal_px and
+// baseline_m). Another source (a KITTI drive's LiDAR scans and labels) is one more case here.
+std::optional<SceneTruth> LoadSceneTruth(const std::string& gt) {
+  if (HasRenderedTruth(gt)) {
+    fs::path folder = fs::path(gt).lexically_normal();
+    if (folder.filename().empty()) folder = folder.parent_path();  // "seq/gt/"
+    return ReadRenderedTruth(folder.parent_path().string());
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::string& gt_dir) {
@@ -233,6 +249,9 @@ nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::
   if (!disparity.is_null()) report["disparity"] = disparity;
   const DepthScores depth = EvaluateTargetDepth(frames, truth);
   if (depth.matches > 0) report["target_depth"] = DepthJson(depth);
+  if (const std::optional<SceneTruth> scene = LoadSceneTruth(gt)) {
+    report["landing"] = LandingToJson(EvaluateLanding(frames, *scene));
+  }
   return report;
 }
 

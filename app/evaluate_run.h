@@ -1,6 +1,8 @@
 // The controller of `attend eval` (SPEC 3.2, 4): the attention metrics of a run folder against
 // the ground truth of its sequence (or another gt/ folder), the MOTChallenge measures at IoU 0.5
-// and 0.3 ("mot"), and the disparity scores when the run dumped its disparity maps. The command
+// and 0.3 ("mot"), the disparity scores when the run dumped its disparity maps, and where
+// attention lands ("landing", eval/landing.h) when the gt/ folder holds per-pixel truth (a
+// rendered street scene's classes/, read with the sequence folder around it). The command
 // only parses its arguments and prints the report.
 #pragma once
 

@@ -29,7 +29,9 @@ void AddEvalCommand(CLI::App& app, const std::string&, CommandAction* action) {
       "eval",
       "Score a run against ground truth (SPEC 4): coverage, latency, revisits, identity "
       "switches and mean IoU of the attended objects; with dumped disparity maps and "
-      "gt/disparity, their bad-pixel rates. Prints one JSON object.");
+      "gt/disparity, their bad-pixel rates; with per-pixel truth (a rendered street scene's "
+      "gt/classes), where attention lands (\"landing\": on objects, sky, ground). Prints one "
+      "JSON object.");
   eval->add_option("RUN", args->run, "A run folder written by attend run")->required();
   eval->add_option("--gt", args->gt,
                    "Ground-truth folder holding objects.csv (default: the run's sequence "

@@ -317,7 +317,10 @@ bool LowerIsBetter(const std::string& name) {
   static const std::vector<std::string> lower = {
       "mean_latency", "revisits", "identity_switches", "idfp", "idfn", "fp", "fn", "idsw",
       "ml", "frag", "mean_bad1", "mean_bad2", "kl", "ms_per_frame", "seconds",
-      "targets_started", "ids_per_attended_object"};
+      "targets_started", "ids_per_attended_object",
+      // attend eval's landing block (eval/landing.h): attention off the objects, depth errors.
+      "on_sky", "on_ground", "without_depth", "elsewhere", "on_sky_share", "on_ground_share",
+      "without_depth_share", "elsewhere_share", "median_relative_error", "median_abs_error_m"};
   return std::find(lower.begin(), lower.end(), last) != lower.end() || EndsWith(last, "_ms");
 }
 

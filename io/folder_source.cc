@@ -46,29 +46,6 @@ struct SequenceFile {
   }
 };
 
-// SEQ/sequence.yaml describes the data, so any problem in it is bad input (exit status 3),
-// reported with the file and line that ParamBlock gives. `generator` and `frames` are notes
-// for people, never read.
-void ReadSequenceYaml(const std::string& path, SequenceInfo* info) {
-  try {
-    const ParamBlock block = ParamBlock::LoadFile(path);
-    SequenceFile file;
-    file.name = info->name;
-    file.fps = info->fps;
-    ReadFields(block, SequenceFile::Fields(), &file);
-    if (file.name.empty()) block.Fail("name", "must not be empty");
-    info->name = file.name;
-    info->fps = file.fps;
-    info->focal_px = file.focal_px;
-    info->baseline_m = file.baseline_m;
-    block.Accept("generator");
-    block.Accept("frames");
-    block.CheckNoUnknownKeys();
-  } catch (const ConfigError& e) {
-    throw InputError(e.what());
-  }
-}
-
 // Where left/ and right/ name their frames alike (they share at least one file name, less its
 // extension), every name must be in both: a name in one folder only would pair every later
 // frame with the wrong partner. Returns what is wrong, or "" (also when no name is shared:
@@ -187,6 +164,26 @@ class ImageFolderReader final : public NativeReader {
 };
 
 }  // namespace
+
+void ReadSequenceYaml(const std::string& path, SequenceInfo* info) {
+  try {
+    const ParamBlock block = ParamBlock::LoadFile(path);
+    SequenceFile file;
+    file.name = info->name;
+    file.fps = info->fps;
+    ReadFields(block, SequenceFile::Fields(), &file);
+    if (file.name.empty()) block.Fail("name", "must not be empty");
+    info->name = file.name;
+    info->fps = file.fps;
+    info->focal_px = file.focal_px;
+    info->baseline_m = file.baseline_m;
+    block.Accept("generator");
+    block.Accept("frames");
+    block.CheckNoUnknownKeys();
+  } catch (const ConfigError& e) {
+    throw InputError(e.what());
+  }
+}
 
 std::unique_ptr<FrameSource> OpenFolderSource(const SequenceOptions& options) {
   SequenceInfo info;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "io/frame_source.h"
 #include "io/sequence_options.h"
@@ -14,6 +15,11 @@ namespace attend {
 // frames, when left/ and right/ differ in count or in the names of their frames, or when its
 // sequence.yaml is bad.
 std::unique_ptr<FrameSource> OpenFolderSource(const SequenceOptions& options);
+
+// Reads SEQ/sequence.yaml into `info` (name, fps, focal_px, baseline_m; the name and fps keep
+// info's values when absent). The file describes the data, so any problem in it is bad input:
+// InputError with the file and line. `generator` and `frames` are notes for people, never read.
+void ReadSequenceYaml(const std::string& path, SequenceInfo* info);
 
 // The plain folder options.source.images. InputError when it is missing or holds no frames.
 std::unique_ptr<FrameSource> OpenImageFolderSource(const SequenceOptions& options);

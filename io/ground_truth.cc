@@ -29,6 +29,11 @@ int ParseInteger(const std::string& text, const std::string& path, int line, con
 
 }  // namespace
 
+bool IsGroundTruthKind(const std::string& kind) {
+  return kind == "object" || kind == "skin" || kind == "car" || kind == "person" ||
+         kind == "cyclist";
+}
+
 std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
   RequireRegularFile(path, "the ground-truth file", ExitStatus::kBadInput);
   std::ifstream in(path);
@@ -64,8 +69,9 @@ std::vector<GtObject> ReadObjectsCsv(const std::string& path) {
       throw InputError(path + ":" + std::to_string(line) +
                        ": negative size, or visible_fraction outside [0, 1]");
     }
-    if (object.kind != "object" && object.kind != "skin") {
-      throw InputError(path + ":" + std::to_string(line) + ": kind must be object or skin, got '" +
+    if (!IsGroundTruthKind(object.kind)) {
+      throw InputError(path + ":" + std::to_string(line) +
+                       ": kind must be object, skin, car, person or cyclist, got '" +
                        object.kind + "'");
     }
     rows.Add(object.frame, object.id, path, line, "object");

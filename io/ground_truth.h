@@ -16,11 +16,15 @@ struct GtObject {
   double visible_fraction = 0.0;  // visible pixels / pixels of the whole projected object
   // Pixels at the object's depth; empty when unknown (an empty field in objects.csv, SPEC 3.1).
   std::optional<double> disparity;
-  std::string kind = "object";    // "object" or "skin"
+  std::string kind = "object";    // IsGroundTruthKind: "object", "skin", "car", ...
 };
 
 // The header line of gt/objects.csv.
 inline constexpr const char* kObjectsCsvHeader = "frame,id,x,y,w,h,visible_fraction,disparity,kind";
+
+// The kinds an objects.csv row may have: "object" and "skin", and "car", "person" and "cyclist"
+// of street scenes (docs/SYNTH.md).
+bool IsGroundTruthKind(const std::string& kind);
 
 // Reads gt/objects.csv. Lines may end in LF or CRLF; an empty disparity field is an unknown
 // disparity. Throws InputError naming the file and line of a malformed row.

@@ -1,6 +1,7 @@
 #include "synth/render_sequence.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <charconv>
 #include <cstdio>
@@ -18,6 +19,7 @@
 #include "io/pfm.h"
 #include "io/stereo_calibration.h"
 #include "synth/renderer.h"
+#include "synth/street_renderer.h"
 #include "util/error.h"
 #include "util/output_folder.h"
 
@@ -56,11 +58,11 @@ std::string QuotedYaml(const std::string& text) {
 // output (its sequence.yaml says so) may be overwritten, and then only the layout's own
 // entries are removed, so stale frames of a longer earlier render cannot survive next to the
 // new ones and a recorded sequence is never deleted.
-FolderLock PrepareFolder(const fs::path& folder, bool overwrite) {
+FolderLock PrepareFolder(const fs::path& folder, bool overwrite, bool street) {
   OutputFolderRules rules;
   rules.what = "sequence";
-  rules.own_entries = {"left", "right", "gt/disparity", "gt/objects.csv", "sequence.yaml",
-                       "calib.yaml"};
+  rules.own_entries = {"left",          "right",           "gt/disparity", "gt/classes",
+                       "gt/horizon.txt", "gt/objects.csv", "sequence.yaml", "calib.yaml"};
   rules.is_previous_output = [](const std::string& existing) {
     std::ifstream in(fs::path(existing) / "sequence.yaml");
     std::string line;
@@ -71,7 +73,9 @@ FolderLock PrepareFolder(const fs::path& folder, bool overwrite) {
   };
   FolderLock lock = PrepareOutputFolder(folder.string(), overwrite, rules);
   std::error_code error;
-  for (const fs::path& sub : {folder / "left", folder / "right", folder / "gt" / "disparity"}) {
+  std::vector<fs::path> subfolders = {folder / "left", folder / "right", folder / "gt" / "disparity"};
+  if (street) subfolders.push_back(folder / "gt" / "classes");
+  for (const fs::path& sub : subfolders) {
     fs::create_directories(sub, error);
     if (error) throw OutputError(sub.string() + ": cannot create the folder: " + error.message());
   }
@@ -120,6 +124,17 @@ void WriteCalibrationYaml(const fs::path& path, const Scene& scene) {
   WriteStereoCalibration(calibration, path.string());
 }
 
+// SEQ/gt/horizon.txt of a street scene: the horizon a u + b v + c = 0 in left-image pixels.
+void WriteHorizon(const fs::path& path, const Scene& scene) {
+  const std::array<double, 3> line = StreetHorizon(scene);
+  std::ofstream out(path);
+  if (!out) throw OutputError(path.string() + ": cannot write the horizon");
+  out << "# The horizon of the left view, a u + b v + c = 0 in pixels (docs/SYNTH.md): a b c\n"
+      << ShortestNumber(line[0]) << " " << ShortestNumber(line[1]) << " "
+      << ShortestNumber(line[2]) << "\n";
+  if (!out) throw OutputError(path.string() + ": error while writing the horizon");
+}
+
 }  // namespace
 
 std::string SynthOptions::Check() const {
@@ -144,7 +159,7 @@ SynthSummary RenderSequence(const Scene& scene, const std::string& out_folder,
   const Scene& used = renderer.scene();
 
   const fs::path folder(out_folder);
-  const FolderLock lock = PrepareFolder(folder, options.overwrite);
+  const FolderLock lock = PrepareFolder(folder, options.overwrite, used.street.has_value());
 
   // Frames are independent, so workers take them in turn; the ground truth is gathered per
   // frame and written in frame order.
@@ -160,6 +175,9 @@ SynthSummary RenderSequence(const Scene& scene, const std::string& out_folder,
         WritePng(folder / "left" / (stem + ".png"), rendered.left);
         WritePng(folder / "right" / (stem + ".png"), rendered.right);
         WritePfm(GtDisparityPath(out_folder, frame), rendered.disparity);
+        if (!rendered.classes.empty()) {
+          WritePng(folder / "gt" / "classes" / (stem + ".png"), rendered.classes);
+        }
         objects_of_frame[frame] = std::move(rendered.objects);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failure_mutex);
@@ -188,6 +206,7 @@ SynthSummary RenderSequence(const Scene& scene, const std::string& out_folder,
     ground_truth.insert(ground_truth.end(), objects.begin(), objects.end());
   }
   WriteObjectsCsv((folder / "gt" / "objects.csv").string(), ground_truth);
+  if (used.street.has_value()) WriteHorizon(folder / "gt" / "horizon.txt", used);
   WriteCalibrationYaml(folder / "calib.yaml", used);
   // Last, so that a folder with a sequence.yaml is a complete render.
   WriteSequenceYaml(folder / "sequence.yaml", used);

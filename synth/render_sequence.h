@@ -13,7 +13,8 @@ struct SynthOptions {
   std::optional<std::uint64_t> seed;  // replaces the scene's seed
   std::optional<int> frames;          // replaces the scene's frame count; >= 1
   // Write into a non-empty folder, replacing only the layout's own files and folders
-  // (left/, right/, gt/disparity/, gt/objects.csv, sequence.yaml); anything else is kept.
+  // (left/, right/, gt/disparity/, gt/classes/, gt/horizon.txt, gt/objects.csv, calib.yaml,
+  // sequence.yaml); anything else is kept.
   bool overwrite = false;
   // Threads that render and write frames; 0: one per hardware thread. The files do not
   // depend on it.
@@ -37,6 +38,7 @@ struct SynthSummary {
 //   OUT/left/NNNNNN.png, OUT/right/NNNNNN.png      8-bit BGR views
 //   OUT/gt/disparity/NNNNNN.pfm                    left-view disparity, pixels
 //   OUT/gt/objects.csv                             one row per object per frame present
+//   OUT/gt/classes/NNNNNN.png, OUT/gt/horizon.txt  street scenes: pixel classes, the horizon
 //   OUT/sequence.yaml                              name, fps, focal_px, baseline_m, ...
 // Frames are rendered and written in parallel; the same scene and seed give byte-identical
 // files. A non-empty OUT without `overwrite`,

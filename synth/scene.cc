@@ -9,6 +9,7 @@
 
 #include "config/param_block.h"
 #include "config/read_fields.h"
+#include "synth/scene_fields.h"
 #include "util/enum_table.h"
 #include "util/error.h"
 #include "util/limits.h"
@@ -32,27 +33,18 @@ constexpr double kMaxGain = 10.0;
 constexpr int kMinLobes = 2;
 constexpr int kMaxLobes = 16;
 constexpr double kMaxBlobAmplitude = 0.6;
-// Bounds that keep every number finite (YAML accepts .inf) without limiting real scenes.
-constexpr double kLargest = 1e6;
-
-// A length, depth, period or rate: (0, 1e6].
-Range Positive() { return Range{0.0, kLargest, true, false}; }
-// A position or offset in pixels: [-1e6, 1e6].
-Range Coordinate() { return Range::Closed(-kLargest, kLargest); }
-bool IsPositive(double value) { return value > 0.0 && value <= kLargest; }
-bool IsCoordinate(double value) { return value >= -kLargest && value <= kLargest; }
+using scene_fields::Coordinate;
+using scene_fields::IsCoordinate;
+using scene_fields::IsPositive;
+using scene_fields::kLargest;
+using scene_fields::Positive;
 
 const std::vector<std::string>& Kinds() {
-  static const std::vector<std::string> kinds = {"object", "skin"};
+  static const std::vector<std::string> kinds = {"object", "skin", "car", "person", "cyclist"};
   return kinds;
 }
 
-// An RGB colour read as [r, g, b], each in [0, 255].
-template <typename Owner, Rgb Owner::*kColour>
-NumbersMember<Owner> ColourMember() {
-  return {[](const Owner& o) { return std::vector<double>((o.*kColour).begin(), (o.*kColour).end()); },
-          [](Owner* o, const std::vector<double>& v) { o->*kColour = {v[0], v[1], v[2]}; }, 3};
-}
+using scene_fields::ColourMember;
 
 std::string Number(double value) {
   std::ostringstream out;
@@ -94,12 +86,47 @@ std::vector<PathKeyframe> ReadPath(const ParamBlock& object, const Scene& scene)
   return path;
 }
 
+std::vector<GroundKeyframe> ReadGroundPath(const ParamBlock& object) {
+  std::vector<GroundKeyframe> path = ReadList(
+      object, "ground_path", GroundKeyframe::Fields(), GroundKeyframe(),
+      [&](const ParamBlock& block, const GroundKeyframe& key,
+          const std::vector<GroundKeyframe>& before) {
+        RequirePresent(block, {"frame", "lateral", "distance"});
+        if (!before.empty() && key.frame <= before.back().frame) {
+          block.Fail("frame", "keyframe frames must increase: " + std::to_string(key.frame) +
+                                  " follows " + std::to_string(before.back().frame));
+        }
+      });
+  if (path.empty()) {
+    object.Fail("ground_path", "needs at least one keyframe {frame, lateral, distance}");
+  }
+  return path;
+}
+
+// A street object stands on the ground along a ground_path; the keys that place an object in
+// pixels (path, oscillation) and the blob, whose outline has no base, belong to the other mode.
+void ReadStreetPlacement(const ParamBlock& block, SceneObject* object) {
+  for (const char* key : {"path", "oscillation"}) {
+    if (block.Has(key)) block.Fail(key, "not used in a street scene (objects use ground_path)");
+  }
+  if (object->shape == SynthShape::kBlob) {
+    block.Fail("shape", "blob is not available in a street scene");
+  }
+  RequirePresent(block, {"ground_path"});
+  object->ground_path = ReadGroundPath(block);
+}
+
 SceneObject ReadObject(const ParamBlock& block, const Scene& scene) {
   SceneObject object;
   object.name = "";  // unnamed: "object<id>" below
   ReadFields(block, SceneObject::Fields(), &object);
   // Mark the nested blocks as known; they are read after the typo check of this block.
   block.Children("path");
+  if (scene.street.has_value()) {
+    block.Children("ground_path");
+  } else if (block.Has("ground_path")) {
+    block.Fail("ground_path", "only valid in a street scene (a scene with a street block)");
+  }
   block.Child("oscillation");
   if (object.shape == SynthShape::kBlob || !block.Has("blob")) {
     block.Child("blob");
@@ -108,15 +135,20 @@ SceneObject ReadObject(const ParamBlock& block, const Scene& scene) {
                            std::string(SynthShapeName(object.shape)) + ")");
   }
   block.CheckNoUnknownKeys();
-  RequirePresent(block, {"id", "size", "path"});
+  RequirePresent(block, {"id", "size"});
   if (object.name.empty()) object.name = "object" + std::to_string(object.id);
 
-  object.path = ReadPath(block, scene);
-  const ParamBlock oscillation =
-      ReadSection(block, "oscillation", Oscillation::Fields(), &object.oscillation);
-  if (!oscillation.Keys().empty()) RequirePresent(oscillation, {"period"});
-  if (object.shape == SynthShape::kBlob) {
-    ReadSection(block, "blob", BlobDeformation::Fields(), &object.blob);
+  if (scene.street.has_value()) {
+    ReadStreetPlacement(block, &object);
+  } else {
+    RequirePresent(block, {"path"});
+    object.path = ReadPath(block, scene);
+    const ParamBlock oscillation =
+        ReadSection(block, "oscillation", Oscillation::Fields(), &object.oscillation);
+    if (!oscillation.Keys().empty()) RequirePresent(oscillation, {"period"});
+    if (object.shape == SynthShape::kBlob) {
+      ReadSection(block, "blob", BlobDeformation::Fields(), &object.blob);
+    }
   }
   if (object.entry >= scene.frames) {
     block.Fail("entry", "frame " + std::to_string(object.entry) +
@@ -128,6 +160,25 @@ SceneObject ReadObject(const ParamBlock& block, const Scene& scene) {
                            std::to_string(object.entry));
   }
   return object;
+}
+
+// The `street` block and its ground, sky and backdrop maps.
+void ReadStreet(const ParamBlock& root, Scene* scene) {
+  StreetSetting street;
+  const ParamBlock block = root.Child("street");
+  for (const char* key : {"ground", "sky", "backdrop"}) block.Child(key);
+  block.CheckNoUnknownKeys();
+  ReadSection(block, "ground", StreetGround::Fields(), &street.ground);
+  ReadSection(block, "sky", StreetSky::Fields(), &street.sky);
+  const ParamBlock backdrop =
+      ReadSection(block, "backdrop", StreetBackdrop::Fields(), &street.backdrop);
+  if (street.backdrop.max_height_m < street.backdrop.min_height_m) {
+    backdrop.Fail("max_height", "is below min_height");
+  }
+  if (root.Has("background")) {
+    root.Fail("background", "not used in a street scene (street.backdrop is its far wall)");
+  }
+  scene->street = street;
 }
 
 Scene ReadScene(const ParamBlock& root) {
@@ -144,8 +195,15 @@ Scene ReadScene(const ParamBlock& root) {
                             "renderer's limit of " + std::to_string(kMaxImagePixels) +
                             " pixels (3840 x 2160; docs/LIMITS.md)");
   }
-  ReadSection(root, "camera", Scene::CameraFields(), &scene);
+  const ParamBlock camera = ReadSection(root, "camera", Scene::CameraFields(), &scene);
   ReadSection(root, "noise", Scene::NoiseFields(), &scene);
+  if (root.Has("street")) {
+    ReadStreet(root, &scene);
+  } else {
+    for (const char* key : {"height_m", "pitch_deg", "speed_mps"}) {
+      if (camera.Has(key)) camera.Fail(key, "only valid in a street scene (add a street block)");
+    }
+  }
   ReadSection(root, "background", SceneBackground::Fields(), &scene.background);
   scene.brightness = ReadList(
       root, "brightness", GainKeyframe::Fields(), GainKeyframe(),
@@ -174,6 +232,47 @@ Scene ReadScene(const ParamBlock& root) {
   const std::string error = scene.Check();
   ATTEND_CHECK(error.empty()) << source << ": parsed scene is invalid: " << error;
   return scene;
+}
+
+// The street camera's keys and the street block (Check() goes on with the rest).
+std::string CheckStreet(const Scene& scene) {
+  if (!IsPositive(scene.camera_height_m)) return "camera.height_m must be in (0, 1e6]";
+  if (!(scene.pitch_deg >= -30 && scene.pitch_deg <= 30)) {
+    return "camera.pitch_deg must be in [-30, 30]";
+  }
+  if (!(scene.speed_mps >= 0 && scene.speed_mps <= 100)) return "camera.speed_mps must be in [0, 100]";
+  if (!scene.street.has_value()) return "";
+  const StreetSetting& street = *scene.street;
+  std::string error = CheckFieldRanges(street.ground, StreetGround::Fields());
+  if (!error.empty()) return "street.ground." + error;
+  error = CheckFieldRanges(street.sky, StreetSky::Fields());
+  if (!error.empty()) return "street.sky." + error;
+  error = CheckFieldRanges(street.backdrop, StreetBackdrop::Fields());
+  if (!error.empty()) return "street.backdrop." + error;
+  if (street.backdrop.max_height_m < street.backdrop.min_height_m) {
+    return "street.backdrop.max_height must be >= min_height";
+  }
+  return "";
+}
+
+// The checks of a street object's placement (Check() continues with the next object after).
+std::string CheckGroundPath(const SceneObject& o) {
+  if (o.ground_path.empty()) return "ground_path needs at least one keyframe";
+  if (!o.path.empty()) return "path is not used in a street scene";
+  if (o.shape == SynthShape::kBlob) return "blob is not available in a street scene";
+  if (o.entry < 0) return "entry must be >= 0";
+  if (o.exit != -1 && o.exit < o.entry) return "exit must be -1 or >= entry";
+  for (size_t i = 0; i < o.ground_path.size(); ++i) {
+    const GroundKeyframe& key = o.ground_path[i];
+    if (key.frame < 0) return "ground_path frames must be >= 0";
+    if (i > 0 && key.frame <= o.ground_path[i - 1].frame) {
+      return "ground_path frames must increase";
+    }
+    if (!IsCoordinate(key.lateral) || !IsCoordinate(key.distance)) {
+      return "ground_path lateral, distance must be in [-1e6, 1e6]";
+    }
+  }
+  return "";
 }
 
 }  // namespace
@@ -276,7 +375,13 @@ const OptionFields<Scene>& Scene::Fields() {
 const OptionFields<Scene>& Scene::CameraFields() {
   static const OptionFields<Scene> fields = {
       {"focal_px", &Scene::focal_px, Positive(), "focal length, px"},
-      {"baseline_m", &Scene::baseline_m, Positive(), "stereo baseline, m"}};
+      {"baseline_m", &Scene::baseline_m, Positive(), "stereo baseline, m"},
+      {"height_m", &Scene::camera_height_m, Positive(),
+       "street scenes: the camera's height above the ground, m"},
+      {"pitch_deg", &Scene::pitch_deg, Range::Closed(-30, 30),
+       "street scenes: pitch, degrees, positive looks down"},
+      {"speed_mps", &Scene::speed_mps, Range::Closed(0, 100),
+       "street scenes: forward speed, m/s"}};
   return fields;
 }
 
@@ -314,6 +419,8 @@ std::string Scene::Check() const {
   if (!in(noise_left, 0, kMaxNoiseSigma) || !in(noise_right, 0, kMaxNoiseSigma)) {
     return "noise.left and noise.right must be in [0, 100]";
   }
+  const std::string street_error = CheckStreet(*this);
+  if (!street_error.empty()) return street_error;
   if (!IsPositive(background.depth_m)) return "background.depth must be in (0, 1e6]";
   if (!colour_ok(background.colour)) return "background.colour channels must be in [0, 255]";
   if (!in(background.texture, 0, 255)) return "background.texture must be in [0, 255]";
@@ -330,12 +437,19 @@ std::string Scene::Check() const {
     const std::string what = "object " + std::to_string(o.id) + " (" + o.name + ")";
     if (o.id < 1) return what + ": id must be >= 1";
     if (!seen.emplace(o.id, 0).second) return what + ": id is used twice";
-    if (o.kind != "object" && o.kind != "skin") return what + ": kind must be object or skin";
+    if (std::find(Kinds().begin(), Kinds().end(), o.kind) == Kinds().end()) {
+      return what + ": kind must be object, skin, car, person or cyclist";
+    }
     if (!IsPositive(o.width_m) || !IsPositive(o.height_m))
       return what + ": size must be in (0, 1e6]";
     if (!colour_ok(o.colour)) return what + ": colour channels must be in [0, 255]";
     if (!in(o.texture, 0, 255)) return what + ": texture must be in [0, 255]";
     if (!IsPositive(o.texture_cell_m)) return what + ": texture_cell must be in (0, 1e6]";
+    if (street.has_value()) {
+      const std::string error = CheckGroundPath(o);
+      if (!error.empty()) return what + ": " + error;
+      continue;
+    }
     if (o.path.empty()) return what + ": path needs at least one keyframe";
     for (size_t i = 0; i < o.path.size(); ++i) {
       const PathKeyframe& key = o.path[i];

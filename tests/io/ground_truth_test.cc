@@ -85,7 +85,7 @@ TEST(GroundTruth, MalformedRowsAreBadInputNamingFileAndLine) {
       {"-1,1,1,2,3,4,0.5,8,object\n", ":3: frame number out of range: '-1' (must be in 0..1000000)"},
       {"1000001,1,1,2,3,4,0.5,8,object\n", ":3: frame number out of range"},
       {"0,1,1,2,3,4,1.5,8,object\n", ":3: negative size, or visible_fraction"},
-      {"0,1,1,2,3,4,0.5,8,person\n", ":3: kind must be object or skin, got 'person'"},
+      {"0,1,1,2,3,4,0.5,8,dog\n", ":3: kind must be object, skin, car, person or cyclist, got 'dog'"},
       // The same object twice in one frame would be scored as two objects (issue 30).
       {"0,1,5,6,3,4,0.5,8,object\n", ":3: object 1 again in frame 0 (line 2 has it too)"},
   };
