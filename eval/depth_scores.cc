@@ -5,20 +5,15 @@
 #include <map>
 
 #include "util/box.h"
+#include "util/median.h"
 
 namespace attend {
 
 namespace {
 
-double Median(std::vector<double> values) {
-  if (values.empty()) return -1.0;
-  const size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + middle, values.end());
-  double median = values[middle];
-  if (values.size() % 2 == 0) {
-    median = (median + *std::max_element(values.begin(), values.begin() + middle)) / 2.0;
-  }
-  return median;
+// -1 for none, as the JSON of these scores reads an unknown.
+double MedianOrMinusOne(const std::vector<double>& values) {
+  return values.empty() ? -1.0 : MedianOf(values);
 }
 
 double Share(int count, int total) { return total > 0 ? static_cast<double>(count) / total : -1.0; }
@@ -71,13 +66,13 @@ DepthScores EvaluateTargetDepth(const std::vector<FrameRecord>& frames,
   DepthScores scores;
   scores.matches = static_cast<int>(errors.size());
   if (errors.empty()) return scores;
-  scores.median_abs_error_px = Median(errors);
+  scores.median_abs_error_px = MedianOrMinusOne(errors);
   double sum = 0.0;
   for (const double e : errors) sum += e;
   scores.mean_abs_error_px = sum / errors.size();
   scores.share_within_quarter_px = Share(quarter, scores.matches);
   scores.near_matches = static_cast<int>(depth_errors.size());
-  scores.median_depth_error = Median(depth_errors);
+  scores.median_depth_error = MedianOrMinusOne(depth_errors);
   scores.share_depth_within_2_percent = Share(near_within, scores.near_matches);
   scores.share_within_1_sd = Share(one_sd, with_sd);
   scores.share_within_2_sd = Share(two_sd, with_sd);

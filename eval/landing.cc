@@ -5,6 +5,7 @@
 #include <map>
 
 #include "io/target_state.h"
+#include "util/median.h"
 
 namespace attend {
 
@@ -12,15 +13,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-double Median(std::vector<double> values) {
-  if (values.empty()) return kNaN;
-  const size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + middle, values.end());
-  const double upper = values[middle];
-  if (values.size() % 2 == 1) return upper;
-  const double lower = *std::max_element(values.begin(), values.begin() + middle);
-  return 0.5 * (lower + upper);
-}
 
 // The box of half the width and height about the same centre.
 cv::Rect2d InnerHalf(const cv::Rect2d& box) {
@@ -84,7 +76,7 @@ Landing Classify(const cv::Rect2d& box, const FrameTruth& truth, const LandingOp
   if (static_cast<int>(points.size()) >= options.depth_points) {
     std::vector<double> depths;
     for (const TruthPoint* p : points) depths.push_back(p->depth_m);
-    landing.truth_depth_m = Median(depths);
+    landing.truth_depth_m = MedianOf(depths);
   }
   return landing;
 }
@@ -175,8 +167,8 @@ LandingScores EvaluateLanding(const std::vector<FrameRecord>& frames, const Scen
                                       [&](double e) { return e <= options.depth_within; });
     scores.depth_share_within = static_cast<double>(within) / relative_errors.size();
   }
-  scores.median_relative_depth_error = Median(relative_errors);
-  scores.median_abs_depth_error_m = Median(abs_errors);
+  scores.median_relative_depth_error = MedianOf(relative_errors);
+  scores.median_abs_depth_error_m = MedianOf(abs_errors);
   return scores;
 }
 

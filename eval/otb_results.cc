@@ -8,6 +8,7 @@
 
 #include "eval/otb_sequences.h"
 #include "util/strings.h"
+#include "util/median.h"
 
 namespace attend {
 
@@ -24,12 +25,6 @@ Json JsonNumbers(const std::vector<double>& values) {
   return array;
 }
 
-double Median(std::vector<double> values) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 // The mean of the curves of `runs` (curves of another length count as zeros).
 std::vector<double> MeanCurve(const std::vector<const std::vector<double>*>& curves, size_t size) {
@@ -181,8 +176,8 @@ std::vector<OtbTrackerSummary> SummariseOtb(const OtbResults& results) {
     }
     summary.auc = Mean(aucs);
     summary.precision_20 = Mean(precisions);
-    summary.ms_per_frame = Median(ms);
-    summary.speed_vs_csrt = Median(ratios);
+    summary.ms_per_frame = MedianOf(ms);
+    summary.speed_vs_csrt = MedianOf(ratios);
     summaries.push_back(summary);
   }
   return summaries;

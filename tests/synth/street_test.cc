@@ -39,8 +39,8 @@ objects:
      ground_path: [{frame: 0, lateral: 0, distance: 10}]}
 )";
 
-constexpr double kFocal = 60.0;
-constexpr double kBaseline = 0.5;
+constexpr double kStreetFocal = 60.0;
+constexpr double kStreetBaseline = 0.5;
 constexpr double kHeight = 1.5;
 constexpr double kRowOfHorizon = 23.5;
 
@@ -66,7 +66,7 @@ TEST(StreetScene, HorizonAtThePrincipalPointsRowWithoutPitch) {
   Scene pitched = scene;
   pitched.pitch_deg = 5.0;
   const std::array<double, 3> lifted = StreetHorizon(pitched);
-  EXPECT_NEAR(-lifted[2] / lifted[1], kRowOfHorizon - kFocal * std::tan(5.0 * M_PI / 180.0),
+  EXPECT_NEAR(-lifted[2] / lifted[1], kRowOfHorizon - kStreetFocal * std::tan(5.0 * M_PI / 180.0),
               1e-12);
 }
 
@@ -74,7 +74,7 @@ TEST(StreetScene, GroundDisparityIsLinearInTheRowBelowTheHorizon) {
   const RenderedFrame frame = SceneRenderer(StreetScene()).Render(0);
   // Column 2 is left of the car at every row; rows 24..47 see the ground.
   for (int v = 24; v < 48; ++v) {
-    const double expected = kBaseline * (v - kRowOfHorizon) / kHeight;  // f B / (f h / (v - vh))
+    const double expected = kStreetBaseline * (v - kRowOfHorizon) / kHeight;  // f B / (f h / (v - vh))
     EXPECT_NEAR(frame.disparity.at<float>(v, 2), expected, 1e-5 * expected) << "row " << v;
     EXPECT_EQ(frame.classes.at<std::uint8_t>(v, 2), 2) << "row " << v;
   }
@@ -104,7 +104,7 @@ TEST(StreetScene, ObjectBaseRowFollowsFromItsDepth) {
   EXPECT_EQ(frame.left_ids.at<int>(33, 31), 0);
   EXPECT_EQ(frame.classes.at<std::uint8_t>(32, 31), 1);
   EXPECT_EQ(frame.classes.at<std::uint8_t>(33, 31), 2);
-  EXPECT_FLOAT_EQ(frame.disparity.at<float>(28, 31), static_cast<float>(kFocal * kBaseline / 10));
+  EXPECT_FLOAT_EQ(frame.disparity.at<float>(28, 31), static_cast<float>(kStreetFocal * kStreetBaseline / 10));
 }
 
 TEST(StreetScene, StaticObjectApproachesAsTheCameraDrives) {
@@ -113,7 +113,7 @@ TEST(StreetScene, StaticObjectApproachesAsTheCameraDrives) {
   for (const int t : {0, 10, 20, 29}) {
     const RenderedFrame frame = renderer.Render(t);
     const double depth = 10.0 - 5.0 * t / 25.0;
-    const double expected = kFocal * kBaseline / depth;
+    const double expected = kStreetFocal * kStreetBaseline / depth;
     ASSERT_EQ(frame.objects.size(), 1u);
     EXPECT_NEAR(*frame.objects[0].disparity, expected, 1e-9) << "frame " << t;
     EXPECT_NEAR(frame.disparity.at<float>(26, 31), expected, 1e-5) << "frame " << t;
