@@ -29,11 +29,13 @@ void AddEvalCommand(CLI::App& app, const std::string&, CommandAction* action) {
       "eval",
       "Score a run against ground truth (SPEC 4): coverage, latency, revisits, identity "
       "switches and mean IoU of the attended objects; with dumped disparity maps and "
-      "gt/disparity, their bad-pixel rates. Prints one JSON object.");
+      "gt/disparity, their bad-pixel rates. A run of a KITTI raw drive or tracking sequence is "
+      "scored against the sequence's own labels, and its targets' depth against its LiDAR scans "
+      "(depth_lidar). Prints one JSON object.");
   eval->add_option("RUN", args->run, "A run folder written by attend run")->required();
   eval->add_option("--gt", args->gt,
                    "Ground-truth folder holding objects.csv (default: the run's sequence "
-                   "folder's gt/)");
+                   "folder's gt/, or a KITTI sequence's labels)");
   eval->callback([args, action] { *action = [args] { return Eval(*args); }; });
 }
 
