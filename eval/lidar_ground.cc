@@ -54,8 +54,18 @@ int CountWithin(const std::vector<cv::Vec3d>& points, const GroundPlane& plane, 
 
 }  // namespace
 
+std::string GroundPlaneOptions::Check() const {
+  if (!(max_tilt_deg > 0 && max_tilt_deg < 90)) return "max_tilt_deg must be in (0, 90)";
+  if (!(ransac_tolerance_m > 0)) return "ransac_tolerance_m must be > 0";
+  if (iterations < 1) return "iterations must be >= 1";
+  if (min_points < 3) return "min_points must be >= 3";
+  if (!(max_depth_m > 0)) return "max_depth_m must be > 0";
+  return "";
+}
+
 GroundPlane FitGroundPlane(const std::vector<cv::Vec3d>& points,
                            const GroundPlaneOptions& options) {
+  ATTEND_CHECK(options.Check().empty()) << "ground plane options: " << options.Check();
   // Candidates: below the camera (Y down) and near enough.
   std::vector<cv::Vec3d> below;
   for (const cv::Vec3d& p : points) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
 #include "eval/scene_truth.h"
@@ -34,6 +35,9 @@ struct GroundPlaneOptions {
   int min_points = 30;              // fewer candidates than this: no plane
   double max_depth_m = 40.0;        // farther points are sparse and the road may bend
   int seed = 55;
+
+  // Empty when valid; otherwise names the field and the broken constraint.
+  std::string Check() const;
 };
 
 // The plane of `points` (in the left camera's frame) that most points lie on, under `options`;

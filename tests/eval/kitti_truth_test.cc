@@ -38,6 +38,27 @@ void ExpectBox(const cv::Rect2d& box, const cv::Rect2d& expected) {
   EXPECT_NEAR(box.height, expected.height, 1e-9);
 }
 
+TEST(GroundPlaneOptions, DefaultsAreValidAndACheckNamesTheField) {
+  EXPECT_EQ(GroundPlaneOptions{}.Check(), "");
+  GroundPlaneOptions options;
+  options.max_tilt_deg = 90;
+  EXPECT_NE(options.Check().find("max_tilt_deg"), std::string::npos);
+  options = GroundPlaneOptions{};
+  options.min_points = 2;
+  EXPECT_NE(options.Check().find("min_points"), std::string::npos);
+}
+
+TEST(KittiTruth, TooFewPointsBelowTheCameraGiveNoPlane) {
+  std::vector<cv::Vec3d> points = {{0, 1.7, 5}, {1, 1.7, 6}, {-1, 1.7, 7}, {0, -1, 8}};
+  EXPECT_FALSE(FitGroundPlane(points).found);
+  // A wall (normal along X) is not the ground, however many points it has.
+  points.clear();
+  for (int y = 1; y < 10; ++y) {
+    for (int z = 2; z < 12; ++z) points.emplace_back(2.0, 0.2 * y, z);
+  }
+  EXPECT_FALSE(FitGroundPlane(points).found);
+}
+
 TEST(KittiTruth, ATrackletProjectsToTheBoxWorkedOutByHand) {
   const testing::TempDir dir;
   const KittiRig rig = TestRig(dir);
