@@ -45,9 +45,6 @@ std::vector<std::string> FrameStems(const KittiSequence& sequence, cv::Size* siz
 // The tracking labels of frame `frame` (DontCare left out) as truth objects.
 std::vector<TruthObject> LabelObjects(const std::vector<KittiLabel>& labels, const KittiRig& rig,
                                       int frame) {
-  // The labels' locations are in camera 0's rectified frame; the left camera sits beside it.
-  const double shift_z = rig.LeftCameraFromVelo(cv::Vec3d(0, 0, 0))[2] -
-                         (rig.rect_from_velo * cv::Vec4d(0, 0, 0, 1))[2];
   std::vector<TruthObject> objects;
   for (const KittiLabel& label : labels) {
     if (label.frame != frame || label.type == "DontCare") continue;
@@ -55,7 +52,8 @@ std::vector<TruthObject> LabelObjects(const std::vector<KittiLabel>& labels, con
     object.id = label.track_id;
     object.box = label.box;
     object.kind = label.type;
-    object.depth_m = label.location[2] + shift_z;
+    // The labels' locations are in camera 0's rectified frame; the left camera sits beside it.
+    object.depth_m = rig.LeftCameraFromRect(label.location)[2];
     objects.push_back(object);
   }
   return objects;
@@ -108,19 +106,16 @@ std::vector<TruthObject> TrackletObjects(const std::vector<KittiTracklet>& track
   return objects;
 }
 
-KittiRig ReadKittiRig(const KittiSequence& sequence, cv::Size* size) {
-  FrameStems(sequence, size);
+KittiRig ReadKittiRig(const KittiSequence& sequence, cv::Size size) {
   return sequence.layout == KittiLayout::kRawDrive
-             ? ReadKittiRawCalibration(sequence.calibration, *size)
-             : ReadKittiFrameCalibration(sequence.calibration, *size);
+             ? ReadKittiRawCalibration(sequence.calibration, size)
+             : ReadKittiFrameCalibration(sequence.calibration, size);
 }
 
 SceneTruth ReadKittiTruth(const KittiSequence& sequence) {
   cv::Size size;
   const std::vector<std::string> stems = FrameStems(sequence, &size);
-  const KittiRig rig = sequence.layout == KittiLayout::kRawDrive
-                           ? ReadKittiRawCalibration(sequence.calibration, size)
-                           : ReadKittiFrameCalibration(sequence.calibration, size);
+  const KittiRig rig = ReadKittiRig(sequence, size);
   std::vector<KittiTracklet> tracklets;
   std::vector<KittiLabel> labels;
   if (!sequence.labels.empty() && sequence.layout == KittiLayout::kRawDrive) {
@@ -156,7 +151,9 @@ std::vector<GtObject> ReadKittiObjects(const KittiSequence& sequence) {
                      ")");
   }
   cv::Size size;
-  const KittiRig rig = ReadKittiRig(sequence, &size);
+  // The drive's frames bound the labels' (a tracklet may say it runs beyond them).
+  const int frames = static_cast<int>(FrameStems(sequence, &size).size());
+  const KittiRig rig = ReadKittiRig(sequence, size);
   std::vector<GtObject> objects;
   auto add = [&](int frame, const TruthObject& object, int occlusion) {
     GtObject gt;
@@ -177,8 +174,6 @@ std::vector<GtObject> ReadKittiObjects(const KittiSequence& sequence) {
     return objects;
   }
   const std::vector<KittiTracklet> tracklets = ReadKittiTracklets(sequence.labels);
-  // The drive's frames bound the labels' (a tracklet may say it runs beyond them).
-  const int frames = static_cast<int>(FrameStems(sequence, &size).size());
   for (int frame = 0; frame < frames; ++frame) {
     for (const TruthObject& object : TrackletObjects(tracklets, rig, size, frame)) {
       const KittiTracklet& t = tracklets[static_cast<size_t>(object.id)];

@@ -37,8 +37,8 @@ double KittiVisibleFraction(int occlusion);
 std::vector<TruthObject> TrackletObjects(const std::vector<KittiTracklet>& tracklets,
                                          const KittiRig& rig, cv::Size size, int frame);
 
-// The sequence's rig for its frames' size (read from its first left frame).
-KittiRig ReadKittiRig(const KittiSequence& sequence, cv::Size* size);
+// The sequence's rig for frames of `size` (its calibration files).
+KittiRig ReadKittiRig(const KittiSequence& sequence, cv::Size size);
 
 // Every frame's truth: its objects (when the sequence has labels) and its LiDAR points,
 // ground and horizon (when it has scans; a frame without a scan file has none). InputError

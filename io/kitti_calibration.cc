@@ -44,11 +44,15 @@ KittiRig MakeRig(const std::string& source, const cv::Mat& left, const cv::Mat& 
 
 cv::Matx33d KittiRig::K() const { return left_projection.get_minor<3, 3>(0, 0); }
 
-cv::Vec3d KittiRig::LeftCameraFromVelo(const cv::Vec3d& x_velo) const {
-  const cv::Vec4d rect = rect_from_velo * cv::Vec4d(x_velo[0], x_velo[1], x_velo[2], 1.0);
+cv::Vec3d KittiRig::LeftCameraFromRect(const cv::Vec3d& x_rect) const {
   const cv::Vec3d shift =
       K().inv() * cv::Vec3d(left_projection(0, 3), left_projection(1, 3), left_projection(2, 3));
-  return cv::Vec3d(rect[0], rect[1], rect[2]) + shift;
+  return x_rect + shift;
+}
+
+cv::Vec3d KittiRig::LeftCameraFromVelo(const cv::Vec3d& x_velo) const {
+  const cv::Vec4d rect = rect_from_velo * cv::Vec4d(x_velo[0], x_velo[1], x_velo[2], 1.0);
+  return LeftCameraFromRect(cv::Vec3d(rect[0], rect[1], rect[2]));
 }
 
 cv::Point2d KittiRig::Project(const cv::Vec3d& x_in_left) const {

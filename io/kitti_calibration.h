@@ -28,6 +28,9 @@ struct KittiRig {
 
   // The left colour camera's intrinsics (the left 3x3 of left_projection).
   cv::Matx33d K() const;
+  // A point of camera 0's rectified frame (KITTI's labels' locations) in the left colour
+  // camera's: shifted by K^-1 times P_rect_02's last column.
+  cv::Vec3d LeftCameraFromRect(const cv::Vec3d& x_rect) const;
   // A Velodyne point in the left colour camera's rectified frame (X right, Y down, Z forward,
   // metres): camera 0's rectified frame shifted by K^-1 times P_rect_02's last column.
   cv::Vec3d LeftCameraFromVelo(const cv::Vec3d& x_velo) const;
