@@ -12,6 +12,7 @@
 #include "io/kitti_layout.h"
 #include "io/kitti_tracklets.h"
 #include "io/sequence.h"
+#include "io/stereo_calibration.h"
 #include "tests/support/error_message.h"
 #include "tests/support/kitti_maker.h"
 #include "tests/support/temp_dir.h"
@@ -169,7 +170,7 @@ TEST(KittiLabels, ReadsTrackingLabelsAndScansAndNamesBadLines) {
             std::string::npos);
 }
 
-TEST(KittiSource, OpensARawDriveWithItsCalibrationAtTenFramesASecond) {
+TEST(KittiSource, OpensARawDriveWithItsOwnCalibrationAtTenFramesASecond) {
   const testing::TempDir dir;
   const testing::KittiTestRig rig;
   const std::string drive =
@@ -186,6 +187,12 @@ TEST(KittiSource, OpensARawDriveWithItsCalibrationAtTenFramesASecond) {
   StereoFrame frame;
   ASSERT_TRUE(source->Next(&frame));
   EXPECT_NE(frame.right_path.find("image_03"), std::string::npos);
+
+  // A --calib file wins over KITTI's own.
+  options.source.calib = dir.File("calib.yaml");
+  WriteStereoCalibration(NominalCalibration(80.0, 0.3, rig.size, "test"), options.source.calib);
+  EXPECT_NEAR(OpenFrameSource(options)->info().calibration->baseline_m(), 0.3, 1e-12);
+  options.source.calib.clear();
 
   // A size that is not the frames' (S_rect_02 says 200x100): named with both sizes.
   std::ofstream(dir.File("2011_09_26/calib_cam_to_cam.txt"))
