@@ -7,14 +7,17 @@
 #include <sstream>
 #include <vector>
 
-#include "eval/disparity_scores.h"
 #include "eval/depth_scores.h"
+#include "eval/disparity_scores.h"
+#include "eval/kitti_truth.h"
 #include "eval/landing.h"
+#include "eval/lidar_depth.h"
 #include "eval/mot_metrics.h"
 #include "eval/rendered_truth.h"
 #include "eval/run_evaluation.h"
 #include "features/disparity_feature.h"
 #include "io/ground_truth.h"
+#include "io/kitti_layout.h"
 #include "io/pfm.h"
 #include "pipeline/options_io.h"
 #include "stereo/disparity.h"
@@ -177,9 +180,9 @@ nlohmann::ordered_json DepthJson(const DepthScores& s) {
 }
 
 // The scene truth of the ground-truth folder `gt` for where attention lands (eval/landing.h),
-// or none when it has no per-pixel truth. One source today: a rendered street scene
-// (gt/classes/), read with its sequence folder, gt's parent (sequence.yaml's focal_px and
-// baseline_m). Another source (a KITTI drive's LiDAR scans and labels) is one more case here.
+// or none when it has no per-pixel truth: a rendered street scene (gt/classes/), read with its
+// sequence folder, gt's parent (sequence.yaml's focal_px and baseline_m). A KITTI drive's
+// (its LiDAR scans and labels) is SequenceSceneTruth's.
 std::optional<SceneTruth> LoadSceneTruth(const std::string& gt) {
   if (HasRenderedTruth(gt)) {
     fs::path folder = fs::path(gt).lexically_normal();
@@ -189,7 +192,32 @@ std::optional<SceneTruth> LoadSceneTruth(const std::string& gt) {
   return std::nullopt;
 }
 
+// The targets' depth against the LiDAR (eval/lidar_depth.h); -1 as null.
+nlohmann::ordered_json LidarDepthJson(const LidarDepthScores& s) {
+  auto value = [](double v) {
+    return v < 0.0 ? nlohmann::ordered_json() : nlohmann::ordered_json(v);
+  };
+  return {{"min_points", kMinLidarPoints},
+          {"count", s.count},
+          {"share_within_10_percent", value(s.share_within_10_percent)},
+          {"median_relative_error", value(s.median_relative_error)},
+          {"median_abs_error_m", value(s.median_abs_error_m)}};
+}
+
+// The KITTI sequence of a run whose source is one, when no other ground truth is asked for.
+std::optional<KittiSequence> RunKittiSequence(const AttendOptions& options, const std::string& gt) {
+  if (!gt.empty() || options.sequence.source.folder.empty()) return std::nullopt;
+  return FindKittiSequence(options.sequence.source.folder);
+}
+
 }  // namespace
+
+std::optional<SceneTruth> SequenceSceneTruth(const SourceSpec& source) {
+  if (source.folder.empty()) return std::nullopt;
+  const std::optional<KittiSequence> kitti = FindKittiSequence(source.folder);
+  if (!kitti) return std::nullopt;
+  return ReadKittiTruth(*kitti);
+}
 
 nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::string& gt_dir) {
   const fs::path run(run_dir);
@@ -209,18 +237,24 @@ nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::
   } catch (const ConfigError& e) {
     throw InputError(e.what());
   }
+  const std::optional<KittiSequence> kitti = RunKittiSequence(options, gt_dir);
   std::string gt = gt_dir;
-  if (gt.empty()) {
+  if (kitti) {
+    gt = kitti->labels.empty() ? kitti->folder : kitti->labels;
+  } else if (gt.empty()) {
     if (options.sequence.source.folder.empty()) {
       throw ConfigError(run_dir + ": the run's source is not a sequence folder; give --gt");
     }
     gt = (fs::path(options.sequence.source.folder) / "gt").string();
   }
   const fs::path objects = fs::path(gt) / "objects.csv";
-  if (!fs::exists(objects)) throw InputError(objects.string() + ": no ground-truth objects");
+  if (!kitti && !fs::exists(objects)) {
+    throw InputError(objects.string() + ": no ground-truth objects");
+  }
   CheckRecordsInInputPixels(run);
   const std::vector<FrameRecord> frames = ReadFrameRecords((run / "frames.jsonl").string());
-  const std::vector<GtObject> truth = ReadObjectsCsv(objects.string());
+  const std::vector<GtObject> truth =
+      kitti ? ReadKittiObjects(*kitti) : ReadObjectsCsv(objects.string());
   const AttentionScores scores = EvaluateAttention(frames, truth);
 
   nlohmann::ordered_json per_object = nlohmann::ordered_json::array();
@@ -249,8 +283,13 @@ nlohmann::ordered_json EvaluateRunFolder(const std::string& run_dir, const std::
   if (!disparity.is_null()) report["disparity"] = disparity;
   const DepthScores depth = EvaluateTargetDepth(frames, truth);
   if (depth.matches > 0) report["target_depth"] = DepthJson(depth);
-  if (const std::optional<SceneTruth> scene = LoadSceneTruth(gt)) {
+  // Where attention lands (eval/landing.h) against the per-pixel truth of a rendered street
+  // scene or a KITTI sequence's LiDAR and labels, and for KITTI the depth against the LiDAR.
+  std::optional<SceneTruth> scene =
+      kitti ? SequenceSceneTruth(options.sequence.source) : LoadSceneTruth(gt);
+  if (scene) {
     report["landing"] = LandingToJson(EvaluateLanding(frames, *scene));
+    if (kitti) report["depth_lidar"] = LidarDepthJson(EvaluateLidarDepth(frames, *scene));
   }
   return report;
 }

@@ -3,9 +3,11 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 
 #include "app/run_attention.h"
+#include "io/kitti_layout.h"
 #include "util/error.h"
 #include "util/file_checks.h"
 #include "util/frame_range.h"
@@ -15,6 +17,12 @@
 namespace attend {
 
 namespace {
+
+// A KITTI raw drive or tracking sequence with its labels, which attend eval reads itself.
+bool HasKittiLabels(const std::string& folder) {
+  const std::optional<KittiSequence> kitti = FindKittiSequence(folder);
+  return kitti.has_value() && !kitti->labels.empty();
+}
 
 namespace fs = std::filesystem;
 
@@ -142,8 +150,9 @@ void CheckInputForCommand(const YamlDocument& document, const YAML::Node& node,
     }
   }
   // attend eval's ground truth: the input's gt:, else a sequence's own gt/ (a rendered scene
-  // brings its own).
-  if (command == SweepCommand::kRun && !(input.kind == "scene" && input.gt.empty())) {
+  // brings its own, a KITTI sequence its labels).
+  if (command == SweepCommand::kRun && !(input.kind == "scene" && input.gt.empty()) &&
+      !(input.kind == "sequence" && input.gt.empty() && HasKittiLabels(input.path))) {
     const std::string gt =
         !input.gt.empty()
             ? input.gt

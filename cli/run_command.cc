@@ -93,6 +93,11 @@ int Run(const RunArguments& args) {
   return 0;
 }
 
+constexpr const char* kSequenceHelp =
+    "Sequence folder with left/ and right/ (or only left/); or KITTI's own layouts as unpacked: "
+    "a raw drive folder (DATE/DATE_drive_NNNN_sync) or a tracking sequence's "
+    "training/image_02/NNNN (docs/SEQUENCES.md)";
+
 }  // namespace
 
 void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction* action) {
@@ -105,8 +110,7 @@ void AddRunCommand(CLI::App& app, const std::string& command_line, CommandAction
       "(disparity) out with a note.");
   run->add_option("--config", args->config,
                   "Configuration YAML (default: configs/default.yaml of the attend home)");
-  auto* seq = run->add_option("--sequence", args->source.folder,
-                              "Sequence folder with left/ and right/ (or only left/)");
+  auto* seq = run->add_option("--sequence", args->source.folder, kSequenceHelp);
   auto* left = run->add_option("--left", args->source.left_video, "Left video of a pair");
   auto* right = run->add_option("--right", args->source.right_video, "Right video of a pair");
   auto* sbs = run->add_option("--side-by-side", args->source.side_by_side_video,

@@ -6,11 +6,13 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <opencv2/imgproc.hpp>
 #include <set>
 #include <sstream>
 
 #include "config/flat_values.h"
+#include "eval/kitti_truth.h"
 #include "eval/run_evaluation.h"
 #include "io/ground_truth.h"
 #include "io/pfm.h"
@@ -218,8 +220,13 @@ RunData LoadRun(const std::string& dir, const std::string& gt) {
     data.attention = EvaluateAttention(data.frames, ReadObjectsCsv(objects.string()));
   } else if (folder != data.config.end() && !folder->second.empty()) {
     const fs::path objects = fs::path(folder->second) / "gt" / "objects.csv";
+    const std::optional<KittiSequence> kitti = FindKittiSequence(folder->second);
     std::error_code error;
-    if (fs::is_regular_file(objects, error)) {
+    if (kitti.has_value() && !kitti->labels.empty()) {
+      // A KITTI sequence brings its labels (eval/kitti_truth.h).
+      data.ground_truth = kitti->labels;
+      data.attention = EvaluateAttention(data.frames, ReadKittiObjects(*kitti));
+    } else if (fs::is_regular_file(objects, error)) {
       data.ground_truth = objects.string();
       data.attention = EvaluateAttention(data.frames, ReadObjectsCsv(objects.string()));
     }

@@ -16,7 +16,7 @@ struct GtObject {
   double visible_fraction = 0.0;  // visible pixels / pixels of the whole projected object
   // Pixels at the object's depth; empty when unknown (an empty field in objects.csv, SPEC 3.1).
   std::optional<double> disparity;
-  std::string kind = "object";    // IsGroundTruthKind: "object", "skin", "car", ...
+  std::string kind = "object";    // IsGroundTruthKind: "object", "skin", "car", ...; a KITTI label's type ("Car", ...)
 };
 
 // The header line of gt/objects.csv.

@@ -1,8 +1,10 @@
 #include "io/sequence.h"
 
+#include <optional>
 #include <string>
 
 #include "io/folder_source.h"
+#include "io/kitti_source.h"
 #include "io/live_source.h"
 #include "io/video_source.h"
 #include "util/error.h"
@@ -18,8 +20,11 @@ std::unique_ptr<FrameSource> OpenFrameSource(const SequenceOptions& options) {
   const std::string problem = options.Check();
   if (!problem.empty()) throw ConfigError("sequence options: " + problem);
   switch (options.source.Kind()) {
-    case SourceKind::kFolder:
-      return OpenFolderSource(options);
+    case SourceKind::kFolder: {
+      // KITTI's layouts are given as folders too (SPEC 3.1): a raw drive, a tracking sequence.
+      const std::optional<KittiSequence> kitti = FindKittiSequence(options.source.folder);
+      return kitti ? OpenKittiSource(options, *kitti) : OpenFolderSource(options);
+    }
     case SourceKind::kImages:
       return OpenImageFolderSource(options);
     case SourceKind::kVideoPair:

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 
 #include "util/error.h"
 
@@ -28,6 +29,9 @@ std::string CalibrationFile(const SequenceOptions& options, const SequenceInfo& 
 
 std::shared_ptr<const Rectifier> AttachCalibration(const SequenceOptions& options,
                                                    SequenceInfo* info) {
+  // A calibration the reader found with the frames (a KITTI layout's own, io/kitti_source.h)
+  // stands unless sequence.calib names a file; it is checked against the frames as a file is.
+  std::shared_ptr<const StereoCalibration> found = std::move(info->calibration);
   info->calibration.reset();
   if (!info->stereo) {
     if (!options.source.calib.empty()) {
@@ -37,7 +41,9 @@ std::shared_ptr<const Rectifier> AttachCalibration(const SequenceOptions& option
     }
     return nullptr;
   }
-  const std::string file = CalibrationFile(options, *info);
+  const std::string file = found != nullptr && options.source.calib.empty()
+                               ? found->source
+                               : CalibrationFile(options, *info);
   if (file.empty()) {
     if (info->focal_px > 0 && info->baseline_m > 0) {
       info->calibration = std::make_shared<const StereoCalibration>(NominalCalibration(
@@ -46,7 +52,9 @@ std::shared_ptr<const Rectifier> AttachCalibration(const SequenceOptions& option
     }
     return nullptr;
   }
-  auto calibration = std::make_shared<const StereoCalibration>(ReadStereoCalibration(file));
+  auto calibration = found != nullptr && options.source.calib.empty()
+                         ? found
+                         : std::make_shared<const StereoCalibration>(ReadStereoCalibration(file));
   if (calibration->image_size != info->native_size) {
     throw InputError(file + ": the calibration is for " + SizeText(calibration->image_size) +
                      " frames, but the frames of " + options.source.Describe() + " are " +

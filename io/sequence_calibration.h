@@ -13,7 +13,8 @@
 namespace attend {
 
 // Sets `info->calibration` for the source of `options` (info's stereo, folder, focal_px,
-// baseline_m and native_size set already) and returns the Rectifier of a full calibration
+// baseline_m and native_size set already; a calibration its reader set, KITTI's, is kept
+// unless sequence.calib is set) and returns the Rectifier of a full calibration
 // (nullptr for the other forms and for none). A calibration file set on a monocular source:
 // ConfigError. A calibration whose image size is not the frames' native size: InputError naming
 // both. A bad calibration file: InputError (ReadStereoCalibration).

@@ -5,7 +5,9 @@ namespace attend {
 const OptionFields<SourceSpec>& SourceSpec::Fields() {
   using S = SourceSpec;
   static const OptionFields<SourceSpec> fields = {
-      {"folder", &S::folder, "sequence folder with left/ and right/ (or left/ alone)"},
+      {"folder", &S::folder,
+       "sequence folder with left/ and right/ (or left/ alone), or a KITTI raw drive or "
+       "tracking training/image_02/NNNN (docs/SEQUENCES.md)"},
       {"left_video", &S::left_video, "left video of a stereo pair (with right_video)"},
       {"right_video", &S::right_video, "right video of a stereo pair"},
       {"side_by_side_video", &S::side_by_side_video, "one video, the left view in its left half"},

@@ -27,7 +27,8 @@ enum class SourceKind {
 struct SourceSpec {
   // At most one source may be set; opening needs exactly one.
   std::string folder;      // SEQ: frames in SEQ/left and SEQ/right (monocular without
-                           // right/), matched by sorted file name
+                           // right/), matched by sorted file name; or a KITTI raw drive
+                           // or tracking sequence (io/kitti_layout.h)
   std::string left_video;  // with right_video: a pair of videos
   std::string right_video;
   std::string side_by_side_video;  // left half | right half; an odd width is bad input

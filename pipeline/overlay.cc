@@ -48,10 +48,9 @@ void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::str
                          .height + baseline;
   const int x = std::max(0, std::min(box.x, image->cols - width));
   // Above the box; where a label drawn before is there, the first free place of: inside the
-  // box's top, below the box, then further up a line at a time.
-  std::vector<int> baselines = {std::max(10, box.y - 3), box.y + height,
-                                box.y + box.height + height};
-  for (int k = 1; k <= 6; ++k) baselines.push_back(box.y - 3 - k * height);
+  // box's top, below the box, a line higher (a label further away would name another box).
+  const std::vector<int> baselines = {std::max(10, box.y - 3), box.y + height,
+                                      box.y + box.height + height, box.y - 3 - height};
   int y = baselines.front();
   if (placed != nullptr) {
     for (const int candidate : baselines) {

@@ -39,7 +39,7 @@ void DrawLabel(cv::Mat* image, const std::string& text, cv::Point at, const cv::
 void DrawCaption(cv::Mat* image, const std::string& text, double font_scale);
 // and a target's label above its box: "#ID", then `suffix` (moved left, as far as the image's
 // left edge, where it would run over the right edge). With `placed`, the labels drawn before,
-// it goes where it covers none of them (inside the box's top, below it, or higher up), and is
+// it goes where it covers none of them (inside the box's top, below it, or a line higher), and is
 // added to them.
 void DrawTargetLabel(cv::Mat* image, int id, const cv::Rect& box, const std::string& suffix,
                      double font_scale, std::vector<cv::Rect>* placed = nullptr);

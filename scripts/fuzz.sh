@@ -35,7 +35,7 @@ done
 max_len_of() {
   case "$1" in
     config) echo 16384 ;;
-    scene | frames_jsonl | eval_run | compare_run) echo 8192 ;;
+    scene | frames_jsonl | eval_run | compare_run | kitti_files) echo 8192 ;;
     pfm | objects_csv | tracks_csv | skin_text) echo 4096 ;;
     otb_boxes | skin_model) echo 2048 ;;
     *) echo 1024 ;;  # config_set, sequence_yaml

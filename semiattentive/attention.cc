@@ -82,8 +82,6 @@ struct AttentionStage::Impl {
   // `inhibited_pixels`; `looked` gets the candidates' boxes.
   void StartTargets(const Frame& in, int inhibited_pixels, AttentionFrame* frame,
                     std::vector<cv::Rect>* looked);
-  // The inhibited saliency the candidates are found on: without the background.
-  const cv::Mat& Selectable();
   // Whether a seed on colour region `region` starts a skin target.
   bool IsSkin(const Frame& in, int region) const;
   // select.every_detection: starts targets on the free detections, the most salient first,
@@ -132,7 +130,6 @@ struct AttentionStage::Impl {
   std::unique_ptr<MotionGrouping> grouping_;  // select.group_min_speed > 0 only
   TargetDepths depths_;
   SceneAnalysis scene_;      // select.background and depth grouping
-  cv::Mat selectable_;       // the inhibited saliency without the background
   int dwell_frames_ = 0;     // attention.dwell_s at the sequence's frame rate; 0: off
   // Per detection of the frame: a target is on it (recognised, or started on it).
   std::vector<uint8_t> detection_used_;
@@ -344,7 +341,8 @@ void AttentionStage::Impl::StartTargets(const Frame& in, int inhibited_pixels,
   if (free_slots <= 0) return;
   // Background is no candidate: its saliency is left out of the selection (not out of the
   // inhibited map that is recorded), and its regions count as taken for the seeds.
-  const cv::Mat& selectable = Selectable();
+  const cv::Mat& selectable =
+      scene_.enabled() ? scene_.WithoutBackground(inhibition_.inhibited()) : inhibition_.inhibited();
   Candidates candidates = candidates_.Find(selectable);
   RankCandidates(options_.select, focus_ ? &*focus_ : nullptr, in.detections, in.bgr.size(),
                  &candidates);
@@ -355,12 +353,7 @@ void AttentionStage::Impl::StartTargets(const Frame& in, int inhibited_pixels,
       options_.select.every_detection && options_.select.seed == SeedKind::kDetection;
   if (candidates.ranked.empty() && !every_detection) return;
   CandidateRegions under = RegionsUnder(candidates, in.segmentation, inhibition_.covered());
-  if (scene_.enabled()) {
-    const std::vector<BackgroundKind>& kind = scene_.regions().kind;
-    for (size_t r = 0; r < under.taken.size() && r < kind.size(); ++r) {
-      if (kind[r] != BackgroundKind::kNone) under.taken[r] = 1;
-    }
-  }
+  if (scene_.enabled()) scene_.MarkTaken(&under.taken);
   // New targets are started only while the inhibition stays within
   // select.max_inhibited_fraction of the image: attention that covers everything attends
   // nothing (each new region counts with its own area).
@@ -426,13 +419,6 @@ void AttentionStage::Impl::StartOnDetections(const Frame& in, const SeedFrame& s
     detection_used_[d] = 1;
     if (Start(in, seed, false, frame)) ++*started;
   }
-}
-
-const cv::Mat& AttentionStage::Impl::Selectable() {
-  if (!scene_.enabled()) return inhibition_.inhibited();
-  inhibition_.inhibited().copyTo(selectable_);
-  selectable_.setTo(0.f, scene_.regions().mask);
-  return selectable_;
 }
 
 bool AttentionStage::Impl::IsSkin(const Frame& in, int region) const {

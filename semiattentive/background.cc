@@ -65,6 +65,18 @@ const char* BackgroundKindName(BackgroundKind kind) {
   return "";
 }
 
+const cv::Mat& SceneAnalysis::WithoutBackground(const cv::Mat& saliency) {
+  saliency.copyTo(without_);
+  without_.setTo(0.f, regions_.mask);
+  return without_;
+}
+
+void SceneAnalysis::MarkTaken(std::vector<uint8_t>* taken) const {
+  for (size_t r = 0; r < taken->size() && r < regions_.kind.size(); ++r) {
+    if (regions_.kind[r] != BackgroundKind::kNone) (*taken)[r] = 1;
+  }
+}
+
 bool SceneAnalysis::OnBackground(const cv::Mat& mask, const cv::Rect& box, int* frames) const {
   *frames = BackgroundShare(mask, box) > kMovedOnShare ? *frames + 1 : 0;
   return *frames >= kMovedOnFrames;

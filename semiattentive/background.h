@@ -63,6 +63,11 @@ class SceneAnalysis {
   const SceneRegions& regions() const { return regions_; }
   // The share of the pixels of `mask` (CV_8UC1, frame size) within `box` that are background.
   double BackgroundShare(const cv::Mat& mask, const cv::Rect& box) const;
+  // `saliency` (CV_32FC1, frame size) with the background's pixels at 0: the analysis's buffer,
+  // valid until it is called again.
+  const cv::Mat& WithoutBackground(const cv::Mat& saliency);
+  // Marks the background's colour regions in `taken` (one flag per region).
+  void MarkTaken(std::vector<uint8_t>* taken) const;
   // Whether a found target (its `mask` within `box`) has slid onto the background: more than
   // kMovedOnShare of its mask on it for kMovedOnFrames frames in a row, `frames` counting them
   // (a region's kind flickers from frame to frame where it is near a rule's bound).
@@ -80,6 +85,7 @@ class SceneAnalysis {
   SelectOptions options_;
   double baseline_m_ = 0.0;
   SceneRegions regions_;
+  cv::Mat without_;  // WithoutBackground's
 };
 
 }  // namespace attend

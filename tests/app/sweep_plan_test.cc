@@ -12,6 +12,7 @@
 #include "app/sweep_plan.h"
 #include "app/sweep_slurm.h"
 #include "tests/support/error_message.h"
+#include "tests/support/kitti_maker.h"
 #include "tests/support/sequence_maker.h"
 #include "tests/support/temp_dir.h"
 
@@ -106,6 +107,21 @@ TEST(SweepPlan, TheStepsReadThenCheckThenExpand) {
   // The check names the value out of range by its line.
   const std::string message = testing::ConfigErrorOf([&] { CheckSweepSettings(plan); });
   EXPECT_NE(message.find("s.yaml:3: grid.select.max_new: "), std::string::npos) << message;
+}
+
+TEST(SweepPlan, AKittiSequenceWithLabelsNeedsNoGtFolder) {
+  const TempDir dir;
+  const testing::KittiTestRig rig;
+  const std::vector<cv::Mat> frames(2, cv::Mat(rig.size, CV_8UC3, cv::Scalar(50)));
+  testing::WriteKittiTracking(dir, rig, frames, frames);
+  const std::string file =
+      dir.Write("s.yaml", "grid:\n  select.max_new: [1, 2]\ninputs:\n"
+                          "  - sequence: training/image_02/0000\n");
+  EXPECT_EQ(ReadSweepFile(file).inputs.size(), 1u);
+  // Without its labels it has no ground truth for attend eval.
+  std::filesystem::remove(dir.File("training/label_02/0000.txt"));
+  const std::string message = testing::ConfigErrorOf([&] { ReadSweepFile(file); });
+  EXPECT_NE(message.find("no objects.csv"), std::string::npos) << message;
 }
 
 TEST(SweepPlan, SlurmAndScoringAreReadThroughTheirFieldTables) {
