@@ -53,6 +53,8 @@ const OptionFields<DepthOptions>& DepthOptions::Fields() {
        "each target's disparity: template (the thesis's), map (the disparity map's), off"},
       {"match_tolerance", &O::match_tolerance, Range::Closed(0, 765),
        "template: a pixel matches when sum over B, G, R of |left - right| is at most this"},
+      {"jump_low_pass", &O::jump_low_pass, Range::Closed(0.01, 1),
+       "the jump test's low-pass cutoff, a fraction of the frame rate; >= 0.5: none"},
       {"low_pass", &O::low_pass, Range::Closed(0.01, 1),
        "the 4th-order low-pass cutoff, a fraction of the frame rate; >= 0.5: none"},
       {"max_samples", &O::max_samples, Range::Closed(16, 1e7),
@@ -331,7 +333,7 @@ double TargetDepths::JumpOf(int id, const cv::Mat& left, const StereoInput& ster
   auto it = jumps_.find(id);
   double jump = 0.0;
   if (it == jumps_.end()) {
-    it = jumps_.emplace(id, JumpTrack(options_.low_pass)).first;
+    it = jumps_.emplace(id, JumpTrack(options_.jump_low_pass)).first;
   } else {
     // A move within three of the estimate's own standard deviations is not a jump: a flat or
     // repeating template's peak wanders by itself.

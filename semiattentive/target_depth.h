@@ -48,7 +48,7 @@ struct DepthOptions {
   // their absolute differences is at most this (8-bit values).
   float match_tolerance = 30.f;
   // The fourth-order low-pass filter's cutoff, a fraction of the frame rate; 0.5 or more: none.
-  float low_pass = 0.1f;
+  float low_pass = 0.25f;
   // The pixels of the template (or of the mask) read, at most: a larger target is read on a
   // regular grid of about this many (its estimate then costs no more than a smaller one's).
   int max_samples = 4096;
@@ -58,10 +58,12 @@ struct DepthOptions {
   float separate_px = 0.f;
   // a found target whose raw disparity leaves its filtered one by more than `jump_px` is a
   // switch to another object, and is released ("depth_jump"); the test is always on the
-  // thesis's template estimate, filtered at low_pass, whatever `method` records (it measured
+  // thesis's template estimate, filtered at `jump_low_pass` (the cutoff it was chosen with;
+  // low_pass, the recorded estimate's, may differ), whatever `method` records (it measured
   // best so on the rendered scenes, docs/STEREO3D.md; the map's jumped on its own noise), and
   // a move within three of the raw estimate's standard deviations is not a jump;
   float jump_px = 3.f;
+  float jump_low_pass = 0.1f;
   // a target inhibits only the pixels whose disparity is within `inhibit_band_px` of its own
   // (an object passing in front of it is not inhibited by it).
   float inhibit_band_px = 0.f;
