@@ -426,12 +426,13 @@ bool AttentionStage::Impl::IsSkin(const Frame& in, int region) const {
   const double region_area = in.segmentation.regions[region].area;
   const double skin_share =
       static_cast<double>(cv::countNonZero(in.tracked.skin & region_mask)) / region_area;
-  // A mostly-skin region is a skin target only when it is confident, skin-shaped skin
-  // (features/skin.h, JudgeSkinRegion), unless skin_check is off (the thesis's rule).
-  return skin_share >= options_.skin_fraction &&
-         (!options_.skin_check || JudgeSkinRegion(region_mask, in.skin_distance,
-                                                  skin_model_.threshold, options_.skin_region)
-                                      .skin);
+  // Skin targets: confident, skin-shaped skin of a person's size, unless skin_check is off.
+  if (skin_share < options_.skin_fraction || !options_.skin_check) {
+    return skin_share >= options_.skin_fraction;
+  }
+  return JudgeSkinRegion(region_mask, in.skin_distance, skin_model_.threshold,
+                         options_.skin_region).skin &&
+         !(scene_.WidthM(in.segmentation, region) > SceneAnalysis::kMaxSkinWidthM);
 }
 
 bool AttentionStage::Impl::Start(const Frame& in, const Seed& seed, bool skin,

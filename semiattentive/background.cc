@@ -71,6 +71,15 @@ const cv::Mat& SceneAnalysis::WithoutBackground(const cv::Mat& saliency) {
   return without_;
 }
 
+double SceneAnalysis::WidthM(const Segmentation& segmentation, int region) const {
+  if (baseline_m_ <= 0.0 || region < 0 || region >= static_cast<int>(regions_.disparity.size())) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const float d = regions_.disparity[region];
+  if (!(d > 0.f)) return std::numeric_limits<double>::quiet_NaN();
+  return segmentation.regions[region].bbox.width * baseline_m_ / d;
+}
+
 void SceneAnalysis::MarkTaken(std::vector<uint8_t>* taken) const {
   for (size_t r = 0; r < taken->size() && r < regions_.kind.size(); ++r) {
     if (regions_.kind[r] != BackgroundKind::kNone) (*taken)[r] = 1;

@@ -66,6 +66,12 @@ class SceneAnalysis {
   // `saliency` (CV_32FC1, frame size) with the background's pixels at 0: the analysis's buffer,
   // valid until it is called again.
   const cv::Mat& WithoutBackground(const cv::Mat& saliency);
+  // The width in metres of colour region `region` at its depth (its box's width times
+  // baseline / disparity); NaN without a depth or a baseline.
+  double WidthM(const Segmentation& segmentation, int region) const;
+  // The widest skin a person shows (a face, hands, bare arms spread): a skin-coloured region
+  // wider than this is no one's skin (AttentionStage's skin test).
+  static constexpr double kMaxSkinWidthM = 0.8;
   // Marks the background's colour regions in `taken` (one flag per region).
   void MarkTaken(std::vector<uint8_t>* taken) const;
   // Whether a found target (its `mask` within `box`) has slid onto the background: more than

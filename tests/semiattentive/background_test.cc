@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
 #include <set>
 
 namespace attend {
@@ -54,7 +55,10 @@ struct Street {
     disparity(cv::Rect(60, 50, 30, 46)).setTo(13.75f);  // the object, standing on row 95
     disparity(cv::Rect(90, 50, 12, 20)).setTo(20.f);     // a box nearer than the object
     segmentation.regions.resize(kRegions);
-    for (int r = 0; r < kRegions; ++r) segmentation.regions[r].area = cv::countNonZero(labels == r);
+    for (int r = 0; r < kRegions; ++r) {
+      segmentation.regions[r].area = cv::countNonZero(labels == r);
+      segmentation.regions[r].bbox = cv::boundingRect(labels == r);
+    }
     segmentation.adjacency = AdjacencyOf(labels, kRegions);
   }
 };
@@ -82,6 +86,31 @@ TEST(Background, SkyRoadAndObjectAreToldApartOnAStereoFrame) {
   mask.setTo(0);
   mask(cv::Rect(0, 100, 40, 20)).setTo(255);
   EXPECT_EQ(scene.BackgroundShare(mask, cv::Rect(0, 100, 40, 20)), 1.0);
+}
+
+// Heights and widths in metres need the baseline: the drawn ground's slope 0.25 px a row puts a
+// camera of baseline 0.5 m at 2 m; a row y of the object is 2 - (y - 40) x 0.5 / 13.75 m above
+// the ground, 1.64 m at its top (row 50), 0 at its base (row 95), 0.82 m on average: below
+// max_height 2.5 m, above 0.5 m. A region 15 px wide at disparity 13.75 is 15 x 0.5 / 13.75 m.
+TEST(Background, HeightsAndWidthsInMetresFollowFromTheBaseline) {
+  const Street street;
+  SelectOptions options;
+  SceneAnalysis scene(options);
+  EXPECT_TRUE(std::isnan(scene.WidthM(street.segmentation, kLeftHalf)));  // nothing analysed
+  scene.set_baseline(0.5);
+  scene.Analyse(street.segmentation, street.disparity, street.measured);
+  EXPECT_EQ(scene.regions().kind[kLeftHalf], BackgroundKind::kNone);
+  EXPECT_NEAR(scene.WidthM(street.segmentation, kLeftHalf), 15 * 0.5 / 13.75, 1e-6);
+  EXPECT_TRUE(std::isnan(scene.WidthM(street.segmentation, kSky)));  // no depth
+  options.max_height = 0.5f;
+  SceneAnalysis low(options);
+  low.set_baseline(0.5);
+  low.Analyse(street.segmentation, street.disparity, street.measured);
+  EXPECT_EQ(low.regions().kind[kLeftHalf], BackgroundKind::kHigh);
+  // Without a baseline there is no height rule.
+  SceneAnalysis unknown(options);
+  unknown.Analyse(street.segmentation, street.disparity, street.measured);
+  EXPECT_EQ(unknown.regions().kind[kLeftHalf], BackgroundKind::kNone);
 }
 
 TEST(Background, OnAMonocularFrameTheBorderRuleRemains) {
