@@ -43,7 +43,8 @@ class DisparityFeature : public FeatureMap {
     const auto* lazy = dynamic_cast<const LazyFrameContext*>(&context);
     cv::Mat measured = lazy != nullptr ? lazy->DisparityMeasured(options_)
                                        : cv::Mat(disparity.size(), CV_8UC1, cv::Scalar(255));
-    const GroundPlane ground = FitGroundPlane(disparity, measured);
+    const GroundPlane ground =
+        lazy != nullptr ? lazy->DisparityGround(options_) : FitGroundPlane(disparity, measured);
     const int window = std::max(3, static_cast<int>(surround_ * disparity.cols) | 1);
     cv::Mat contrast = DepthContrast(disparity, measured, ground, window);
     // Each colour region takes the mean over its measured pixels: a plain object is measured

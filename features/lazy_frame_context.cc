@@ -110,7 +110,7 @@ const cv::Mat& LazyFrameContext::DisparityMeasured(const DisparityOptions& optio
   return DisparitySlotOf(options).measured;
 }
 
-const LazyFrameContext::DisparitySlot& LazyFrameContext::DisparitySlotOf(
+LazyFrameContext::DisparitySlot& LazyFrameContext::DisparitySlotOf(
     const DisparityOptions& options) const {
   ATTEND_CHECK(stereo()) << "the disparity needs a stereo frame (frame " << frame_index_ << ")";
   std::lock_guard<std::mutex> lock(disparity_mutex_);
@@ -122,8 +122,19 @@ const LazyFrameContext::DisparitySlot& LazyFrameContext::DisparitySlotOf(
   if (!slot->ready) {
     estimators_->Compute(options, left_, right_, &slot->disparity, &slot->measured);
     slot->ready = true;
+    slot->ground_ready = false;
   }
   return *slot;
+}
+
+const GroundPlane& LazyFrameContext::DisparityGround(const DisparityOptions& options) const {
+  DisparitySlot& slot = DisparitySlotOf(options);
+  std::lock_guard<std::mutex> lock(disparity_mutex_);
+  if (!slot.ground_ready) {
+    slot.ground = FitGroundPlane(slot.disparity, slot.measured);
+    slot.ground_ready = true;
+  }
+  return slot.ground;
 }
 
 const Segmentation& LazyFrameContext::Regions() const {

@@ -18,6 +18,7 @@
 #include "colour/skin_model.h"
 #include "features/frame_context.h"
 #include "pyramid/segmentation.h"
+#include "stereo/ground_plane.h"
 
 namespace attend {
 
@@ -79,6 +80,9 @@ class LazyFrameContext final : public FrameContext {
   // check passed on a textured window; DisparityEstimator::measured). Not part of the plugin
   // API: the built-in disparity feature and the attention stage read it.
   const cv::Mat& DisparityMeasured(const DisparityOptions& options) const;
+  // The ground plane of Disparity(options) over its measured pixels (stereo/ground_plane.h),
+  // fitted once a frame for the disparity feature and the attention stage's background.
+  const GroundPlane& DisparityGround(const DisparityOptions& options) const;
   // Where attention looks (FrameContext::AttentionRegions); Reset keeps them, the pipeline
   // sets them for each frame before its features run.
   const std::vector<cv::Rect>& AttentionRegions() const override { return attention_regions_; }
@@ -118,11 +122,13 @@ class LazyFrameContext final : public FrameContext {
     bool ready = false;
     cv::Mat disparity;
     cv::Mat measured;
+    bool ground_ready = false;
+    GroundPlane ground;
   };
   mutable std::mutex disparity_mutex_;
   mutable std::list<DisparitySlot> disparity_slots_;
   // The slot of `options`, computed on first use in the frame.
-  const DisparitySlot& DisparitySlotOf(const DisparityOptions& options) const;
+  DisparitySlot& DisparitySlotOf(const DisparityOptions& options) const;
   std::shared_ptr<DisparityEstimators> estimators_;
   DisparityOptions disparity_options_;
   mutable Segmenter segmenter_;

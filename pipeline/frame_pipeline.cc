@@ -269,6 +269,7 @@ StereoInput FramePipeline::StereoOf(const Slot& slot) const {
   if (has_disparity_) {
     stereo.disparity = slot.context.Disparity(disparity);
     stereo.measured = slot.context.DisparityMeasured(disparity);
+    stereo.ground = slot.context.DisparityGround(disparity);
   }
   if (depth.method == TargetDisparityMethod::kOff) return stereo;
   stereo.right = slot.frame.right;

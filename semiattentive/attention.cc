@@ -177,7 +177,7 @@ void AttentionStage::Impl::Select(const Frame& in, AttentionFrame* frame) {
   if (grouping_ != nullptr) grouping_->NextFrame(in.bgr);
   Stopwatch stage;
   if (scene_.enabled()) {
-    scene_.Analyse(in.segmentation, in.stereo.disparity, in.stereo.measured);
+    scene_.Analyse(in.segmentation, in.stereo.disparity, in.stereo.measured, in.stereo.ground);
   }
   FollowTargets(in, frame);
   const int inhibited_pixels = inhibition_.Apply(in.saliency, files_);

@@ -93,9 +93,16 @@ bool SceneAnalysis::OnBackground(const cv::Mat& mask, const cv::Rect& box, int* 
 
 void SceneAnalysis::Analyse(const Segmentation& segmentation, const cv::Mat& disparity,
                             const cv::Mat& measured) {
+  const bool stereo = !disparity.empty() && !measured.empty();
+  Analyse(segmentation, disparity, measured,
+          stereo ? FitGroundPlane(disparity, measured) : GroundPlane());
+}
+
+void SceneAnalysis::Analyse(const Segmentation& segmentation, const cv::Mat& disparity,
+                            const cv::Mat& measured, const GroundPlane& ground) {
   const cv::Mat& labels = segmentation.labels;
   const bool stereo = !disparity.empty() && !measured.empty();
-  regions_.ground = stereo ? FitGroundPlane(disparity, measured) : GroundPlane();
+  regions_.ground = stereo ? ground : GroundPlane();
   const std::vector<RegionCounts> counts =
       CountRegions(segmentation, stereo ? disparity : cv::Mat(), stereo ? measured : cv::Mat(),
                    regions_.ground, baseline_m_);

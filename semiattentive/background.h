@@ -60,6 +60,10 @@ class SceneAnalysis {
   // where it was `measured` (CV_8UC1, 255); both empty on a monocular frame.
   void Analyse(const Segmentation& segmentation, const cv::Mat& disparity,
                const cv::Mat& measured);
+  // The same with the frame's ground plane fitted already (FitGroundPlane of `disparity` over
+  // `measured`; the frame context's, which the disparity feature used).
+  void Analyse(const Segmentation& segmentation, const cv::Mat& disparity, const cv::Mat& measured,
+               const GroundPlane& ground);
   const SceneRegions& regions() const { return regions_; }
   // The share of the pixels of `mask` (CV_8UC1, frame size) within `box` that are background.
   double BackgroundShare(const cv::Mat& mask, const cv::Rect& box) const;

@@ -27,6 +27,7 @@
 #include <opencv2/core.hpp>
 #include <string_view>
 
+#include "stereo/ground_plane.h"
 #include "util/enum_table.h"
 #include "util/option_fields.h"
 
@@ -144,6 +145,7 @@ struct StereoInput {
   // CV_8UC1, 255 where the disparity was measured (DisparityEstimator::measured); empty when
   // unknown (every pixel counts).
   cv::Mat measured;
+  GroundPlane ground;  // of `disparity` over `measured` (not valid without them)
   int max_disparity = 0;  // the disparities searched, at the working size
   int window = 5;         // the disparity's matching window
   bool empty() const { return right.empty(); }
